@@ -1,0 +1,24 @@
+#pragma once
+// The freeturn command's subcommands. Each takes its arguments (after the subcommand
+// name) and returns the process exit code: 0 ok, 1 a check failed or files differ,
+// 2 bad input or usage. Errors go to stderr.
+
+#include <string>
+#include <vector>
+
+namespace freeturn::cli {
+
+inline constexpr int kExitOk = 0;
+inline constexpr int kExitCheckFailed = 1;
+inline constexpr int kExitBadInput = 2;
+
+struct Command {
+  const char* name;
+  const char* summary;
+  const char* usage;
+  int (*run)(const std::vector<std::string>& args);
+};
+
+int run_sample(const std::vector<std::string>& args);
+
+}  // namespace freeturn::cli

@@ -1,0 +1,68 @@
+// freeturn: YAML job in, NC program out. This file dispatches subcommands.
+
+#include <cstdio>
+#include <cstring>
+#include <exception>
+#include <string>
+#include <vector>
+
+#include "commands.hpp"
+#include "freeturn/core/error.hpp"
+#include "freeturn/core/version.hpp"
+
+namespace {
+
+using freeturn::cli::Command;
+
+const Command kCommands[] = {
+    {"sample", "evaluate a job's design surface over its aperture and write it as CSV",
+     "freeturn sample JOB.yaml [-o DIR] [--grid N]", freeturn::cli::run_sample},
+};
+
+void print_help(std::FILE* out) {
+  std::fprintf(out,
+               "freeturn %s: CAM for ultraprecision diamond turning of optical surfaces\n\n"
+               "usage: freeturn [--help | --version] <command> [args]\n\ncommands:\n",
+               freeturn::kVersion);
+  for (const Command& c : kCommands) std::fprintf(out, "  %-10s %s\n", c.name, c.summary);
+  std::fprintf(out,
+               "\n'freeturn <command> --help' shows a command's usage.\n"
+               "exit codes: 0 ok, 1 a check failed or files differ, 2 bad input or usage\n");
+}
+
+}  // namespace
+
+int main(int argc, char** argv) {
+  std::vector<std::string> args(argv + 1, argv + argc);
+  if (args.empty()) {
+    print_help(stderr);
+    return freeturn::cli::kExitBadInput;
+  }
+  if (args[0] == "--help" || args[0] == "-h" || args[0] == "help") {
+    print_help(stdout);
+    return freeturn::cli::kExitOk;
+  }
+  if (args[0] == "--version") {
+    std::printf("freeturn %s\n", freeturn::kVersion);
+    return freeturn::cli::kExitOk;
+  }
+  for (const Command& c : kCommands) {
+    if (args[0] != c.name) continue;
+    std::vector<std::string> rest(args.begin() + 1, args.end());
+    if (!rest.empty() && (rest[0] == "--help" || rest[0] == "-h")) {
+      std::printf("usage: %s\n%s\n", c.usage, c.summary);
+      return freeturn::cli::kExitOk;
+    }
+    try {
+      return c.run(rest);
+    } catch (const freeturn::InputError& e) {
+      std::fprintf(stderr, "%s\n", e.what());
+      return freeturn::cli::kExitBadInput;
+    } catch (const std::exception& e) {
+      std::fprintf(stderr, "freeturn %s: internal error: %s\n", c.name, e.what());
+      return freeturn::cli::kExitBadInput;
+    }
+  }
+  std::fprintf(stderr, "freeturn: unknown command '%s' (see freeturn --help)\n", args[0].c_str());
+  return freeturn::cli::kExitBadInput;
+}

@@ -1,0 +1,37 @@
+#pragma once
+// The one error type for bad input: YAML, NURBS data, machine limits exceeded.
+// Expected numerical outcomes (no convergence, a ray that misses) are not errors;
+// they come back as a Status beside the value (see status.hpp).
+
+#include <stdexcept>
+#include <string>
+
+namespace freeturn {
+
+// Where in a source file something was found; line and column are 1-based, 0 = unknown.
+struct SourceLocation {
+  std::string file;
+  int line = 0;
+  int column = 0;
+
+  // "file:line:col", "file:line", "file", or "" when nothing is known.
+  std::string to_string() const;
+};
+
+class InputError : public std::runtime_error {
+ public:
+  // `where` is free text naming the place ("job.yaml:3:7", "theta=12.5 rad, r=3.2 mm",
+  // "knot 4"); `what` says what is wrong and what was expected.
+  InputError(std::string where, const std::string& what);
+  InputError(const SourceLocation& where, const std::string& what);
+  explicit InputError(const std::string& what) : InputError(std::string(), what) {}
+
+  const std::string& where() const { return where_; }
+  const std::string& problem() const { return problem_; }
+
+ private:
+  std::string where_;
+  std::string problem_;
+};
+
+}  // namespace freeturn

@@ -1,0 +1,24 @@
+#pragma once
+// Design-surface samples as CSV: what the surface looks like over the aperture, for a
+// quick look in a spreadsheet or ParaView before any path is planned.
+
+#include <string>
+
+#include "freeturn/surface/surface.hpp"
+
+namespace freeturn {
+
+struct SampleSummary {
+  long points = 0;        // rows written
+  double z_min = 0;       // mm
+  double z_max = 0;       // mm
+  double max_slope = 0;   // radians, largest angle between normal and +z
+};
+
+// Writes the samples of `surface` on a grid_n × grid_n square grid over
+// [−outer_radius, outer_radius]², keeping the points with inner_radius ≤ r ≤ outer_radius.
+// Columns: x, y, z, nx, ny, nz (mm; unit normal). Written atomically (AtomicFile).
+SampleSummary write_surface_samples_csv(const Surface& surface, double inner_radius,
+                                        double outer_radius, int grid_n, const std::string& path);
+
+}  // namespace freeturn

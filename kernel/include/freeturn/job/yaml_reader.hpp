@@ -1,0 +1,62 @@
+#pragma once
+// Strict reading of YAML maps: every value is checked for type and range, every key the
+// schema does not know is an error, and every error names file:line:col.
+
+#include <yaml-cpp/yaml.h>
+
+#include <optional>
+#include <set>
+#include <string>
+
+#include "freeturn/core/error.hpp"
+
+namespace freeturn {
+
+// The location of a node in its file (yaml-cpp marks are 0-based; ours are 1-based).
+SourceLocation location_of(const YAML::Node& node, const std::string& file);
+
+// Parses a whole YAML file; a syntax error becomes an InputError at its line and column.
+YAML::Node load_yaml_file(const std::string& path);
+
+// Reads one YAML map. Call finish() after the last read: it rejects the keys that were
+// never asked for.
+class MapReader {
+ public:
+  // `what` names the map in messages ("surface", "aperture").
+  MapReader(const YAML::Node& node, std::string file, std::string what);
+
+  bool has(const std::string& key) const;
+  const YAML::Node& node() const { return node_; }
+  const std::string& file() const { return file_; }
+
+  // The node under `key` (marked as used); an error if absent.
+  YAML::Node child(const std::string& key);
+  std::optional<YAML::Node> optional_child(const std::string& key);
+
+  // A finite number.
+  double number(const std::string& key);
+  double number(const std::string& key, double fallback);
+  // A finite number > 0.
+  double positive(const std::string& key);
+  double positive(const std::string& key, double fallback);
+  // A finite number >= 0.
+  double non_negative(const std::string& key, double fallback);
+  // A non-empty string.
+  std::string text(const std::string& key);
+
+  // Rejects keys that were not read.
+  void finish() const;
+
+  // An error located at the value of `key` (or at the map if the key is absent).
+  [[noreturn]] void fail(const std::string& key, const std::string& what) const;
+
+ private:
+  double read_number(const YAML::Node& value, const std::string& key) const;
+
+  YAML::Node node_;
+  std::string file_;
+  std::string what_;
+  std::set<std::string> used_;
+};
+
+}  // namespace freeturn

@@ -1,0 +1,68 @@
+#!/usr/bin/env bash
+# Installs the Debian 12 packages freeturn needs (when missing), then configures and
+# builds one build flavour. Idempotent: with everything in place it only runs an
+# incremental build.
+#
+#   scripts/setup.sh [release|asan]   install what is missing, configure, build
+#                                     (release: optimised, for the demo and bench/;
+#                                      asan: AddressSanitizer + UBSan, for the tests)
+#   scripts/setup.sh --check          list the missing packages, one per line;
+#                                     exit 0 if none is missing, 1 otherwise
+set -euo pipefail
+
+root="$(cd "$(dirname "${BASH_SOURCE[0]}")/.." && pwd)"
+
+# Everything the build, the tests and the benchmarks use. Keep in step with
+# third_party.cmake, which names the same packages when a find fails.
+packages=(
+  cmake g++ make pkg-config
+  libeigen3-dev libopenmesh-dev coinor-libipopt-dev libyaml-cpp-dev doctest-dev
+  libbenchmark-dev
+)
+# Extra packages a caller (CI) wants too, e.g. FREETURN_EXTRA_PACKAGES="linuxcnc-uspace".
+read -r -a extra <<< "${FREETURN_EXTRA_PACKAGES:-}"
+packages+=("${extra[@]}")
+
+missing_packages() {
+  local p
+  for p in "${packages[@]}"; do
+    if ! dpkg-query -W -f='${Status}\n' "$p" 2>/dev/null | grep -q "install ok installed"; then
+      echo "$p"
+    fi
+  done
+}
+
+if [[ "${1:-}" == "--check" ]]; then
+  missing="$(missing_packages)"
+  if [[ -z "$missing" ]]; then
+    echo "all ${#packages[@]} packages are installed"
+    exit 0
+  fi
+  echo "$missing"
+  exit 1
+fi
+
+flavour="${1:-release}"
+case "$flavour" in
+  release) cmake_args=(-DCMAKE_BUILD_TYPE=Release -DFREETURN_BUILD_BENCH=ON -DFREETURN_BUILD_TESTS=OFF) ;;
+  asan) cmake_args=(-DCMAKE_BUILD_TYPE=Debug -DFREETURN_SANITIZE=ON) ;;
+  *) echo "setup.sh: unknown build flavour '$flavour' (release or asan)" >&2; exit 2 ;;
+esac
+
+mapfile -t missing < <(missing_packages)
+if ((${#missing[@]})); then
+  if [[ "$(id -u)" -ne 0 ]]; then
+    echo "setup.sh: missing Debian packages; run as root, or run:" >&2
+    echo "  sudo apt-get update && sudo apt-get install -y ${missing[*]}" >&2
+    exit 2
+  fi
+  echo "setup.sh: installing ${missing[*]}"
+  export DEBIAN_FRONTEND=noninteractive
+  apt-get update -qq
+  apt-get install -y -qq --no-install-recommends "${missing[@]}" >/dev/null
+fi
+
+build="$root/build/$flavour"
+# Configuring again is quick with a cache, and repairs a build folder left half-configured.
+cmake -S "$root" -B "$build" "${cmake_args[@]}" >/dev/null
+cmake --build "$build" --parallel "$(nproc)"

@@ -1,0 +1,9 @@
+#!/usr/bin/env bash
+# The README's test command: set up (packages, ASan+UBSan build), then the whole suite
+# through ctest, which ends with its summary line.
+set -euo pipefail
+root="$(cd "$(dirname "${BASH_SOURCE[0]}")/.." && pwd)"
+"$root/scripts/setup.sh" asan
+export ASAN_OPTIONS="${ASAN_OPTIONS:-detect_leaks=1:abort_on_error=1}"
+export UBSAN_OPTIONS="${UBSAN_OPTIONS:-print_stacktrace=1:halt_on_error=1}"
+ctest --test-dir "$root/build/asan" --output-on-failure --parallel "$(nproc)"

@@ -1,0 +1,50 @@
+#!/usr/bin/env bash
+# The freeturn command: help, version, exit codes, messages on stderr, no output on error.
+set -uo pipefail
+freeturn="$1"
+src="$2"
+tmp="$(mktemp -d)"
+trap 'rm -rf "$tmp"' EXIT
+fail=0
+expect() {  # description, expected exit code, actual exit code
+  if [[ "$2" != "$3" ]]; then echo "FAIL: $1: exit $3, expected $2"; fail=1; fi
+}
+contains() {  # description, haystack file, needle
+  if ! grep -qF -- "$3" "$2"; then echo "FAIL: $1: '$3' not in:"; cat "$2"; fail=1; fi
+}
+
+"$freeturn" --help > "$tmp/help" 2>&1; expect "--help" 0 $?
+contains "--help lists sample" "$tmp/help" "sample"
+"$freeturn" --version > "$tmp/version"; expect "--version" 0 $?
+version="$(sed -n 's/^project(freeturn VERSION \([0-9.]*\).*/\1/p' "$src/CMakeLists.txt")"
+contains "--version prints the project version" "$tmp/version" "freeturn $version"
+"$freeturn" > /dev/null 2>&1; expect "no arguments" 2 $?
+"$freeturn" frobnicate 2> "$tmp/err"; expect "unknown command" 2 $?
+contains "unknown command names it" "$tmp/err" "unknown command 'frobnicate'"
+"$freeturn" sample > /dev/null 2>&1; expect "sample without a job" 2 $?
+
+# The demo job runs and writes its CSV.
+"$freeturn" sample "$src/configs/jobs/demo_asphere.yaml" -o "$tmp/out" --grid 11 > "$tmp/log"
+expect "demo job" 0 $?
+rows=$(($(wc -l < "$tmp/out/demo_asphere.surface.csv") - 1))
+# An 11 x 11 grid on [-10, 10]^2 keeps the points with x^2 + y^2 <= 100 (step 2 mm):
+# count of integer pairs (i, j) in [-5, 5]^2 with i^2 + j^2 <= 25 is 81.
+[[ "$rows" == 81 ]] || { echo "FAIL: demo rows $rows, expected 81"; fail=1; }
+
+# A bad job: message file:line:col on stderr, exit 2, no output file.
+cat > "$tmp/bad.yaml" <<'YAML'
+name: bad
+aperture:
+  outer_radius: 5
+surface:
+  type: sphere
+  radius: 20
+  colour: blue
+YAML
+"$freeturn" sample "$tmp/bad.yaml" -o "$tmp/bad" > "$tmp/out.txt" 2> "$tmp/err"
+expect "bad job" 2 $?
+contains "bad job message" "$tmp/err" "$tmp/bad.yaml:7:3: unknown key 'colour' in surface"
+[[ ! -s "$tmp/out.txt" ]] || { echo "FAIL: bad job printed to stdout"; fail=1; }
+[[ ! -e "$tmp/bad/bad.surface.csv" ]] || { echo "FAIL: bad job left an output"; fail=1; }
+
+exit $fail

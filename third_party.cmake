@@ -1,0 +1,63 @@
+# Every external package freeturn uses is found here and nowhere else.
+# All come from Debian 12 (bookworm) packages; nothing is downloaded or vendored.
+# Each find names the apt package that provides it, so a missing one stops
+# configuration with the exact `apt-get install` line (scripts/setup.sh installs them).
+
+include_guard(GLOBAL)
+
+function(freeturn_missing what package)
+  message(FATAL_ERROR
+    "freeturn: ${what} was not found.\n"
+    "Install it with:  apt-get install -y ${package}\n"
+    "(or run scripts/setup.sh, which installs every missing package).")
+endfunction()
+
+# Eigen 3.4 (header only) -> Eigen3::Eigen
+find_package(Eigen3 3.4 QUIET NO_MODULE)
+if(NOT TARGET Eigen3::Eigen)
+  freeturn_missing("Eigen 3.4" libeigen3-dev)
+endif()
+
+# OpenMesh 9 -> OpenMeshCore. Debian's package ships no version file, so no version
+# may be requested (see shared/notes/dependencies.md).
+find_package(OpenMesh QUIET)
+if(NOT TARGET OpenMeshCore)
+  freeturn_missing("OpenMesh 9" libopenmesh-dev)
+endif()
+
+# yaml-cpp 0.7 -> yaml-cpp (0.8 renames the target yaml-cpp::yaml-cpp)
+find_package(yaml-cpp 0.7 QUIET)
+if(TARGET yaml-cpp::yaml-cpp)
+  set(FREETURN_YAML_TARGET yaml-cpp::yaml-cpp)
+elseif(TARGET yaml-cpp)
+  set(FREETURN_YAML_TARGET yaml-cpp)
+else()
+  freeturn_missing("yaml-cpp 0.7" libyaml-cpp-dev)
+endif()
+
+# Ipopt 3.11 has no CMake config; pkg-config gives PkgConfig::IPOPT.
+find_package(PkgConfig QUIET)
+if(NOT PKG_CONFIG_FOUND)
+  freeturn_missing("pkg-config" pkg-config)
+endif()
+pkg_check_modules(IPOPT QUIET IMPORTED_TARGET ipopt>=3.11)
+if(NOT TARGET PkgConfig::IPOPT)
+  freeturn_missing("Ipopt 3.11" coinor-libipopt-dev)
+endif()
+
+# doctest 2.4 (header only) -> doctest::doctest, and doctest_discover_tests()
+if(FREETURN_BUILD_TESTS)
+  find_package(doctest 2.4 QUIET)
+  if(NOT TARGET doctest::doctest)
+    freeturn_missing("doctest 2.4" doctest-dev)
+  endif()
+  include(doctest)
+endif()
+
+# Google Benchmark, only for bench/
+if(FREETURN_BUILD_BENCH)
+  find_package(benchmark QUIET)
+  if(NOT TARGET benchmark::benchmark)
+    freeturn_missing("Google Benchmark" libbenchmark-dev)
+  endif()
+endif()
