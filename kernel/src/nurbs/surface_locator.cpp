@@ -1,0 +1,116 @@
+#include "freeturn/nurbs/surface_locator.hpp"
+
+#include <algorithm>
+#include <cmath>
+
+namespace freeturn::nurbs {
+namespace {
+
+// Sample parameters: `per_span` intervals in every non-empty knot span, so that the grid
+// follows the knots (where the shape can change) rather than the parameter range.
+std::vector<double> knot_aware_samples(const KnotVector& knots, int per_span) {
+  const std::vector<double> b = knots.breakpoints();
+  std::vector<double> s;
+  for (std::size_t k = 0; k + 1 < b.size(); ++k)
+    for (int i = 0; i < per_span; ++i) s.push_back(b[k] + (b[k + 1] - b[k]) * i / per_span);
+  s.push_back(b.back());
+  return s;
+}
+
+}  // namespace
+
+SurfaceLocator::SurfaceLocator(NurbsSurface surface, LocatorOptions options)
+    : surface_(std::move(surface)), options_(options) {
+  const int per_span = std::max(2, options_.samples_per_span);
+  grid_u_ = knot_aware_samples(surface_.knots_u(), std::max(per_span, surface_.degree_u()));
+  grid_v_ = knot_aware_samples(surface_.knots_v(), std::max(per_span, surface_.degree_v()));
+  grid_points_.reserve(grid_u_.size() * grid_v_.size());
+  Eigen::AlignedBox3d box;
+  for (double u : grid_u_)
+    for (double v : grid_v_) {
+      grid_points_.push_back(surface_.point(u, v));
+      box.extend(grid_points_.back());
+    }
+  // A direction is closed when its two end curves coincide (checked on every sample).
+  const double tolerance = 1e-10 * (1.0 + box.diagonal().norm());
+  const int nu = static_cast<int>(grid_u_.size()), nv = static_cast<int>(grid_v_.size());
+  closed_u_ = closed_v_ = true;
+  for (int j = 0; j < nv; ++j)
+    if ((grid_points_[j] - grid_points_[(nu - 1) * nv + j]).norm() > tolerance) closed_u_ = false;
+  for (int i = 0; i < nu; ++i)
+    if ((grid_points_[i * nv] - grid_points_[i * nv + nv - 1]).norm() > tolerance)
+      closed_v_ = false;
+  // An edge is a pole when all its samples coincide.
+  const auto collapsed = [&](int first, int stride, int count) {
+    for (int k = 1; k < count; ++k)
+      if ((grid_points_[first + k * stride] - grid_points_[first]).norm() > tolerance) return false;
+    return true;
+  };
+  pole_u_front_ = collapsed(0, 1, nv);
+  pole_u_back_ = collapsed((nu - 1) * nv, 1, nv);
+  pole_v_front_ = collapsed(0, nv, nu);
+  pole_v_back_ = collapsed(nv - 1, nv, nu);
+}
+
+bool SurfaceLocator::on_pole_edge(double u, double v) const {
+  return (pole_u_front_ && u <= surface_.front_u()) || (pole_u_back_ && u >= surface_.back_u()) ||
+         (pole_v_front_ && v <= surface_.front_v()) || (pole_v_back_ && v >= surface_.back_v());
+}
+
+bool SurfaceLocator::leave_pole(const Vector3d& p, double& u, double& v) const {
+  // Directions out of a pole are the non-vanishing partials along the edge's samples: for
+  // a pole at u = const these are ±S_u(u_pole, v) over v. Take the steepest descent of
+  // |S − p|², then back off along it until the distance really drops.
+  const bool pole_in_u = (pole_u_front_ && u <= surface_.front_u()) ||
+                         (pole_u_back_ && u >= surface_.back_u());
+  const Vector3d r = surface_.point(u, v) - p;
+  const double f = r.squaredNorm();
+  const std::vector<double>& along = pole_in_u ? grid_v_ : grid_u_;
+  double best_slope = 0, best_param = 0;
+  for (double s : along) {
+    const SurfaceDerivatives d = pole_in_u ? surface_.evaluate(u, s, 1) : surface_.evaluate(s, v, 1);
+    const Vector3d inward = pole_in_u ? Vector3d(u <= surface_.front_u() ? d.su : -d.su)
+                                      : Vector3d(v <= surface_.front_v() ? d.sv : -d.sv);
+    const double n = inward.norm();
+    if (n == 0) continue;
+    const double slope = inward.dot(r) / n;
+    if (slope < best_slope) {
+      best_slope = slope;
+      best_param = s;
+    }
+  }
+  if (!(best_slope < -options_.cosine_tolerance * std::sqrt(f))) return false;
+  const double range = pole_in_u ? surface_.back_u() - surface_.front_u()
+                                 : surface_.back_v() - surface_.front_v();
+  for (double h = 0.05 * range; h > 1e-12 * range; h *= 0.5) {
+    double un = u, vn = v;
+    if (pole_in_u) {
+      un = u <= surface_.front_u() ? u + h : u - h;
+      vn = best_param;
+    } else {
+      vn = v <= surface_.front_v() ? v + h : v - h;
+      un = best_param;
+    }
+    if ((surface_.point(un, vn) - p).squaredNorm() < f) {
+      u = un;
+      v = vn;
+      return true;
+    }
+  }
+  return false;
+}
+
+void SurfaceLocator::wrap_or_clamp(double& u, double& v) const {
+  const auto fix = [](double& x, double lo, double hi, bool closed) {
+    if (closed) {
+      const double period = hi - lo;
+      if (x < lo || x > hi) x = lo + (x - lo) - period * std::floor((x - lo) / period);
+    } else {
+      x = std::clamp(x, lo, hi);
+    }
+  };
+  fix(u, surface_.front_u(), surface_.back_u(), closed_u_);
+  fix(v, surface_.front_v(), surface_.back_v(), closed_v_);
+}
+
+}  // namespace freeturn::nurbs
