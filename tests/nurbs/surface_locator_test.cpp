@@ -13,6 +13,12 @@ using namespace freeturn::test;
 using freeturn::Status;
 using freeturn::nurbs::SurfaceLocator;
 
+// The inversion test's random points; another seed can be given to probe robustness:
+// -DFREETURN_INVERSION_SEED=N.
+#ifndef FREETURN_INVERSION_SEED
+#define FREETURN_INVERSION_SEED 2024
+#endif
+
 namespace {
 
 // Reference closest point, independent of the locator's Newton iteration: the local
@@ -117,7 +123,7 @@ TEST_SUITE("nurbs") {
     const NurbsSurface s = freeform_with_pole();
     const SurfaceLocator locator(s);
     const DenseReference reference(s, 120);
-    std::mt19937 rng(2024);
+    std::mt19937 rng(FREETURN_INVERSION_SEED);
     std::uniform_real_distribution<double> unit(0.0, 1.0), ball(-1.0, 1.0);
     auto random_offset = [&](double radius) {
       Vector3d o;
@@ -125,7 +131,7 @@ TEST_SUITE("nurbs") {
       while (o.norm() > 1.0);
       return Vector3d(o * radius);
     };
-    int failures = 0, beyond = 0, near_pole = 0;
+    int failures = 0, beyond = 0, near_pole = 0, reference_missed = 0;
     double worst_distance_error = 0, worst_point_error = 0;
     const int total = 10000;
     for (int k = 0; k < total; ++k) {
@@ -151,13 +157,17 @@ TEST_SUITE("nurbs") {
       }
       const auto r = locator.closest_point(p);
       const Reference ref = reference.closest(p);
+      // A locator answer is a verified surface point (below), so a distance shorter than the
+      // reference's means the reference missed; only a longer one is a failure.
       const double distance_error = r.distance - ref.distance;
-      worst_distance_error = std::max(worst_distance_error, std::abs(distance_error));
-      worst_point_error = std::max(worst_point_error, (r.point - ref.point).norm());
+      worst_distance_error = std::max(worst_distance_error, distance_error);
+      if (distance_error < -1e-9) ++reference_missed;
+      if (distance_error >= -1e-9)
+        worst_point_error = std::max(worst_point_error, (r.point - ref.point).norm());
       // The locator's point is on the surface and at the distance it reports.
       const bool consistent = (s.point(r.u, r.v) - r.point).norm() <= 1e-12 &&
                               std::abs((r.point - p).norm() - r.distance) <= 1e-12;
-      if (r.status != Status::kOk || std::abs(distance_error) > 1e-9 || !consistent) {
+      if (r.status != Status::kOk || distance_error > 1e-9 || !consistent) {
         if (failures < 5)
           std::printf("miss: p = (%.6f, %.6f, %.6f) locator %.12f (u %.6f v %.6f, %s) "
                       "reference %.12f\n",
@@ -166,9 +176,10 @@ TEST_SUITE("nurbs") {
         ++failures;
       }
     }
-    MESSAGE("worst |distance - reference| = " << worst_distance_error
+    MESSAGE("worst (distance - reference) = " << worst_distance_error
             << " mm, worst |point - reference| = " << worst_point_error << " mm; " << beyond
-            << " beyond edges, " << near_pole << " near the pole");
+            << " beyond edges, " << near_pole << " near the pole; the reference was beaten "
+            << reference_missed << " times");
     CHECK(failures == 0);
     CHECK(worst_distance_error <= 1e-9);
   }

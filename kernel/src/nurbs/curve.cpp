@@ -1,6 +1,7 @@
 #include "freeturn/nurbs/curve.hpp"
 
 #include <algorithm>
+#include <array>
 #include <cmath>
 #include <string>
 
@@ -11,6 +12,16 @@
 namespace freeturn::nurbs {
 
 double binomial(int n, int k) {
+  // Pascal's triangle up to n = 16 (the derivative orders that occur), by recurrence.
+  static const auto table = [] {
+    std::array<std::array<double, 17>, 17> t{};
+    for (int i = 0; i <= 16; ++i) {
+      t[i][0] = t[i][i] = 1.0;
+      for (int j = 1; j < i; ++j) t[i][j] = t[i - 1][j - 1] + t[i - 1][j];
+    }
+    return t;
+  }();
+  if (n <= 16) return table[n][k];
   double b = 1.0;
   for (int i = 1; i <= k; ++i) b = b * (n - k + i) / i;
   return b;

@@ -2,6 +2,7 @@
 // set for the boundary; see surface_locator.hpp).
 
 #include <algorithm>
+#include <array>
 #include <cmath>
 
 #include "freeturn/nurbs/surface_locator.hpp"
@@ -107,11 +108,14 @@ SurfacePointResult SurfaceLocator::closest_point(const Vector3d& p, double u, do
 SurfacePointResult SurfaceLocator::closest_point(const Vector3d& p) const {
   thread_local std::vector<int> seeds;
   best_grid_minima([&](const Vector3d& q) { return (q - p).squaredNorm(); },
+                   [&](const Eigen::AlignedBox3d& box) { return box.squaredExteriorDistance(p); },
                    options_.cold_seeds, seeds);
   const int nv = static_cast<int>(grid_v_.size());
   SurfacePointResult best;
   best.distance = INFINITY;
   for (int k : seeds) {
+    // Seeds come best first; one too far to beat the answer so far ends the search.
+    if ((grid_points_[k] - p).norm() - cell_size_ > best.distance) break;
     SurfacePointResult r = closest_point(p, grid_u_[k / nv], grid_v_[k % nv]);
     if (r.distance < best.distance ||
         (r.distance == best.distance && best.status != Status::kOk)) {
@@ -120,6 +124,39 @@ SurfacePointResult SurfaceLocator::closest_point(const Vector3d& p) const {
       best.iterations += it;
     } else {
       best.iterations += r.iterations;
+    }
+  }
+  // Near a pole, seeds from the fine rings around it: a local minimum along a ring is a
+  // direction out of the pole with a basin of its own. Nothing within a pole's reach can
+  // be closer than |p − pole| − reach.
+  bool near_pole = false;
+  for (const Pole& pole : poles_) near_pole = near_pole || (pole.point - p).norm() - pole.reach <= best.distance;
+  if (!near_pole) return best;
+  std::array<std::pair<double, std::pair<int, int>>, 4> minima;  // d², (ring, index)
+  minima.fill({INFINITY, {-1, -1}});
+  for (int r = 0; r < static_cast<int>(pole_rings_.size()); ++r) {
+    const PoleRing& ring = pole_rings_[r];
+    const int n = static_cast<int>(ring.points.size());
+    for (int k = 0; k < n; ++k) {
+      const double d = (ring.points[k] - p).squaredNorm();
+      if (d >= minima.back().first ||
+          (k > 0 && (ring.points[k - 1] - p).squaredNorm() < d) ||
+          (k + 1 < n && (ring.points[k + 1] - p).squaredNorm() < d))
+        continue;
+      minima.back() = {d, {r, k}};
+      std::sort(minima.begin(), minima.end(),
+                [](const auto& x, const auto& y) { return x.first < y.first; });
+    }
+  }
+  for (const auto& [d, where] : minima) {
+    if (where.first < 0) continue;
+    const PoleRing& ring = pole_rings_[where.first];
+    const SurfacePointResult r = closest_point(p, ring.u[where.second], ring.v[where.second]);
+    best.iterations += r.iterations;
+    if (r.distance < best.distance) {
+      const int it = best.iterations;
+      best = r;
+      best.iterations = it;
     }
   }
   return best;

@@ -22,8 +22,24 @@ std::vector<double> knot_aware_samples(const KnotVector& knots, int per_span) {
 SurfaceLocator::SurfaceLocator(NurbsSurface surface, LocatorOptions options)
     : surface_(std::move(surface)), options_(options) {
   const int per_span = std::max(2, options_.samples_per_span);
-  grid_u_ = knot_aware_samples(surface_.knots_u(), std::max(per_span, surface_.degree_u()));
-  grid_v_ = knot_aware_samples(surface_.knots_v(), std::max(per_span, surface_.degree_v()));
+  per_span_u_ = std::max(per_span, surface_.degree_u());
+  per_span_v_ = std::max(per_span, surface_.degree_v());
+  grid_u_ = knot_aware_samples(surface_.knots_u(), per_span_u_);
+  grid_v_ = knot_aware_samples(surface_.knots_v(), per_span_v_);
+  const std::vector<double> bu = surface_.knots_u().breakpoints();
+  const std::vector<double> bv = surface_.knots_v().breakpoints();
+  patches_u_ = static_cast<int>(bu.size()) - 1;
+  patches_v_ = static_cast<int>(bv.size()) - 1;
+  for (int a = 0; a < patches_u_; ++a) {
+    const int su = surface_.knots_u().find_span(0.5 * (bu[a] + bu[a + 1]));
+    for (int b = 0; b < patches_v_; ++b) {
+      const int sv = surface_.knots_v().find_span(0.5 * (bv[b] + bv[b + 1]));
+      Eigen::AlignedBox3d box;
+      for (int i = su - surface_.degree_u(); i <= su; ++i)
+        for (int j = sv - surface_.degree_v(); j <= sv; ++j) box.extend(surface_.control_point(i, j));
+      patch_boxes_.push_back(box);
+    }
+  }
   grid_points_.reserve(grid_u_.size() * grid_v_.size());
   Eigen::AlignedBox3d box;
   for (double u : grid_u_)
@@ -40,6 +56,15 @@ SurfaceLocator::SurfaceLocator(NurbsSurface surface, LocatorOptions options)
   for (int i = 0; i < nu; ++i)
     if ((grid_points_[i * nv] - grid_points_[i * nv + nv - 1]).norm() > tolerance)
       closed_v_ = false;
+  for (int i = 0; i + 1 < nu; ++i)
+    for (int j = 0; j + 1 < nv; ++j) {
+      const Vector3d& a = grid_points_[i * nv + j];
+      const Vector3d& b = grid_points_[i * nv + j + 1];
+      const Vector3d& c = grid_points_[(i + 1) * nv + j];
+      const Vector3d& e = grid_points_[(i + 1) * nv + j + 1];
+      // Corner distances bound the cell; doubled for the bulge of a curved cell.
+      cell_size_ = std::max({cell_size_, 2 * (a - e).norm(), 2 * (b - c).norm()});
+    }
   // An edge is a pole when all its samples coincide.
   const auto collapsed = [&](int first, int stride, int count) {
     for (int k = 1; k < count; ++k)
@@ -50,6 +75,33 @@ SurfaceLocator::SurfaceLocator(NurbsSurface surface, LocatorOptions options)
   pole_u_back_ = collapsed((nu - 1) * nv, 1, nv);
   pole_v_front_ = collapsed(0, nv, nu);
   pole_v_back_ = collapsed(nv - 1, nv, nu);
+  const auto add_rings = [&](bool in_u, bool at_front) {
+    const std::vector<double>& across = in_u ? grid_u_ : grid_v_;
+    const std::vector<double>& along = in_u ? grid_v_ : grid_u_;
+    const double edge = at_front ? across.front() : across.back();
+    const double step = at_front ? across[1] - across[0] : across[across.size() - 2] - across.back();
+    Pole pole{in_u ? surface_.point(edge, along.front()) : surface_.point(along.front(), edge), 0};
+    const double first_row = at_front ? across[1] : across[across.size() - 2];
+    for (double t : along)
+      pole.reach = std::max(pole.reach, ((in_u ? surface_.point(first_row, t) : surface_.point(t, first_row)) - pole.point).norm());
+    poles_.push_back(pole);
+    for (double fraction : {1.0 / 32, 1.0 / 16, 1.0 / 8, 1.0 / 4, 1.0 / 2}) {
+      PoleRing ring;
+      for (std::size_t k = 0; k + 1 < along.size(); ++k)
+        for (int sub = 0; sub < 4; ++sub) {
+          const double t = along[k] + (along[k + 1] - along[k]) * sub / 4.0;
+          const double a = edge + fraction * step;
+          ring.u.push_back(in_u ? a : t);
+          ring.v.push_back(in_u ? t : a);
+          ring.points.push_back(surface_.point(ring.u.back(), ring.v.back()));
+        }
+      pole_rings_.push_back(std::move(ring));
+    }
+  };
+  if (pole_u_front_) add_rings(true, true);
+  if (pole_u_back_) add_rings(true, false);
+  if (pole_v_front_) add_rings(false, true);
+  if (pole_v_back_) add_rings(false, false);
 }
 
 bool SurfaceLocator::on_pole_edge(double u, double v) const {

@@ -134,6 +134,11 @@ RayHit SurfaceLocator::intersect_ray(const Vector3d& origin, const Vector3d& dir
         const Vector3d w = q - origin;
         return (w - w.dot(dir) * dir).squaredNorm();
       },
+      [&](const Eigen::AlignedBox3d& box) {  // through the box's bounding sphere
+        const Vector3d w = box.center() - origin;
+        const double gap = std::max(0.0, (w - w.dot(dir) * dir).norm() - 0.5 * box.diagonal().norm());
+        return gap * gap;
+      },
       options_.cold_seeds, seeds);
   const int nv = static_cast<int>(grid_v_.size());
   int iterations = 0;

@@ -41,7 +41,7 @@ struct LocatorOptions {
   double cosine_tolerance = 1e-13;  // stop when |S_u·(S − P)| / (|S_u||S − P|) is below
   int max_iterations = 60;
   int samples_per_span = 4;         // cold-start grid density per knot span
-  int cold_seeds = 4;               // local minima refined on a cold query
+  int cold_seeds = 8;               // local minima refined on a cold query (at most 16)
 };
 
 class SurfaceLocator {
@@ -66,9 +66,12 @@ class SurfaceLocator {
                        double v0) const;
 
  private:
-  // Grid local minima of a per-sample score, best first, at most `count`.
-  template <typename Score>
-  void best_grid_minima(const Score& score, int count, std::vector<int>& out) const;
+  // Grid local minima of a per-sample score, best first, at most `count`. Only the
+  // samples of knot-span patches whose lower bound (lower_bound(box) ≤ score anywhere in
+  // the patch's control-point box) can beat the best patch are scored at all.
+  template <typename Score, typename LowerBound>
+  void best_grid_minima(const Score& score, const LowerBound& lower_bound, int count,
+                        std::vector<int>& out) const;
   void wrap_or_clamp(double& u, double& v) const;
   // On a degenerate edge (a pole) the partial along the edge vanishes and Newton cannot
   // see which way to leave it. If some direction out of the pole brings S closer to p,
@@ -83,6 +86,26 @@ class SurfaceLocator {
   bool pole_u_front_ = false, pole_u_back_ = false, pole_v_front_ = false, pole_v_back_ = false;
   std::vector<double> grid_u_, grid_v_;  // sample parameters
   std::vector<Vector3d> grid_points_;    // grid_u_.size() × grid_v_.size(), row-major
+  // The largest diagonal of a grid cell: no surface point is farther than this from the
+  // nearest sample of its cell, so a seed whose sample is farther than the best answer
+  // plus this cannot lead to a better one.
+  double cell_size_ = 0;
+  // Knot-span patches: each covers per_span_u_ × per_span_v_ grid cells, and its control
+  // points' box contains it (convex hull property, positive weights).
+  int per_span_u_ = 0, per_span_v_ = 0, patches_u_ = 0, patches_v_ = 0;
+  std::vector<Eigen::AlignedBox3d> patch_boxes_;
+  // Rings of samples just off each pole, finer than the grid's first row: basins that
+  // open between the pole and the grid's first row get seeds from them.
+  struct PoleRing {
+    std::vector<double> u, v;
+    std::vector<Vector3d> points;
+  };
+  struct Pole {
+    Vector3d point;
+    double reach = 0;  // how far from the pole its rings (and the grid's first row) go
+  };
+  std::vector<Pole> poles_;
+  std::vector<PoleRing> pole_rings_;
 };
 
 }  // namespace freeturn::nurbs
