@@ -98,7 +98,8 @@ static void BM_InversionCold(benchmark::State& state) {
   std::uniform_real_distribution<double> unit(0, 1), off(-1, 1);
   std::vector<Vector3d> queries;
   for (int k = 0; k < 1000; ++k)
-    queries.push_back(surface().point(unit(rng), unit(rng)) + Vector3d(off(rng), off(rng), off(rng)));
+    queries.push_back(surface().point(unit(rng), unit(rng)) +
+                      Vector3d(off(rng), off(rng), off(rng)));
   std::size_t k = 0;
   for (auto _ : state) {
     benchmark::DoNotOptimize(locator.closest_point(queries[k]).distance);

@@ -1,9 +1,9 @@
 // freeturn sample: the design surface over the aperture, as CSV.
 
 #include <cmath>
-#include <numbers>
 #include <cstdio>
 #include <filesystem>
+#include <numbers>
 #include <string>
 #include <vector>
 
@@ -45,10 +45,11 @@ int run_sample(const std::vector<std::string>& args) {
   const std::string path = (std::filesystem::path(out_dir) / (job.name + ".surface.csv")).string();
   const SampleSummary s = write_surface_samples_csv(*job.surface, job.aperture.inner_radius,
                                                     job.aperture.outer_radius, grid, path);
-  std::printf("%s: %ld points of the %s surface, sag %.9g to %.9g mm (PV %.6g um), "
-              "max slope %.4f deg\n",
-              path.c_str(), s.points, job.surface->type(), s.z_min, s.z_max,
-              (s.z_max - s.z_min) * 1e3, s.max_slope * 180.0 / std::numbers::pi);
+  std::printf(
+      "%s: %ld points of the %s surface, sag %.9g to %.9g mm (PV %.6g um), "
+      "max slope %.4f deg\n",
+      path.c_str(), s.points, job.surface->type(), s.z_min, s.z_max, (s.z_max - s.z_min) * 1e3,
+      s.max_slope * 180.0 / std::numbers::pi);
   return kExitOk;
 }
 

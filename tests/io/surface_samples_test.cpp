@@ -24,7 +24,8 @@ TEST_SUITE("io") {
       double v[6];
       char comma;
       std::istringstream row(line);
-      row >> v[0] >> comma >> v[1] >> comma >> v[2] >> comma >> v[3] >> comma >> v[4] >> comma >> v[5];
+      row >> v[0] >> comma >> v[1] >> comma >> v[2] >> comma >> v[3] >> comma >> v[4] >> comma >>
+          v[5];
       const double r = std::hypot(v[0], v[1]);
       CHECK(r >= 2.0);
       CHECK(r <= 10.0 + 1e-12);

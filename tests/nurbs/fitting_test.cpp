@@ -17,7 +17,9 @@ using namespace freeturn::nurbs;
 namespace {
 
 // A cubic polynomial space curve: in the span of any cubic spline.
-Vector3d cubic(double t) { return {1 + 2 * t - t * t * t, t * t - 3 * t, 0.5 * t * t * t + t}; }
+Vector3d cubic(double t) {
+  return {1 + 2 * t - t * t * t, t * t - 3 * t, 0.5 * t * t * t + t};
+}
 
 // A polynomial surface of degree (3, 2): in the span of any bicubic × biquadratic spline.
 Vector3d patch(double u, double v) {
@@ -51,9 +53,11 @@ TEST_SUITE("nurbs") {
     }
     const NurbsCurve chord = interpolate_curve(q, 3);
     const auto params = chord_length_parameters(q);
-    for (std::size_t k = 0; k < q.size(); ++k) CHECK((chord.point(params[k]) - q[k]).norm() <= 1e-12);
+    for (std::size_t k = 0; k < q.size(); ++k)
+      CHECK((chord.point(params[k]) - q[k]).norm() <= 1e-12);
     const NurbsCurve exact = interpolate_curve(q, 3, t);
-    for (int k = 0; k <= 100; ++k) CHECK((exact.point(k / 100.0) - cubic(k / 100.0)).norm() <= 1e-12);
+    for (int k = 0; k <= 100; ++k)
+      CHECK((exact.point(k / 100.0) - cubic(k / 100.0)).norm() <= 1e-12);
   }
 
   TEST_CASE("surface interpolation (A9.4) passes through its grid") {
@@ -87,7 +91,8 @@ TEST_SUITE("nurbs") {
       o.pin_ends = pin;
       const auto fit = fit_curve(q, o);
       CHECK(fit.max_error <= 1e-12);
-      for (int k = 0; k <= 50; ++k) CHECK((fit.curve.point(k / 50.0) - cubic(k / 50.0)).norm() <= 1e-12);
+      for (int k = 0; k <= 50; ++k)
+        CHECK((fit.curve.point(k / 50.0) - cubic(k / 50.0)).norm() <= 1e-12);
     }
     // A straight line has C'' = 0, so smoothing does not move the fit.
     std::vector<Vector3d> line;
@@ -134,8 +139,9 @@ TEST_SUITE("nurbs") {
     const auto by_points = fit_surface_scattered(grid, by_grid.u, by_grid.v, o);
     for (int i = 0; i < by_grid.surface.count_u(); ++i)
       for (int j = 0; j < by_grid.surface.count_v(); ++j)
-        CHECK((by_grid.surface.control_point(i, j) - by_points.surface.control_point(i, j)).norm() <=
-              1e-11);
+        CHECK(
+            (by_grid.surface.control_point(i, j) - by_points.surface.control_point(i, j)).norm() <=
+            1e-11);
     CHECK(by_grid.rms_error == doctest::Approx(by_points.rms_error).epsilon(1e-9));
   }
 

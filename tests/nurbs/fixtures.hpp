@@ -19,16 +19,22 @@ inline const double kHalfRoot2 = std::sqrt(0.5);
 // Quarter circle of radius r in the xy plane, from (r, 0) to (0, r): degree 2, weights
 // 1, √2/2, 1 (The NURBS Book, Ex. 7.1).
 inline NurbsCurve quarter_circle(double r) {
-  return NurbsCurve(2, {0, 0, 0, 1, 1, 1}, {{r, 0, 0}, {r, r, 0}, {0, r, 0}},
-                    {1, kHalfRoot2, 1});
+  return NurbsCurve(2, {0, 0, 0, 1, 1, 1}, {{r, 0, 0}, {r, r, 0}, {0, r, 0}}, {1, kHalfRoot2, 1});
 }
 
 // Full circle of radius r: nine points on a square, degree 2 (The NURBS Book, Fig. 7.16).
 inline NurbsCurve full_circle(double r) {
   const double w = kHalfRoot2;
   return NurbsCurve(2, {0, 0, 0, 0.25, 0.25, 0.5, 0.5, 0.75, 0.75, 1, 1, 1},
-                    {{r, 0, 0}, {r, r, 0}, {0, r, 0}, {-r, r, 0}, {-r, 0, 0}, {-r, -r, 0},
-                     {0, -r, 0}, {r, -r, 0}, {r, 0, 0}},
+                    {{r, 0, 0},
+                     {r, r, 0},
+                     {0, r, 0},
+                     {-r, r, 0},
+                     {-r, 0, 0},
+                     {-r, -r, 0},
+                     {0, -r, 0},
+                     {r, -r, 0},
+                     {r, 0, 0}},
                     {1, w, 1, w, 1, w, 1, w, 1});
 }
 

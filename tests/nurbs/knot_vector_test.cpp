@@ -90,7 +90,8 @@ TEST_SUITE("nurbs") {
       for (int order = 1; order <= 3; ++order)
         for (int j = 0; j <= p; ++j) {
           const double fd = (dp[(order - 1) * 6 + j] - dm[(order - 1) * 6 + j]) / (2 * h);
-          CHECK(d[order * 6 + j] == doctest::Approx(fd).epsilon(1e-6).scale(1e-3 * std::pow(10.0, order)));
+          CHECK(d[order * 6 + j] ==
+                doctest::Approx(fd).epsilon(1e-6).scale(1e-3 * std::pow(10.0, order)));
         }
       for (int j = 0; j <= p; ++j) {
         CHECK(d[6 * 6 + j] == 0.0);

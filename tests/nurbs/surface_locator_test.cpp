@@ -118,8 +118,9 @@ class DenseReference {
 }  // namespace
 
 TEST_SUITE("nurbs") {
-  TEST_CASE("inversion: 10,000 points within 1 mm of a bicubic 20x20 freeform, beyond its "
-            "edges and near its pole, all find the true closest point to 1e-9 mm") {
+  TEST_CASE(
+      "inversion: 10,000 points within 1 mm of a bicubic 20x20 freeform, beyond its "
+      "edges and near its pole, all find the true closest point to 1e-9 mm") {
     const NurbsSurface s = freeform_with_pole();
     const SurfaceLocator locator(s);
     const DenseReference reference(s, 120);
@@ -169,17 +170,18 @@ TEST_SUITE("nurbs") {
                               std::abs((r.point - p).norm() - r.distance) <= 1e-12;
       if (r.status != Status::kOk || distance_error > 1e-9 || !consistent) {
         if (failures < 5)
-          std::printf("miss: p = (%.6f, %.6f, %.6f) locator %.12f (u %.6f v %.6f, %s) "
-                      "reference %.12f\n",
-                      p.x(), p.y(), p.z(), r.distance, r.u, r.v, freeturn::to_string(r.status),
-                      ref.distance);
+          std::printf(
+              "miss: p = (%.6f, %.6f, %.6f) locator %.12f (u %.6f v %.6f, %s) "
+              "reference %.12f\n",
+              p.x(), p.y(), p.z(), r.distance, r.u, r.v, freeturn::to_string(r.status),
+              ref.distance);
         ++failures;
       }
     }
-    MESSAGE("worst (distance - reference) = " << worst_distance_error
-            << " mm, worst |point - reference| = " << worst_point_error << " mm; " << beyond
-            << " beyond edges, " << near_pole << " near the pole; the reference was beaten "
-            << reference_missed << " times");
+    MESSAGE("worst (distance - reference) = "
+            << worst_distance_error << " mm, worst |point - reference| = " << worst_point_error
+            << " mm; " << beyond << " beyond edges, " << near_pole
+            << " near the pole; the reference was beaten " << reference_missed << " times");
     CHECK(failures == 0);
     CHECK(worst_distance_error <= 1e-9);
   }
@@ -238,7 +240,7 @@ TEST_SUITE("nurbs") {
     for (int k = 0; k < 300; ++k) {
       const double th = angle(rng), ph = angle(rng);
       const Vector3d dir(std::sin(th) * std::cos(ph), std::sin(th) * std::sin(ph), std::cos(th));
-      const Vector3d origin = 0.5 * dir;  // inside the sphere, looking out
+      const Vector3d origin = 0.5 * dir;                           // inside the sphere, looking out
       const auto cold = locator.intersect_ray(origin, 2.0 * dir);  // any length
       const auto warm = locator.intersect_ray(origin, dir, u, v);
       CHECK(cold.status == Status::kOk);

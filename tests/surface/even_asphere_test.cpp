@@ -41,9 +41,12 @@ TEST_SUITE("surface") {
     const EvenAsphere s(0.0, 0.0, a);
     const double r = 3.0;
     const auto h = s.height_derivatives(r, 0.0);
-    CHECK(h.z == doctest::Approx(2e-3 * 81 - 1e-5 * 729 + 1e-20 * std::pow(3.0, 20)).epsilon(1e-14));
-    CHECK(h.zx == doctest::Approx(4 * 2e-3 * 27 - 6e-5 * 243 + 20e-20 * std::pow(3.0, 19)).epsilon(1e-14));
-    CHECK(h.zxx == doctest::Approx(12 * 2e-3 * 9 - 30e-5 * 81 + 380e-20 * std::pow(3.0, 18)).epsilon(1e-14));
+    CHECK(h.z ==
+          doctest::Approx(2e-3 * 81 - 1e-5 * 729 + 1e-20 * std::pow(3.0, 20)).epsilon(1e-14));
+    CHECK(h.zx ==
+          doctest::Approx(4 * 2e-3 * 27 - 6e-5 * 243 + 20e-20 * std::pow(3.0, 19)).epsilon(1e-14));
+    CHECK(h.zxx ==
+          doctest::Approx(12 * 2e-3 * 9 - 30e-5 * 81 + 380e-20 * std::pow(3.0, 18)).epsilon(1e-14));
   }
 
   TEST_CASE("gradient and Hessian match central differences at random points") {

@@ -38,7 +38,9 @@ MapReader::MapReader(const YAML::Node& node, std::string file, std::string what)
     throw InputError(location_of(node_, file_), what_ + " must be a map of keys to values");
 }
 
-bool MapReader::has(const std::string& key) const { return static_cast<bool>(node_[key]); }  // const: no insert
+bool MapReader::has(const std::string& key) const {
+  return static_cast<bool>(node_[key]);
+}  // const: no insert
 
 YAML::Node MapReader::child(const std::string& key) {
   used_.insert(key);
@@ -57,8 +59,7 @@ std::optional<YAML::Node> MapReader::optional_child(const std::string& key) {
 
 double MapReader::read_number(const YAML::Node& value, const std::string& key) const {
   const SourceLocation loc = location_of(value, file_);
-  if (!value.IsScalar())
-    throw InputError(loc, what_ + "." + key + " must be a number");
+  if (!value.IsScalar()) throw InputError(loc, what_ + "." + key + " must be a number");
   double v;
   const std::string& s = value.Scalar();
   // yaml-cpp accepts ".nan"/".inf" as doubles; they must never reach the geometry.
@@ -69,7 +70,9 @@ double MapReader::read_number(const YAML::Node& value, const std::string& key) c
   return v;
 }
 
-double MapReader::number(const std::string& key) { return read_number(child(key), key); }
+double MapReader::number(const std::string& key) {
+  return read_number(child(key), key);
+}
 
 double MapReader::number(const std::string& key, double fallback) {
   auto value = optional_child(key);
@@ -110,8 +113,7 @@ void MapReader::finish() const {
   for (auto it = node_.begin(); it != node_.end(); ++it) {
     const std::string key = it->first.Scalar();
     if (!used_.count(key))
-      throw InputError(location_of(it->first, file_),
-                       "unknown key '" + key + "' in " + what_);
+      throw InputError(location_of(it->first, file_), "unknown key '" + key + "' in " + what_);
   }
 }
 

@@ -47,7 +47,8 @@ double ArcLengthTable::integrate(double a, double b) const {
 double ArcLengthTable::length_to(double u) const {
   u = std::clamp(u, breaks_.front(), breaks_.back());
   const auto it = std::upper_bound(breaks_.begin(), breaks_.end(), u);
-  const std::size_t k = static_cast<std::size_t>(std::max<std::ptrdiff_t>(it - breaks_.begin() - 1, 0));
+  const std::size_t k =
+      static_cast<std::size_t>(std::max<std::ptrdiff_t>(it - breaks_.begin() - 1, 0));
   if (k + 1 >= breaks_.size()) return cumulative_.back();
   return cumulative_[k] + integrate(breaks_[k], u);
 }
@@ -67,7 +68,10 @@ double ArcLengthTable::parameter_at(double s) const {
   for (int it = 0; it < 100; ++it) {
     const double err = integrate(breaks_[k], u) - target;
     if (std::abs(err) <= tolerance) break;
-    if (err > 0) hi = u; else lo = u;
+    if (err > 0)
+      hi = u;
+    else
+      lo = u;
     curve_.derivatives(u, 1, d);
     const double speed = d[1].norm();
     double next = speed > 0 ? u - err / speed : 0.5 * (lo + hi);

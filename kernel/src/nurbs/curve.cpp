@@ -60,11 +60,10 @@ NurbsCurve::NurbsCurve(KnotVector knots, std::vector<Vector4d> homogeneous_point
 
 void NurbsCurve::validate_points() const {
   if (static_cast<int>(points_.size()) != knots_.count())
-    throw InputError("control points", std::to_string(points_.size()) +
-                                           " control points, but degree " +
-                                           std::to_string(knots_.degree()) + " and " +
-                                           std::to_string(knots_.size()) + " knots need " +
-                                           std::to_string(knots_.count()));
+    throw InputError("control points",
+                     std::to_string(points_.size()) + " control points, but degree " +
+                         std::to_string(knots_.degree()) + " and " + std::to_string(knots_.size()) +
+                         " knots need " + std::to_string(knots_.count()));
   for (std::size_t i = 0; i < points_.size(); ++i) {
     if (!points_[i].allFinite())
       throw InputError("control point " + std::to_string(i), "has a coordinate that is not finite");

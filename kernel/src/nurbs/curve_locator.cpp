@@ -44,7 +44,8 @@ CurvePointResult CurveLocator::closest_point(const Vector3d& p, double u) const 
     const double g = d.d1.dot(r);
     const double speed = d.d1.norm();
     // An end of an open curve is the answer when the curve leads away from p there.
-    const bool pinned = !closed_ && ((u <= curve_.front() && g > 0) || (u >= curve_.back() && g < 0));
+    const bool pinned =
+        !closed_ && ((u <= curve_.front() && g > 0) || (u >= curve_.back() && g < 0));
     if (pinned || speed == 0 || std::abs(g) <= options_.cosine_tolerance * speed * dist) {
       res.status = Status::kOk;
       break;
@@ -89,8 +90,10 @@ CurvePointResult CurveLocator::closest_point(const Vector3d& p) const {
   best.fill({INFINITY, -1});
   for (int i = 0; i < n; ++i) {
     const double d = (samples_[i] - p).squaredNorm();
-    const double prev = i > 0 ? (samples_[i - 1] - p).squaredNorm() : (closed_ ? (samples_[n - 2] - p).squaredNorm() : INFINITY);
-    const double next = i + 1 < n ? (samples_[i + 1] - p).squaredNorm() : (closed_ ? (samples_[1] - p).squaredNorm() : INFINITY);
+    const double prev = i > 0 ? (samples_[i - 1] - p).squaredNorm()
+                              : (closed_ ? (samples_[n - 2] - p).squaredNorm() : INFINITY);
+    const double next = i + 1 < n ? (samples_[i + 1] - p).squaredNorm()
+                                  : (closed_ ? (samples_[1] - p).squaredNorm() : INFINITY);
     if (d > prev || d > next) continue;
     if (d < best.back().first) {
       best.back() = {d, i};

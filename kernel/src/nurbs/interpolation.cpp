@@ -21,8 +21,9 @@ MatrixXd solve_collocation(const KnotVector& knots, const std::vector<double>& p
   Eigen::SparseLU<SparseMatrix> lu;
   lu.compute(n);
   if (lu.info() != Eigen::Success)
-    throw InputError("interpolation", "the collocation matrix is singular: the parameters do not "
-                                      "suit the knots (Schoenberg–Whitney condition)");
+    throw InputError("interpolation",
+                     "the collocation matrix is singular: the parameters do not "
+                     "suit the knots (Schoenberg–Whitney condition)");
   return lu.solve(rhs);
 }
 
@@ -43,10 +44,12 @@ NurbsCurve interpolate_curve(const std::vector<Vector3d>& points, int degree,
   check_parameters(params, points.size());
   KnotVector knots(degree, averaged_knots(params, degree));
   MatrixXd q(static_cast<Eigen::Index>(points.size()), 3);
-  for (std::size_t k = 0; k < points.size(); ++k) q.row(static_cast<Eigen::Index>(k)) = points[k].transpose();
+  for (std::size_t k = 0; k < points.size(); ++k)
+    q.row(static_cast<Eigen::Index>(k)) = points[k].transpose();
   const MatrixXd p = solve_collocation(knots, params, q);
   std::vector<Vector4d> pw(points.size());
-  for (std::size_t i = 0; i < points.size(); ++i) pw[i] << p.row(static_cast<Eigen::Index>(i)).transpose(), 1.0;
+  for (std::size_t i = 0; i < points.size(); ++i)
+    pw[i] << p.row(static_cast<Eigen::Index>(i)).transpose(), 1.0;
   return NurbsCurve(std::move(knots), std::move(pw));
 }
 
@@ -56,7 +59,8 @@ NurbsSurface interpolate_surface(const std::vector<Vector3d>& grid, int rows, in
     throw InputError("grid", std::to_string(grid.size()) + " points do not form a " +
                                  std::to_string(rows) + " x " + std::to_string(cols) + " grid");
   // Eq. 9.9-9.10: chord-length parameters of every column (row), averaged.
-  std::vector<double> uk(static_cast<std::size_t>(rows), 0.0), vl(static_cast<std::size_t>(cols), 0.0);
+  std::vector<double> uk(static_cast<std::size_t>(rows), 0.0),
+      vl(static_cast<std::size_t>(cols), 0.0);
   std::vector<Vector3d> line;
   for (int j = 0; j < cols; ++j) {
     line.clear();

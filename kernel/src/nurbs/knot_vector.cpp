@@ -24,8 +24,7 @@ KnotVector::KnotVector(int degree, std::vector<double> knots)
   const std::size_t p = static_cast<std::size_t>(degree_);
   if (m < 2 * (p + 1))
     throw InputError("knots", "degree " + std::to_string(degree_) + " needs at least " +
-                                  std::to_string(2 * (p + 1)) + " knots, got " +
-                                  std::to_string(m));
+                                  std::to_string(2 * (p + 1)) + " knots, got " + std::to_string(m));
   for (std::size_t i = 0; i < m; ++i) {
     if (!std::isfinite(knots_[i]))
       throw InputError("knot " + std::to_string(i), "is not a finite number");
@@ -51,14 +50,14 @@ KnotVector::KnotVector(int degree, std::vector<double> knots)
     run = 1;
   }
   if (!(back() > front()))
-    throw InputError("knots", "the domain [u_p, u_{m-p}] = [" + num(front()) + ", " +
-                                  num(back()) + "] is empty");
+    throw InputError("knots", "the domain [u_p, u_{m-p}] = [" + num(front()) + ", " + num(back()) +
+                                  "] is empty");
 }
 
 KnotVector KnotVector::uniform_clamped(int degree, int count) {
   if (count < degree + 1)
-    throw InputError("control points", std::to_string(count) + " are too few for degree " +
-                                           std::to_string(degree));
+    throw InputError("control points",
+                     std::to_string(count) + " are too few for degree " + std::to_string(degree));
   std::vector<double> k(static_cast<std::size_t>(count + degree + 1));
   const int interior = count - degree - 1;
   for (int i = 0; i < static_cast<int>(k.size()); ++i) {
@@ -101,8 +100,7 @@ int KnotVector::find_span(double u, int hint) const {
   const int n = count() - 1;
   if (hint >= degree_ && hint <= n) {
     const auto in = [&](int i) {
-      return i >= degree_ && i <= n && knots_[i] <= u &&
-             u < knots_[i + 1];
+      return i >= degree_ && i <= n && knots_[i] <= u && u < knots_[i + 1];
     };
     if (in(hint)) return hint;
     if (in(hint + 1)) return hint + 1;

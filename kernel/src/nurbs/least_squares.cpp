@@ -57,16 +57,17 @@ MatrixXd solve_normal_equations(const SparseMatrix& a, const MatrixXd& b,
   af.setFromTriplets(t.begin(), t.end());
   Eigen::SimplicialLDLT<SparseMatrix> ldlt(af);
   if (ldlt.info() != Eigen::Success)
-    throw InputError("least squares", "the normal equations are singular: use fewer control "
-                                      "points or add smoothing");
+    throw InputError("least squares",
+                     "the normal equations are singular: use fewer control "
+                     "points or add smoothing");
   const MatrixXd xf = ldlt.solve(rhs);
   for (int i = 0; i < n; ++i)
     if (!fixed[i]) x.row(i) = xf.row(index[i]);
   return x;
 }
 
-KnotVector fit_knots(const std::vector<double>& given, const std::vector<double>& params, int degree,
-                     int count) {
+KnotVector fit_knots(const std::vector<double>& given, const std::vector<double>& params,
+                     int degree, int count) {
   KnotVector k = given.empty() ? KnotVector(degree, approximation_knots(params, degree, count))
                                : KnotVector(degree, given);
   if (!k.is_clamped()) throw InputError("knots", "fitting needs clamped knots");
@@ -80,7 +81,8 @@ NurbsCurve solve_curve(const std::vector<Vector3d>& points, const std::vector<do
   SparseMatrix a = SparseMatrix(n.transpose()) * n;
   if (smoothing > 0) a += smoothing * derivative_gram_matrix(knots, 2);
   MatrixXd q(static_cast<Eigen::Index>(points.size()), 3);
-  for (std::size_t k = 0; k < points.size(); ++k) q.row(static_cast<Eigen::Index>(k)) = points[k].transpose();
+  for (std::size_t k = 0; k < points.size(); ++k)
+    q.row(static_cast<Eigen::Index>(k)) = points[k].transpose();
   const MatrixXd b = n.transpose() * q;
   const int count = knots.count();
   std::vector<bool> fixed(static_cast<std::size_t>(count), false);
@@ -146,7 +148,8 @@ SurfaceFit fit_surface_grid(const std::vector<Vector3d>& grid, int rows, int col
   if (rows < 2 || cols < 2 || grid.size() != static_cast<std::size_t>(rows) * cols)
     throw InputError("grid", std::to_string(grid.size()) + " points do not form a " +
                                  std::to_string(rows) + " x " + std::to_string(cols) + " grid");
-  std::vector<double> uk(static_cast<std::size_t>(rows), 0.0), vl(static_cast<std::size_t>(cols), 0.0);
+  std::vector<double> uk(static_cast<std::size_t>(rows), 0.0),
+      vl(static_cast<std::size_t>(cols), 0.0);
   std::vector<Vector3d> line;
   for (int j = 0; j < cols; ++j) {
     line.clear();
@@ -269,8 +272,9 @@ NurbsSurface solve_scattered(const std::vector<Vector3d>& points, const std::vec
   } catch (const InputError& e) {
     if (e.where().rfind("control point ", 0) != 0) throw;
     const int index = std::stoi(e.where().substr(14));
-    throw InputError("control point " + std::to_string(index / nv) + "," + std::to_string(index % nv),
-                     e.problem());
+    throw InputError(
+        "control point " + std::to_string(index / nv) + "," + std::to_string(index % nv),
+        e.problem());
   }
   std::vector<Vector4d> pw(static_cast<std::size_t>(n));
   for (int r = 0; r < n; ++r) pw[r] << x.row(r).transpose(), 1.0;
@@ -299,7 +303,8 @@ SurfaceFit fit_surface_scattered(const std::vector<Vector3d>& points, std::vecto
       throw InputError("point " + std::to_string(k), "has a coordinate that is not finite");
   const KnotVector ku = uniform_or_given(options.knots_u, options.degree_u, options.count_u);
   const KnotVector kv = uniform_or_given(options.knots_v, options.degree_v, options.count_v);
-  SurfaceFit fit{solve_scattered(points, u, v, ku, kv, options.smoothing), std::move(u), std::move(v), 0, 0};
+  SurfaceFit fit{solve_scattered(points, u, v, ku, kv, options.smoothing), std::move(u),
+                 std::move(v), 0, 0};
   for (int round = 0; round < options.parameter_corrections; ++round) {
     const SurfaceLocator locator(fit.surface);
     for (std::size_t k = 0; k < points.size(); ++k) {

@@ -18,7 +18,8 @@ std::vector<double> chord_length_parameters(const std::vector<Vector3d>& points,
     const double chord = (points[k] - points[k - 1]).norm();
     if (chord == 0)
       throw InputError("point " + std::to_string(k),
-                       "coincides with point " + std::to_string(k - 1) + ": parameters need distinct consecutive points");
+                       "coincides with point " + std::to_string(k - 1) +
+                           ": parameters need distinct consecutive points");
     u[k] = u[k - 1] + (centripetal ? std::sqrt(chord) : chord);
   }
   const double total = u.back();
@@ -31,7 +32,8 @@ std::vector<double> averaged_knots(const std::vector<double>& params, int degree
   const int n = static_cast<int>(params.size()) - 1;
   const int p = degree;
   if (n < p)
-    throw InputError("points", std::to_string(n + 1) + " points are too few for degree " + std::to_string(p));
+    throw InputError("points",
+                     std::to_string(n + 1) + " points are too few for degree " + std::to_string(p));
   std::vector<double> U(static_cast<std::size_t>(n + p + 2), 0.0);
   for (int i = n + 1; i <= n + p + 1; ++i) U[i] = 1.0;
   for (int j = 1; j <= n - p; ++j) {
@@ -46,13 +48,16 @@ std::vector<double> approximation_knots(const std::vector<double>& params, int d
   const int m = static_cast<int>(params.size()) - 1;  // data points 0..m
   const int n = count - 1;                            // control points 0..n
   const int p = degree;
-  if (n < p) throw InputError("control points", std::to_string(count) + " are too few for degree " + std::to_string(p));
+  if (n < p)
+    throw InputError("control points",
+                     std::to_string(count) + " are too few for degree " + std::to_string(p));
   if (m < n)
-    throw InputError("points", std::to_string(m + 1) + " points are too few for " + std::to_string(count) + " control points");
+    throw InputError("points", std::to_string(m + 1) + " points are too few for " +
+                                   std::to_string(count) + " control points");
   std::vector<double> U(static_cast<std::size_t>(n + p + 2), 0.0);
   for (int i = n + 1; i <= n + p + 1; ++i) U[i] = 1.0;
   const double d = static_cast<double>(m + 1) / (n - p + 1);  // Eq. 9.68
-  for (int j = 1; j <= n - p; ++j) {                           // Eq. 9.69
+  for (int j = 1; j <= n - p; ++j) {                          // Eq. 9.69
     const int i = static_cast<int>(j * d);
     const double alpha = j * d - i;
     U[p + j] = (1.0 - alpha) * params[i - 1] + alpha * params[i];

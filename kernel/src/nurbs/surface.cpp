@@ -46,12 +46,14 @@ std::vector<Vector4d> homogeneous_net(const std::vector<Vector3d>& points,
 NurbsSurface::NurbsSurface(int degree_u, int degree_v, const std::vector<double>& knots_u,
                            const std::vector<double>& knots_v, const std::vector<Vector3d>& points,
                            const std::vector<double>& weights)
-    : NurbsSurface(knots_in("u", degree_u, knots_u), knots_in("v", degree_v, knots_v),
-                   homogeneous_net(points, weights, static_cast<int>(knots_v.size()) - degree_v - 1)) {}
+    : NurbsSurface(
+          knots_in("u", degree_u, knots_u), knots_in("v", degree_v, knots_v),
+          homogeneous_net(points, weights, static_cast<int>(knots_v.size()) - degree_v - 1)) {}
 
 NurbsSurface::NurbsSurface(KnotVector knots_u, KnotVector knots_v,
                            std::vector<Vector4d> homogeneous_points)
-    : knots_u_(std::move(knots_u)), knots_v_(std::move(knots_v)),
+    : knots_u_(std::move(knots_u)),
+      knots_v_(std::move(knots_v)),
       points_(std::move(homogeneous_points)) {
   const std::size_t expected = static_cast<std::size_t>(count_u()) * count_v();
   if (points_.size() != expected)
@@ -101,8 +103,8 @@ SurfaceDerivatives NurbsSurface::evaluate(double u, double v, int order) const {
   const std::size_t rows = static_cast<std::size_t>(d) + 1;
   const std::size_t work = std::max(basis_derivatives_work_size(p), basis_derivatives_work_size(q));
   ScratchBuffer<256> buf(rows * (pu + qv) + work);
-  double* nu = buf.data();          // rows × (p + 1)
-  double* nv = nu + rows * pu;      // rows × (q + 1)
+  double* nu = buf.data();      // rows × (p + 1)
+  double* nv = nu + rows * pu;  // rows × (q + 1)
   double* scratch = nv + rows * qv;
   basis_function_derivatives(span_u, u, p, d, knots_u_.knots().data(), nu, scratch);
   basis_function_derivatives(span_v, v, q, d, knots_v_.knots().data(), nv, scratch);

@@ -36,8 +36,10 @@ SurfacePointResult SurfaceLocator::closest_point(const Vector3d& p, double u, do
     // vanishes (a pole) has no direction to test.
     const double nu = d.su.norm(), nv = d.sv.norm();
     const double scale = 1e-9 * (nu + nv);
-    const bool ok_u = !free_u || nu <= scale || std::abs(gu) <= options_.cosine_tolerance * nu * dist;
-    const bool ok_v = !free_v || nv <= scale || std::abs(gv) <= options_.cosine_tolerance * nv * dist;
+    const bool ok_u =
+        !free_u || nu <= scale || std::abs(gu) <= options_.cosine_tolerance * nu * dist;
+    const bool ok_v =
+        !free_v || nv <= scale || std::abs(gv) <= options_.cosine_tolerance * nv * dist;
     if (ok_u && ok_v) {
       if (on_pole_edge(u, v) && leave_pole(p, u, v)) {
         d = surface_.evaluate(u, v, 2);
@@ -51,8 +53,16 @@ SurfacePointResult SurfaceLocator::closest_point(const Vector3d& p, double u, do
     double huu = d.su.squaredNorm() + d.suu.dot(r);
     double huv = d.su.dot(d.sv) + d.suv.dot(r);
     double hvv = d.sv.squaredNorm() + d.svv.dot(r);
-    if (!free_u) { huu = 1; huv = 0; gu = 0; }
-    if (!free_v) { hvv = 1; huv = 0; gv = 0; }
+    if (!free_u) {
+      huu = 1;
+      huv = 0;
+      gu = 0;
+    }
+    if (!free_v) {
+      hvv = 1;
+      huv = 0;
+      gv = 0;
+    }
     const double metric = std::max(0.5 * (d.su.squaredNorm() + d.sv.squaredNorm()), 1e-300);
     bool accepted = false;
     double step_length = 0;
@@ -117,8 +127,7 @@ SurfacePointResult SurfaceLocator::closest_point(const Vector3d& p) const {
     // Seeds come best first; one too far to beat the answer so far ends the search.
     if ((grid_points_[k] - p).norm() - cell_size_ > best.distance) break;
     SurfacePointResult r = closest_point(p, grid_u_[k / nv], grid_v_[k % nv]);
-    if (r.distance < best.distance ||
-        (r.distance == best.distance && best.status != Status::kOk)) {
+    if (r.distance < best.distance || (r.distance == best.distance && best.status != Status::kOk)) {
       const int it = best.iterations;
       best = r;
       best.iterations += it;
@@ -130,7 +139,8 @@ SurfacePointResult SurfaceLocator::closest_point(const Vector3d& p) const {
   // direction out of the pole with a basin of its own. Nothing within a pole's reach can
   // be closer than |p − pole| − reach.
   bool near_pole = false;
-  for (const Pole& pole : poles_) near_pole = near_pole || (pole.point - p).norm() - pole.reach <= best.distance;
+  for (const Pole& pole : poles_)
+    near_pole = near_pole || (pole.point - p).norm() - pole.reach <= best.distance;
   if (!near_pole) return best;
   std::array<std::pair<double, std::pair<int, int>>, 4> minima;  // d², (ring, index)
   minima.fill({INFINITY, {-1, -1}});
@@ -139,8 +149,7 @@ SurfacePointResult SurfaceLocator::closest_point(const Vector3d& p) const {
     const int n = static_cast<int>(ring.points.size());
     for (int k = 0; k < n; ++k) {
       const double d = (ring.points[k] - p).squaredNorm();
-      if (d >= minima.back().first ||
-          (k > 0 && (ring.points[k - 1] - p).squaredNorm() < d) ||
+      if (d >= minima.back().first || (k > 0 && (ring.points[k - 1] - p).squaredNorm() < d) ||
           (k + 1 < n && (ring.points[k + 1] - p).squaredNorm() < d))
         continue;
       minima.back() = {d, {r, k}};

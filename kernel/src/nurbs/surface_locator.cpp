@@ -36,7 +36,8 @@ SurfaceLocator::SurfaceLocator(NurbsSurface surface, LocatorOptions options)
       const int sv = surface_.knots_v().find_span(0.5 * (bv[b] + bv[b + 1]));
       Eigen::AlignedBox3d box;
       for (int i = su - surface_.degree_u(); i <= su; ++i)
-        for (int j = sv - surface_.degree_v(); j <= sv; ++j) box.extend(surface_.control_point(i, j));
+        for (int j = sv - surface_.degree_v(); j <= sv; ++j)
+          box.extend(surface_.control_point(i, j));
       patch_boxes_.push_back(box);
     }
   }
@@ -79,11 +80,15 @@ SurfaceLocator::SurfaceLocator(NurbsSurface surface, LocatorOptions options)
     const std::vector<double>& across = in_u ? grid_u_ : grid_v_;
     const std::vector<double>& along = in_u ? grid_v_ : grid_u_;
     const double edge = at_front ? across.front() : across.back();
-    const double step = at_front ? across[1] - across[0] : across[across.size() - 2] - across.back();
+    const double step =
+        at_front ? across[1] - across[0] : across[across.size() - 2] - across.back();
     Pole pole{in_u ? surface_.point(edge, along.front()) : surface_.point(along.front(), edge), 0};
     const double first_row = at_front ? across[1] : across[across.size() - 2];
     for (double t : along)
-      pole.reach = std::max(pole.reach, ((in_u ? surface_.point(first_row, t) : surface_.point(t, first_row)) - pole.point).norm());
+      pole.reach = std::max(
+          pole.reach,
+          ((in_u ? surface_.point(first_row, t) : surface_.point(t, first_row)) - pole.point)
+              .norm());
     poles_.push_back(pole);
     for (double fraction : {1.0 / 32, 1.0 / 16, 1.0 / 8, 1.0 / 4, 1.0 / 2}) {
       PoleRing ring;
@@ -113,14 +118,15 @@ bool SurfaceLocator::leave_pole(const Vector3d& p, double& u, double& v) const {
   // Directions out of a pole are the non-vanishing partials along the edge's samples: for
   // a pole at u = const these are ±S_u(u_pole, v) over v. Take the steepest descent of
   // |S − p|², then back off along it until the distance really drops.
-  const bool pole_in_u = (pole_u_front_ && u <= surface_.front_u()) ||
-                         (pole_u_back_ && u >= surface_.back_u());
+  const bool pole_in_u =
+      (pole_u_front_ && u <= surface_.front_u()) || (pole_u_back_ && u >= surface_.back_u());
   const Vector3d r = surface_.point(u, v) - p;
   const double f = r.squaredNorm();
   const std::vector<double>& along = pole_in_u ? grid_v_ : grid_u_;
   double best_slope = 0, best_param = 0;
   for (double s : along) {
-    const SurfaceDerivatives d = pole_in_u ? surface_.evaluate(u, s, 1) : surface_.evaluate(s, v, 1);
+    const SurfaceDerivatives d =
+        pole_in_u ? surface_.evaluate(u, s, 1) : surface_.evaluate(s, v, 1);
     const Vector3d inward = pole_in_u ? Vector3d(u <= surface_.front_u() ? d.su : -d.su)
                                       : Vector3d(v <= surface_.front_v() ? d.sv : -d.sv);
     const double n = inward.norm();
@@ -132,8 +138,8 @@ bool SurfaceLocator::leave_pole(const Vector3d& p, double& u, double& v) const {
     }
   }
   if (!(best_slope < -options_.cosine_tolerance * std::sqrt(f))) return false;
-  const double range = pole_in_u ? surface_.back_u() - surface_.front_u()
-                                 : surface_.back_v() - surface_.front_v();
+  const double range =
+      pole_in_u ? surface_.back_u() - surface_.front_u() : surface_.back_v() - surface_.front_v();
   for (double h = 0.05 * range; h > 1e-12 * range; h *= 0.5) {
     double un = u, vn = v;
     if (pole_in_u) {

@@ -41,10 +41,14 @@ RayHit SurfaceLocator::intersect_ray(const Vector3d& origin, const Vector3d& dir
     if (!(std::abs(J.determinant()) > 1e-14 * scale)) {
       if (on_pole_edge(u, v) && nudges++ < 3) {
         // At a pole the Jacobian is singular whatever the ray; start again just inside.
-        if (pole_u_front_ && u <= surface_.front_u()) u += 1e-3 * (surface_.back_u() - surface_.front_u());
-        if (pole_u_back_ && u >= surface_.back_u()) u -= 1e-3 * (surface_.back_u() - surface_.front_u());
-        if (pole_v_front_ && v <= surface_.front_v()) v += 1e-3 * (surface_.back_v() - surface_.front_v());
-        if (pole_v_back_ && v >= surface_.back_v()) v -= 1e-3 * (surface_.back_v() - surface_.front_v());
+        if (pole_u_front_ && u <= surface_.front_u())
+          u += 1e-3 * (surface_.back_u() - surface_.front_u());
+        if (pole_u_back_ && u >= surface_.back_u())
+          u -= 1e-3 * (surface_.back_u() - surface_.front_u());
+        if (pole_v_front_ && v <= surface_.front_v())
+          v += 1e-3 * (surface_.back_v() - surface_.front_v());
+        if (pole_v_back_ && v >= surface_.back_v())
+          v -= 1e-3 * (surface_.back_v() - surface_.front_v());
         d = surface_.evaluate(u, v, 1);
         F = d.point - origin - t * dir;
         fn = F.norm();
@@ -136,7 +140,8 @@ RayHit SurfaceLocator::intersect_ray(const Vector3d& origin, const Vector3d& dir
       },
       [&](const Eigen::AlignedBox3d& box) {  // through the box's bounding sphere
         const Vector3d w = box.center() - origin;
-        const double gap = std::max(0.0, (w - w.dot(dir) * dir).norm() - 0.5 * box.diagonal().norm());
+        const double gap =
+            std::max(0.0, (w - w.dot(dir) * dir).norm() - 0.5 * box.diagonal().norm());
         return gap * gap;
       },
       options_.cold_seeds, seeds);

@@ -5,18 +5,22 @@
 namespace freeturn {
 
 enum class Status {
-  kOk,             // converged to the requested tolerance
-  kNotConverged,   // iteration limit reached; the value is the best found
-  kMissed,         // a ray or projection does not meet the surface
-  kDegenerate,     // the problem has no unique answer (zero-length tangent, parallel ray)
+  kOk,            // converged to the requested tolerance
+  kNotConverged,  // iteration limit reached; the value is the best found
+  kMissed,        // a ray or projection does not meet the surface
+  kDegenerate,    // the problem has no unique answer (zero-length tangent, parallel ray)
 };
 
 constexpr const char* to_string(Status s) {
   switch (s) {
-    case Status::kOk: return "ok";
-    case Status::kNotConverged: return "not converged";
-    case Status::kMissed: return "missed";
-    case Status::kDegenerate: return "degenerate";
+    case Status::kOk:
+      return "ok";
+    case Status::kNotConverged:
+      return "not converged";
+    case Status::kMissed:
+      return "missed";
+    case Status::kDegenerate:
+      return "degenerate";
   }
   return "unknown";
 }

@@ -9,10 +9,10 @@
 namespace freeturn {
 
 struct SampleSummary {
-  long points = 0;        // rows written
-  double z_min = 0;       // mm
-  double z_max = 0;       // mm
-  double max_slope = 0;   // radians, largest angle between normal and +z
+  long points = 0;       // rows written
+  double z_min = 0;      // mm
+  double z_max = 0;      // mm
+  double max_slope = 0;  // radians, largest angle between normal and +z
 };
 
 // Writes the samples of `surface` on a grid_n × grid_n square grid over

@@ -16,18 +16,18 @@ namespace freeturn::nurbs {
 
 struct CurveFitOptions {
   int degree = 3;
-  int count = 0;                   // control points (needed unless `knots` is given)
-  std::vector<double> knots;       // clamped knots; empty → Eq. 9.68-9.69 from the parameters
-  std::vector<double> params;      // one per point in [0, 1]; empty → chord length
-  double smoothing = 0;            // λ ≥ 0
-  bool pin_ends = false;           // pass exactly through the first and last points
-  int parameter_corrections = 0;   // rounds of re-projection and refit
+  int count = 0;                  // control points (needed unless `knots` is given)
+  std::vector<double> knots;      // clamped knots; empty → Eq. 9.68-9.69 from the parameters
+  std::vector<double> params;     // one per point in [0, 1]; empty → chord length
+  double smoothing = 0;           // λ ≥ 0
+  bool pin_ends = false;          // pass exactly through the first and last points
+  int parameter_corrections = 0;  // rounds of re-projection and refit
 };
 
 struct CurveFit {
   NurbsCurve curve;
-  std::vector<double> params;      // the final parameter of each point
-  double max_error = 0;            // max |C(ū_k) − Q_k| (mm)
+  std::vector<double> params;  // the final parameter of each point
+  double max_error = 0;        // max |C(ū_k) − Q_k| (mm)
   double rms_error = 0;
 };
 
@@ -37,16 +37,16 @@ CurveFit fit_curve(const std::vector<Vector3d>& points, const CurveFitOptions& o
 
 struct SurfaceFitOptions {
   int degree_u = 3, degree_v = 3;
-  int count_u = 0, count_v = 0;    // control points per direction (unless knots are given)
+  int count_u = 0, count_v = 0;  // control points per direction (unless knots are given)
   std::vector<double> knots_u, knots_v;
-  double smoothing = 0;            // λ ≥ 0 on the thin-plate energy
-  int parameter_corrections = 0;   // scattered fits only
+  double smoothing = 0;           // λ ≥ 0 on the thin-plate energy
+  int parameter_corrections = 0;  // scattered fits only
 };
 
 struct SurfaceFit {
   NurbsSurface surface;
-  std::vector<double> u, v;        // final parameters of each point
-  double max_error = 0;            // max |S(ū_k, v̄_k) − Q_k| (mm)
+  std::vector<double> u, v;  // final parameters of each point
+  double max_error = 0;      // max |S(ū_k, v̄_k) − Q_k| (mm)
   double rms_error = 0;
 };
 

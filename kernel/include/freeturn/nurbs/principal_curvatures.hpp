@@ -13,7 +13,7 @@ struct PrincipalCurvatures {
                                        // the normal (a sphere seen from inside: +1/R)
   Vector3d d1 = Vector3d::Zero();      // unit tangent directions of k1 and k2
   Vector3d d2 = Vector3d::Zero();
-  bool regular = false;                // false where Su × Sv vanishes (a pole)
+  bool regular = false;  // false where Su × Sv vanishes (a pole)
 };
 
 // d: a point evaluated with order 2.

@@ -40,8 +40,8 @@ struct LocatorOptions {
   double point_tolerance = 1e-12;   // mm: coincidence (stop when |S − P| is below)
   double cosine_tolerance = 1e-13;  // stop when |S_u·(S − P)| / (|S_u||S − P|) is below
   int max_iterations = 60;
-  int samples_per_span = 4;         // cold-start grid density per knot span
-  int cold_seeds = 8;               // local minima refined on a cold query (at most 16)
+  int samples_per_span = 4;  // cold-start grid density per knot span
+  int cold_seeds = 8;        // local minima refined on a cold query (at most 16)
 };
 
 class SurfaceLocator {
