@@ -30,7 +30,7 @@ TEST_SUITE("surface") {
     CHECK(z == doctest::Approx(65.0 / 60.0).epsilon(1e-15));
     CHECK(zx == doctest::Approx(7.0 / 30.0).epsilon(1e-15));
     CHECK(zy == doctest::Approx(-4.0 / 30.0).epsilon(1e-15));
-    CHECK(s.max_defined_radius() == INFINITY);
+    CHECK(s.defined_radius() == INFINITY);
   }
 
   TEST_CASE("polynomial terms add A4 r^4 + A6 r^6 exactly on a plane base") {
@@ -75,8 +75,8 @@ TEST_SUITE("surface") {
 
   TEST_CASE("the conic's square root limits the defined radius") {
     const EvenAsphere s(1.0 / 10.0, 0.0);
-    CHECK(s.max_defined_radius() == doctest::Approx(10.0).epsilon(1e-15));
+    CHECK(s.defined_radius() == doctest::Approx(10.0).epsilon(1e-15));
     const EvenAsphere e(1.0 / 10.0, 3.0);  // oblate: (1+k) c^2 r^2 < 1 -> r < 5
-    CHECK(e.max_defined_radius() == doctest::Approx(5.0).epsilon(1e-15));
+    CHECK(e.defined_radius() == doctest::Approx(5.0).epsilon(1e-15));
   }
 }

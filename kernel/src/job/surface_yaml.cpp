@@ -50,12 +50,11 @@ std::unique_ptr<Surface> surface_from_yaml(const YAML::Node& node, const std::st
              "unknown surface type '" + type + "' (known: plane, sphere, conic, even_asphere)");
   }
   map.finish();
-  if (surface->max_defined_radius() < outer_radius)
-    map.fail(
-        map.has("conic") ? "conic" : "radius",
-        "the surface is undefined beyond r = " + std::to_string(surface->max_defined_radius()) +
-            " mm (the conic's square root goes negative), inside the aperture radius " +
-            std::to_string(outer_radius) + " mm");
+  if (surface->defined_radius() < outer_radius)
+    map.fail(map.has("conic") ? "conic" : "radius",
+             "the surface is undefined beyond r = " + std::to_string(surface->defined_radius()) +
+                 " mm (the conic's square root goes negative), inside the aperture radius " +
+                 std::to_string(outer_radius) + " mm");
   return surface;
 }
 

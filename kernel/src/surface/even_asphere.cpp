@@ -8,7 +8,7 @@ namespace freeturn {
 EvenAsphere::EvenAsphere(double curvature, double conic, const std::array<double, 9>& coefficients)
     : c_(curvature), k_(conic), a_(coefficients) {}
 
-double EvenAsphere::max_defined_radius() const {
+double EvenAsphere::defined_radius() const {
   const double g = (1.0 + k_) * c_ * c_;
   return g > 0 ? 1.0 / std::sqrt(g) : std::numeric_limits<double>::infinity();
 }

@@ -20,7 +20,7 @@ class EvenAsphere final : public Surface {
   HeightDerivatives height_derivatives(double x, double y) const override;
 
   // Largest radius at which the conic's square root stays real (infinity if none).
-  double max_defined_radius() const;
+  double defined_radius() const override;
 
   double curvature() const { return c_; }
   double conic() const { return k_; }

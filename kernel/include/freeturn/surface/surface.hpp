@@ -1,8 +1,11 @@
 #pragma once
-// The design surface as the planner sees it. Frame: workpiece frame, z along the
-// spindle axis pointing toward the tool, lengths in mm (docs/conventions.md).
+// The design surface as the planner sees it: a height field z = f(x, y) in the workpiece
+// frame (z along the spindle axis, toward the tool; mm; docs/conventions.md). Every
+// surface a lathe cuts from +z is one; parametric ones (NURBS) provide the same view by
+// inverting their parameterisation.
 
 #include <Eigen/Core>
+#include <limits>
 
 namespace freeturn {
 
@@ -12,7 +15,6 @@ struct HeightDerivatives {
   double zxx = 0, zxy = 0, zyy = 0;
 };
 
-// A design surface given as a height field z = f(x, y) over the aperture.
 class Surface {
  public:
   virtual ~Surface() = default;
@@ -26,7 +28,14 @@ class Surface {
   // Sag with first and second derivatives (curvature needs the second).
   virtual HeightDerivatives height_derivatives(double x, double y) const = 0;
 
-  // Unit normal (-zx, -zy, 1)/|.|, pointing out of the part toward the tool.
+  // The radius about the z axis inside which the surface is defined (a conic's square
+  // root stays real, a lens array has lenslets); infinity when defined everywhere.
+  virtual double defined_radius() const { return std::numeric_limits<double>::infinity(); }
+
+  double sag(double x, double y) const;
+  // (x, y, z(x, y)).
+  Eigen::Vector3d point(double x, double y) const;
+  // Unit normal (−zx, −zy, 1)/|·|, pointing out of the part toward the tool.
   Eigen::Vector3d normal(double x, double y) const;
 };
 

@@ -1,0 +1,71 @@
+#pragma once
+// The papers' test parts and classic freeform test pieces (shared/notes/optical-surfaces.md).
+
+#include <numbers>
+
+#include "freeturn/surface/jet_surface.hpp"
+
+namespace freeturn {
+
+// Sinusoidal ring (paper 001): z = A sin(ω r) + d. A surface of revolution whose profile
+// is a sine in r; at the vertex it has a cone of slope A·ω (the gradient there is
+// reported as 0, its average over directions).
+class SinusoidalRing final : public JetSurface<SinusoidalRing> {
+ public:
+  SinusoidalRing(double amplitude, double angular_frequency, double offset)
+      : a_(amplitude), w_(angular_frequency), d_(offset) {}
+  const char* type() const override { return "sinusoidal_ring"; }
+
+  template <typename T>
+  T sag(const T& x, const T& y) const {
+    const T r2 = x * x + y * y;
+    if (value_of(r2) == 0) return T(d_);
+    return a_ * sin(w_ * sqrt(r2)) + d_;
+  }
+
+  // The profile z(r) and its derivatives, for turning in X-Z.
+  double profile(double r) const { return a_ * std::sin(w_ * r) + d_; }
+
+ private:
+  static double value_of(double v) { return v; }
+  template <int N>
+  static double value_of(const Jet<N>& j) {
+    return j.v;
+  }
+  double a_, w_, d_;
+};
+
+// Sinusoidal grid: z = A sin(2πx/λx) sin(2πy/λy) (a common STS/FTS benchmark).
+class SinusoidalGrid final : public JetSurface<SinusoidalGrid> {
+ public:
+  SinusoidalGrid(double amplitude, double wavelength_x, double wavelength_y)
+      : a_(amplitude),
+        kx_(2 * std::numbers::pi / wavelength_x),
+        ky_(2 * std::numbers::pi / wavelength_y) {}
+  const char* type() const override { return "sinusoidal_grid"; }
+
+  template <typename T>
+  T sag(const T& x, const T& y) const {
+    return a_ * (sin(kx_ * x) * sin(ky_ * y));
+  }
+
+ private:
+  double a_, kx_, ky_;
+};
+
+// Alvarez / cubic phase plate: z = A (x y² + x³/3) + D x.
+class Alvarez final : public JetSurface<Alvarez> {
+ public:
+  Alvarez(double a, double d) : a_(a), d_(d) {}
+  const char* type() const override { return "alvarez"; }
+
+  template <typename T>
+  T sag(const T& x, const T& y) const {
+    return a_ * (x * y * y + x * x * x * (1.0 / 3.0)) + d_ * x;
+  }
+
+ private:
+  double a_, d_;
+};
+
+}  // namespace freeturn

@@ -1,0 +1,85 @@
+#include "freeturn/surface/transformed_surface.hpp"
+
+#include <cmath>
+#include <limits>
+
+namespace freeturn {
+
+TransformedSurface::TransformedSurface(std::unique_ptr<Surface> parent, double decentre_x,
+                                       double decentre_y, const Eigen::Matrix3d& rotation)
+    : parent_(std::move(parent)), r_(rotation), rt_(rotation.transpose()) {
+  origin_ = {decentre_x, decentre_y, parent_->sag(decentre_x, decentre_y)};
+}
+
+Eigen::Matrix3d TransformedSurface::rotation_aligning_normal(const Surface& parent, double x,
+                                                             double y) {
+  const Eigen::Vector3d n = parent.normal(x, y);
+  // The rotation taking n to +z, about the axis n × z.
+  return Eigen::Quaterniond::FromTwoVectors(n, Eigen::Vector3d::UnitZ()).toRotationMatrix();
+}
+
+Eigen::Matrix3d TransformedSurface::rotation_from_tilts(double angle_x, double angle_y) {
+  return (Eigen::AngleAxisd(angle_y, Eigen::Vector3d::UnitY()) *
+          Eigen::AngleAxisd(angle_x, Eigen::Vector3d::UnitX()))
+      .toRotationMatrix();
+}
+
+double TransformedSurface::solve(double x, double y, HeightDerivatives& h, int order) const {
+  // Newton on g(z) = F(X(z)), X(z) = Rᵀ(x, y, z) + o, dX/dz = Rᵀ e_z.
+  const Eigen::Vector3d dx_dz = rt_.col(2);
+  double z = 0;
+  for (int it = 0; it < 50; ++it) {
+    const Eigen::Vector3d X = to_parent({x, y, z});
+    if (order >= 2) {
+      h = parent_->height_derivatives(X.x(), X.y());
+    } else {
+      parent_->sag_gradient(X.x(), X.y(), h.z, h.zx, h.zy);
+    }
+    const double g = X.z() - h.z;
+    const double gz = dx_dz.z() - h.zx * dx_dz.x() - h.zy * dx_dz.y();
+    if (!std::isfinite(g) || !(std::abs(gz) > 1e-12)) break;
+    const double step = g / gz;
+    z -= step;
+    // The parent coordinates carry the decentre, so rounding limits z to about
+    // 1e-16 of their size; Newton's step settles there.
+    if (std::abs(step) <= 1e-14 * (1 + origin_.norm() + std::abs(x) + std::abs(y) + std::abs(z))) {
+      // One more evaluation at the final z keeps h consistent with the answer.
+      const Eigen::Vector3d Xf = to_parent({x, y, z});
+      if (order >= 2)
+        h = parent_->height_derivatives(Xf.x(), Xf.y());
+      else
+        parent_->sag_gradient(Xf.x(), Xf.y(), h.z, h.zx, h.zy);
+      return z;
+    }
+  }
+  return std::numeric_limits<double>::quiet_NaN();
+}
+
+void TransformedSurface::sag_gradient(double x, double y, double& z, double& zx, double& zy) const {
+  HeightDerivatives h;
+  z = solve(x, y, h, 1);
+  const Eigen::Vector3d grad = r_ * Eigen::Vector3d(-h.zx, -h.zy, 1.0);  // ∇_W G
+  zx = -grad.x() / grad.z();
+  zy = -grad.y() / grad.z();
+}
+
+HeightDerivatives TransformedSurface::height_derivatives(double x, double y) const {
+  HeightDerivatives h;
+  HeightDerivatives out;
+  out.z = solve(x, y, h, 2);
+  const Eigen::Vector3d g = r_ * Eigen::Vector3d(-h.zx, -h.zy, 1.0);
+  Eigen::Matrix3d hf = Eigen::Matrix3d::Zero();  // ∇²F = −∇²f in the xy block
+  hf(0, 0) = -h.zxx;
+  hf(0, 1) = hf(1, 0) = -h.zxy;
+  hf(1, 1) = -h.zyy;
+  const Eigen::Matrix3d hg = r_ * hf * rt_;
+  out.zx = -g.x() / g.z();
+  out.zy = -g.y() / g.z();
+  out.zxx = -(hg(0, 0) + 2 * hg(0, 2) * out.zx + hg(2, 2) * out.zx * out.zx) / g.z();
+  out.zxy =
+      -(hg(0, 1) + hg(0, 2) * out.zy + hg(1, 2) * out.zx + hg(2, 2) * out.zx * out.zy) / g.z();
+  out.zyy = -(hg(1, 1) + 2 * hg(1, 2) * out.zy + hg(2, 2) * out.zy * out.zy) / g.z();
+  return out;
+}
+
+}  // namespace freeturn

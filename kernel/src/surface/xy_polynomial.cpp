@@ -1,0 +1,40 @@
+#include "freeturn/surface/xy_polynomial.hpp"
+
+#include <algorithm>
+#include <cmath>
+#include <string>
+
+#include "freeturn/core/error.hpp"
+
+namespace freeturn {
+
+Monomial xy_polynomial_term(int index) {
+  if (index < 1 || index > 230)
+    throw InputError("term " + std::to_string(index), "XY polynomial terms are numbered 1 to 230");
+  // Terms of total order n occupy indices (n−1)(n+2)/2 + 1 … (n−1)(n+2)/2 + n + 1.
+  int n = 1;
+  while ((n) * (n + 3) / 2 < index) ++n;
+  const int b = index - (n - 1) * (n + 2) / 2 - 1;
+  return {n - b, b};
+}
+
+XyPolynomial::XyPolynomial(double curvature, double conic, double normalization_radius,
+                           const std::vector<double>& coefficients)
+    : c_(curvature), k_(conic), rn_(normalization_radius) {
+  if (!(rn_ > 0)) throw InputError("normalization_radius", "must be greater than 0");
+  if (coefficients.size() > 230)
+    throw InputError("coefficients", "at most 230 XY polynomial terms");
+  for (std::size_t i = 0; i < coefficients.size(); ++i) {
+    if (coefficients[i] == 0) continue;
+    const Monomial m = xy_polynomial_term(static_cast<int>(i) + 1);
+    terms_.push_back({m.a, m.b, coefficients[i]});
+    order_ = std::max(order_, m.a + m.b);
+  }
+}
+
+double XyPolynomial::defined_radius() const {
+  const double g = (1.0 + k_) * c_ * c_;
+  return g > 0 ? 1.0 / std::sqrt(g) : Surface::defined_radius();
+}
+
+}  // namespace freeturn

@@ -1,0 +1,80 @@
+#include "freeturn/surface/zernike.hpp"
+
+#include <cmath>
+#include <string>
+
+#include "freeturn/core/error.hpp"
+
+namespace freeturn {
+namespace {
+
+double factorial(int n) {
+  double f = 1;
+  for (int i = 2; i <= n; ++i) f *= i;
+  return f;
+}
+
+// Coefficient of ρ^{n−2k} in R_n^|m|.
+double radial_coefficient(int n, int am, int k) {
+  const double sign = (k % 2) ? -1.0 : 1.0;
+  return sign * factorial(n - k) /
+         (factorial(k) * factorial((n + am) / 2 - k) * factorial((n - am) / 2 - k));
+}
+
+double normalization(int n, int m) {
+  return m == 0 ? std::sqrt(n + 1.0) : std::sqrt(2.0 * (n + 1));
+}
+
+}  // namespace
+
+ZernikeIndex noll_to_nm(int j) {
+  if (j < 1 || j > 231)
+    throw InputError("term " + std::to_string(j), "Zernike terms are numbered 1 to 231 (Noll)");
+  // j = n(n+1)/2 + |m| + c, c = 0 when (m > 0 and n mod 4 ∈ {0,1}) or (m < 0 and
+  // n mod 4 ∈ {2,3}), else 1; |m| ≡ n (mod 2).
+  for (int n = 0; n <= 20; ++n)
+    for (int am = n % 2; am <= n; am += 2)
+      for (int sign : {1, -1}) {
+        if (am == 0 && sign < 0) continue;
+        const int m = sign * am;
+        const bool c0 =
+            (m > 0 && (n % 4 == 0 || n % 4 == 1)) || (m < 0 && (n % 4 == 2 || n % 4 == 3));
+        if (n * (n + 1) / 2 + am + (c0 ? 0 : 1) == j) return {n, m};
+      }
+  throw InputError("term " + std::to_string(j), "has no (n, m)");  // unreachable for 1..231
+}
+
+double zernike_polar(int j, double rho, double phi) {
+  const ZernikeIndex z = noll_to_nm(j);
+  const int am = std::abs(z.m);
+  double r = 0;
+  for (int k = 0; k <= (z.n - am) / 2; ++k)
+    r += radial_coefficient(z.n, am, k) * std::pow(rho, z.n - 2 * k);
+  const double angular = z.m < 0 ? std::sin(am * phi) : std::cos(am * phi);
+  return normalization(z.n, z.m) * r * angular;
+}
+
+Zernike::Zernike(double curvature, double conic, const std::array<double, 9>& asphere,
+                 double normalization_radius, const std::vector<double>& coefficients)
+    : c_(curvature), k_(conic), rn_(normalization_radius), asphere_(asphere) {
+  if (!(rn_ > 0)) throw InputError("normalization_radius", "must be greater than 0");
+  if (coefficients.size() > 231) throw InputError("coefficients", "at most 231 Zernike terms");
+  for (std::size_t i = 0; i < coefficients.size(); ++i) {
+    if (coefficients[i] == 0) continue;
+    const ZernikeIndex z = noll_to_nm(static_cast<int>(i) + 1);
+    const int am = std::abs(z.m);
+    Term t;
+    t.m = z.m;
+    t.k = (z.n - am) / 2;
+    t.coefficient = coefficients[i] * normalization(z.n, z.m) * (t.k % 2 ? -1.0 : 1.0);
+    terms_.push_back(t);
+    max_m_ = std::max(max_m_, am);
+  }
+}
+
+double Zernike::defined_radius() const {
+  const double g = (1.0 + k_) * c_ * c_;
+  return g > 0 ? 1.0 / std::sqrt(g) : Surface::defined_radius();
+}
+
+}  // namespace freeturn
