@@ -1,7 +1,11 @@
 // Design-surface evaluation: sag + gradient per point, the planner's hot path.
 #include <benchmark/benchmark.h>
 
+#include <cmath>
+#include <vector>
+
 #include "freeturn/surface/even_asphere.hpp"
+#include "freeturn/surface/zernike.hpp"
 
 static void BM_EvenAsphereSagGradient(benchmark::State& state) {
   const freeturn::EvenAsphere s(1.0 / 50.0, -0.8, {1.2e-6, -3e-9, 4e-12});
@@ -16,5 +20,36 @@ static void BM_EvenAsphereSagGradient(benchmark::State& state) {
   state.SetItemsProcessed(state.iterations());
 }
 BENCHMARK(BM_EvenAsphereSagGradient);
+
+static void BM_Zernike66SagGradient(benchmark::State& state) {
+  std::vector<double> a(66);
+  for (int j = 0; j < 66; ++j) a[j] = 1e-3 * std::sin(1.0 + j);
+  const freeturn::Zernike s(1 / 80.0, -0.6, {1e-6}, 10.0, a);
+  double x = -7.0, y = 2.0, sum = 0;
+  for (auto _ : state) {
+    double z, zx, zy;
+    s.sag_gradient(x, y, z, zx, zy);
+    sum += z + zx + zy;
+    x += 1e-6;
+    benchmark::DoNotOptimize(sum);
+  }
+  state.SetItemsProcessed(state.iterations());
+}
+BENCHMARK(BM_Zernike66SagGradient);
+
+static void BM_Zernike66Hessian(benchmark::State& state) {
+  std::vector<double> a(66);
+  for (int j = 0; j < 66; ++j) a[j] = 1e-3 * std::sin(1.0 + j);
+  const freeturn::Zernike s(1 / 80.0, -0.6, {1e-6}, 10.0, a);
+  double x = -7.0, y = 2.0, sum = 0;
+  for (auto _ : state) {
+    const auto h = s.height_derivatives(x, y);
+    sum += h.z + h.zxx;
+    x += 1e-6;
+    benchmark::DoNotOptimize(sum);
+  }
+  state.SetItemsProcessed(state.iterations());
+}
+BENCHMARK(BM_Zernike66Hessian);
 
 BENCHMARK_MAIN();

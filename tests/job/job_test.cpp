@@ -64,10 +64,28 @@ TEST_SUITE("job") {
          "job.yaml:3:10: surface is missing the key 'radius'"},
         {"name: a\naperture: {outer_radius: 5}\nsurface: {type: torus}\n",
          "job.yaml:3:17: unknown surface type 'torus' (known: plane, sphere, conic, "
-         "even_asphere)"},
+         "even_asphere, biconic, toroidal, xy_polynomial, zernike, sinusoidal_ring, "
+         "sinusoidal_grid, alvarez)"},
         {"name: a\naperture: {outer_radius: 5}\nsurface: {type: sphere, radius: 4}\n",
-         "job.yaml:3:33: the surface is undefined beyond r = 4.000000 mm (the conic's square "
-         "root goes negative), inside the aperture radius 5.000000 mm"},
+         "job.yaml:3:33: the surface is undefined beyond r = 4 mm (the conic's square "
+         "root goes negative), inside the aperture radius 5 mm"},
+        {"name: a\naperture: {outer_radius: 5}\nsurface: {type: zernike, radius: 50, "
+         "coefficients: {4: 1e-3}}\n",
+         "job.yaml:3:10: surface is missing the key 'normalization_radius'"},
+        {"name: a\naperture: {outer_radius: 5}\nsurface: {type: xy_polynomial, radius: 0, "
+         "normalization_radius: 5, coefficients: {231: 1e-3}}\n",
+         "job.yaml:3:83: surface.coefficients term '231' must be an index from 1 to 230"},
+        {"name: a\naperture: {outer_radius: 5}\nsurface: {type: toroidal, radius: 20, "
+         "rotation_radius: 3}\n",
+         "job.yaml:3:17: the toroidal surface is undefined at (x, y) = (3.125, 0) mm, inside the "
+         "aperture radius 5 mm"},
+        {"name: a\naperture: {outer_radius: 5}\nsurface: {type: conic, radius: 200, conic: -1, "
+         "decenter: {x: 30, z: 1}}\n",
+         "job.yaml:3:66: unknown key 'z' in surface.decenter"},
+        {"name: a\naperture: {outer_radius: 5}\nsurface: {type: sinusoidal_ring, amplitude: "
+         "0.01}\n",
+         "job.yaml:3:10: sinusoidal_ring takes exactly one of 'period' (mm) or "
+         "'angular_frequency' (rad/mm)"},
         {"name: a b\naperture: {outer_radius: 5}\nsurface: {type: plane}\n",
          "job.yaml:1:7: job name 'a b' must use only letters, digits, '-', '_' and '.' (it "
          "names files)"},
@@ -87,5 +105,42 @@ TEST_SUITE("job") {
   TEST_CASE("a missing file is an input error naming it") {
     CHECK_THROWS_WITH_AS(load_job("/nonexistent/job.yaml"),
                          "/nonexistent/job.yaml: cannot open the file for reading", InputError);
+  }
+}
+
+TEST_SUITE("job") {
+  TEST_CASE("every surface type loads from YAML with its closed-form sag") {
+    struct Case {
+      const char* surface;
+      double x, y, z;
+    };
+    const double s3 = std::sqrt(3.0);
+    const Case cases[] = {
+        {"{type: plane}", 1, 2, 0},
+        {"{type: sphere, radius: 10}", 3, 4, 10 - std::sqrt(75.0)},
+        {"{type: conic, curvature: 0.01, conic: -1}", 3, 4, 0.01 * 25 / 2},
+        {"{type: even_asphere, radius: 0, A4: 1e-3, A6: 2e-5}", 1, 1, 1e-3 * 4 + 2e-5 * 8},
+        {"{type: biconic, radius_x: 20, radius_y: 0}", 3, 1, 20 - std::sqrt(391.0)},
+        {"{type: toroidal, radius: 0, rotation_radius: 0, alpha: [0.01]}", 4, 2, 0.04},
+        {"{type: xy_polynomial, radius: 0, normalization_radius: 2, coefficients: {12: 0.5}}", 2, 2,
+         0.5},
+        {"{type: zernike, radius: 0, normalization_radius: 4, coefficients: [0, 0, 0, 0.01]}", 2, 0,
+         0.01 * s3 * (2 * 0.25 - 1)},
+        {"{type: sinusoidal_ring, amplitude: 0.1, period: 8, offset: 1}", 0, 2, 1.1},
+        {"{type: sinusoidal_grid, amplitude: 0.1, wavelength_x: 4, wavelength_y: 8}", 1, 2, 0.1},
+        {"{type: alvarez, A: 0.003, D: 0.1}", 3, 0, 0.003 * 9 + 0.3},
+        // An off-axis parabola: the parent point (30, 0) on the axis, so
+        // z = ((x + 30)² + y² − 900) / (2R).
+        {"{type: conic, radius: 200, conic: -1, decenter: {x: 30}}", 2, 3,
+         (32.0 * 32 + 9 - 900) / 400},
+    };
+    for (const Case& c : cases) {
+      TempDir dir;
+      const std::string yaml =
+          std::string("name: t\naperture: {outer_radius: 5}\nsurface: ") + c.surface + "\n";
+      CAPTURE(yaml);
+      const auto job = load_job(dir.write("job.yaml", yaml));
+      CHECK(job.surface->sag(c.x, c.y) == doctest::Approx(c.z).epsilon(1e-13).scale(1e-13));
+    }
   }
 }

@@ -1,31 +1,182 @@
 #include "freeturn/job/surface_yaml.hpp"
 
 #include <array>
+#include <cmath>
+#include <numbers>
 #include <string>
+#include <vector>
 
 #include "freeturn/job/yaml_reader.hpp"
+#include "freeturn/surface/biconic.hpp"
 #include "freeturn/surface/even_asphere.hpp"
+#include "freeturn/surface/sinusoidal.hpp"
+#include "freeturn/surface/toroidal.hpp"
+#include "freeturn/surface/transformed_surface.hpp"
+#include "freeturn/surface/xy_polynomial.hpp"
+#include "freeturn/surface/zernike.hpp"
 
 namespace freeturn {
 namespace {
 
-// Vertex curvature from `radius` (R, mm; 0 = flat) or `curvature` (c = 1/R, 1/mm).
-double read_curvature(MapReader& map) {
-  if (map.has("radius") && map.has("curvature"))
-    map.fail("curvature", "surface takes either 'radius' or 'curvature', not both");
-  if (map.has("curvature")) return map.number("curvature");
-  const double radius = map.number("radius");
+constexpr const char* kKnownTypes =
+    "plane, sphere, conic, even_asphere, biconic, toroidal, xy_polynomial, zernike, "
+    "sinusoidal_ring, sinusoidal_grid, alvarez";
+
+std::string number_text(double v) {
+  char buf[32];
+  std::snprintf(buf, sizeof buf, "%.6g", v);
+  return buf;
+}
+
+// Vertex curvature from `<radius_key>` (R, mm; 0 = flat) or `<curvature_key>` (c = 1/R).
+double read_curvature(MapReader& map, const std::string& radius_key = "radius",
+                      const std::string& curvature_key = "curvature") {
+  if (map.has(radius_key) && map.has(curvature_key))
+    map.fail(curvature_key,
+             "surface takes either '" + radius_key + "' or '" + curvature_key + "', not both");
+  if (map.has(curvature_key)) return map.number(curvature_key);
+  const double radius = map.number(radius_key);
   return radius == 0 ? 0.0 : 1.0 / radius;
 }
 
-std::unique_ptr<EvenAsphere> read_even_asphere(MapReader& map, bool with_terms) {
-  const double c = read_curvature(map);
-  const double k = map.number("conic", 0.0);
+std::array<double, 9> read_asphere_terms(MapReader& map) {
+  static const char* const kKeys[9] = {"A4", "A6", "A8", "A10", "A12", "A14", "A16", "A18", "A20"};
   std::array<double, 9> a{};
-  if (with_terms)
-    for (int i = 2; i <= 10; ++i)
-      a[static_cast<std::size_t>(i - 2)] = map.number("A" + std::to_string(2 * i), 0.0);
-  return std::make_unique<EvenAsphere>(c, k, a);
+  for (int i = 0; i < 9; ++i) a[i] = map.number(kKeys[i], 0.0);
+  return a;
+}
+
+// Term coefficients as a map {index: value} (1-based) or a list [A_1, A_2, …].
+std::vector<double> read_terms(MapReader& map, const std::string& key, int max_index) {
+  const YAML::Node node = map.child(key);
+  std::vector<double> out;
+  const auto value_of = [&](const YAML::Node& v, const std::string& what) {
+    double x;
+    if (!v.IsScalar() || !YAML::convert<double>::decode(v, x) || !std::isfinite(x))
+      throw InputError(location_of(v, map.file()),
+                       "surface." + key + " " + what + " must be a finite number");
+    return x;
+  };
+  if (node.IsSequence()) {
+    if (static_cast<int>(node.size()) > max_index)
+      throw InputError(location_of(node, map.file()),
+                       "surface." + key + " has " + std::to_string(node.size()) +
+                           " terms; at most " + std::to_string(max_index));
+    for (std::size_t i = 0; i < node.size(); ++i)
+      out.push_back(value_of(node[i], "term " + std::to_string(i + 1)));
+    return out;
+  }
+  if (!node.IsMap())
+    throw InputError(location_of(node, map.file()),
+                     "surface." + key + " must be a map {term index: coefficient} or a list");
+  for (auto it = node.begin(); it != node.end(); ++it) {
+    int index = 0;
+    if (!YAML::convert<int>::decode(it->first, index) || index < 1 || index > max_index)
+      throw InputError(location_of(it->first, map.file()),
+                       "surface." + key + " term '" + it->first.Scalar() +
+                           "' must be an index from 1 to " + std::to_string(max_index));
+    if (static_cast<int>(out.size()) < index) out.resize(static_cast<std::size_t>(index), 0.0);
+    out[static_cast<std::size_t>(index - 1)] =
+        value_of(it->second, "term " + std::to_string(index));
+  }
+  return out;
+}
+
+std::unique_ptr<Surface> read_base(MapReader& map, const std::string& type) {
+  if (type == "plane") return std::make_unique<EvenAsphere>(0.0, 0.0);
+  if (type == "sphere") {
+    const double radius = map.number("radius");
+    if (radius == 0) map.fail("radius", "surface.radius of a sphere must not be 0");
+    return std::make_unique<EvenAsphere>(1.0 / radius, 0.0);
+  }
+  if (type == "conic") {
+    const double c = read_curvature(map);
+    return std::make_unique<EvenAsphere>(c, map.number("conic", 0.0));
+  }
+  if (type == "even_asphere") {
+    const double c = read_curvature(map);
+    const double k = map.number("conic", 0.0);
+    return std::make_unique<EvenAsphere>(c, k, read_asphere_terms(map));
+  }
+  if (type == "biconic") {
+    const double cx = read_curvature(map, "radius_x", "curvature_x");
+    const double cy = read_curvature(map, "radius_y", "curvature_y");
+    return std::make_unique<Biconic>(cx, cy, map.number("conic_x", 0.0),
+                                     map.number("conic_y", 0.0));
+  }
+  if (type == "toroidal") {
+    const double c = read_curvature(map);
+    const double k = map.number("conic", 0.0);
+    const double rotation = map.number("rotation_radius");
+    const std::vector<double> alpha =
+        map.has("alpha") ? read_terms(map, "alpha", 8) : std::vector<double>{};
+    std::array<double, 8> a{};
+    for (std::size_t i = 0; i < alpha.size(); ++i) a[i] = alpha[i];
+    return std::make_unique<Toroidal>(c, k, rotation, a);
+  }
+  if (type == "xy_polynomial") {
+    const double c = read_curvature(map);
+    const double k = map.number("conic", 0.0);
+    const double rn = map.positive("normalization_radius");
+    return std::make_unique<XyPolynomial>(c, k, rn, read_terms(map, "coefficients", 230));
+  }
+  if (type == "zernike") {
+    const double c = read_curvature(map);
+    const double k = map.number("conic", 0.0);
+    const auto asphere = read_asphere_terms(map);
+    const double rn = map.positive("normalization_radius");
+    return std::make_unique<Zernike>(c, k, asphere, rn, read_terms(map, "coefficients", 231));
+  }
+  if (type == "sinusoidal_ring") {
+    const double amplitude = map.number("amplitude");
+    if (map.has("period") == map.has("angular_frequency"))
+      map.fail(
+          "period",
+          "sinusoidal_ring takes exactly one of 'period' (mm) or 'angular_frequency' (rad/mm)");
+    const double w = map.has("period") ? 2 * std::numbers::pi / map.positive("period")
+                                       : map.positive("angular_frequency");
+    return std::make_unique<SinusoidalRing>(amplitude, w, map.number("offset", 0.0));
+  }
+  if (type == "sinusoidal_grid") {
+    const double amplitude = map.number("amplitude");
+    return std::make_unique<SinusoidalGrid>(amplitude, map.positive("wavelength_x"),
+                                            map.positive("wavelength_y"));
+  }
+  if (type == "alvarez") return std::make_unique<Alvarez>(map.number("A"), map.number("D", 0.0));
+  map.fail("type", "unknown surface type '" + type + "' (known: " + kKnownTypes + ")");
+}
+
+// Optional decentre and tilt around any surface (an off-axis segment).
+std::unique_ptr<Surface> read_placement(MapReader& map, std::unique_ptr<Surface> surface) {
+  const auto decentre = map.optional_child("decenter");
+  const auto tilt = map.optional_child("tilt_deg");
+  const auto align = map.optional_child("align_normal");
+  if (!decentre && !tilt && !align) return surface;
+  double dx = 0, dy = 0;
+  if (decentre) {
+    MapReader d(*decentre, map.file(), "surface.decenter");
+    dx = d.number("x", 0.0);
+    dy = d.number("y", 0.0);
+    d.finish();
+  }
+  Eigen::Matrix3d rotation = Eigen::Matrix3d::Identity();
+  bool aligned = false;
+  if (align) {
+    if (!align->IsScalar() || !YAML::convert<bool>::decode(*align, aligned))
+      throw InputError(location_of(*align, map.file()),
+                       "surface.align_normal must be true or false");
+  }
+  if (aligned && tilt)
+    map.fail("tilt_deg", "surface takes either 'tilt_deg' or 'align_normal: true', not both");
+  if (aligned) rotation = TransformedSurface::rotation_aligning_normal(*surface, dx, dy);
+  if (tilt) {
+    MapReader t(*tilt, map.file(), "surface.tilt_deg");
+    const double ax = t.number("x", 0.0) * std::numbers::pi / 180,
+                 ay = t.number("y", 0.0) * std::numbers::pi / 180;
+    t.finish();
+    rotation = TransformedSurface::rotation_from_tilts(ax, ay);
+  }
+  return std::make_unique<TransformedSurface>(std::move(surface), dx, dy, rotation);
 }
 
 }  // namespace
@@ -34,27 +185,38 @@ std::unique_ptr<Surface> surface_from_yaml(const YAML::Node& node, const std::st
                                            double outer_radius) {
   MapReader map(node, file, "surface");
   const std::string type = map.text("type");
-  std::unique_ptr<EvenAsphere> surface;
-  if (type == "sphere") {
-    const double radius = map.number("radius");
-    if (radius == 0) map.fail("radius", "surface.radius of a sphere must not be 0");
-    surface = std::make_unique<EvenAsphere>(1.0 / radius, 0.0);
-  } else if (type == "even_asphere") {
-    surface = read_even_asphere(map, true);
-  } else if (type == "conic") {
-    surface = read_even_asphere(map, false);
-  } else if (type == "plane") {
-    surface = std::make_unique<EvenAsphere>(0.0, 0.0);
-  } else {
-    map.fail("type",
-             "unknown surface type '" + type + "' (known: plane, sphere, conic, even_asphere)");
+  std::unique_ptr<Surface> surface;
+  try {
+    surface = read_base(map, type);
+  } catch (const InputError& e) {
+    // Constructors name the parameter; point at it in the file.
+    if (e.where().find(':') != std::string::npos) throw;
+    map.fail(map.has(e.where()) ? e.where() : "type", "surface." + e.where() + " " + e.problem());
   }
+  const double base_radius = surface->defined_radius();
+  surface = read_placement(map, std::move(surface));
   map.finish();
-  if (surface->defined_radius() < outer_radius)
-    map.fail(map.has("conic") ? "conic" : "radius",
-             "the surface is undefined beyond r = " + std::to_string(surface->defined_radius()) +
+  if (base_radius < outer_radius && !map.has("decenter") && !map.has("tilt_deg") &&
+      !map.has("align_normal"))
+    map.fail(map.has("conic")       ? "conic"
+             : map.has("radius")    ? "radius"
+             : map.has("curvature") ? "curvature"
+                                    : "type",
+             "the surface is undefined beyond r = " + number_text(base_radius) +
                  " mm (the conic's square root goes negative), inside the aperture radius " +
-                 std::to_string(outer_radius) + " mm");
+                 number_text(outer_radius) + " mm");
+  // Every surface, whatever its type: sampled over the aperture, it must be finite.
+  for (int i = 0; i <= 32; ++i)
+    for (int j = 0; j < 64; ++j) {
+      const double r = outer_radius * i / 32.0, phi = 2 * std::numbers::pi * j / 64.0;
+      const double x = r * std::cos(phi), y = r * std::sin(phi);
+      double z, zx, zy;
+      surface->sag_gradient(x, y, z, zx, zy);
+      if (!(std::isfinite(z) && std::isfinite(zx) && std::isfinite(zy)))
+        map.fail("type", "the " + type + " surface is undefined at (x, y) = (" + number_text(x) +
+                             ", " + number_text(y) + ") mm, inside the aperture radius " +
+                             number_text(outer_radius) + " mm");
+    }
   return surface;
 }
 

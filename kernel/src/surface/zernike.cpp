@@ -1,5 +1,6 @@
 #include "freeturn/surface/zernike.hpp"
 
+#include <algorithm>
 #include <cmath>
 #include <string>
 
@@ -63,11 +64,17 @@ Zernike::Zernike(double curvature, double conic, const std::array<double, 9>& as
     if (coefficients[i] == 0) continue;
     const ZernikeIndex z = noll_to_nm(static_cast<int>(i) + 1);
     const int am = std::abs(z.m);
-    Term t;
-    t.m = z.m;
-    t.k = (z.n - am) / 2;
-    t.coefficient = coefficients[i] * normalization(z.n, z.m) * (t.k % 2 ? -1.0 : 1.0);
-    terms_.push_back(t);
+    const int k = (z.n - am) / 2;
+    auto it =
+        std::find_if(orders_.begin(), orders_.end(), [&](const Order& o) { return o.m == am; });
+    if (it == orders_.end()) {
+      orders_.push_back(Order{});
+      it = std::prev(orders_.end());
+      it->m = am;
+    }
+    it->k_max = std::max(it->k_max, k);
+    const double c = coefficients[i] * normalization(z.n, z.m) * (k % 2 ? -1.0 : 1.0);
+    (z.m < 0 ? it->sin_coefficient : it->cos_coefficient)[k] += c;
     max_m_ = std::max(max_m_, am);
   }
 }

@@ -42,7 +42,7 @@ class Zernike final : public JetSurface<Zernike> {
     T p = T(0.0);
     for (int i = 8; i >= 0; --i) p = p * r2 + asphere_[i];
     z += p * r2 * r2;
-    if (terms_.empty()) return z;
+    if (orders_.empty()) return z;
     // Powers of the complex number X + iY, and s = X² + Y².
     const T xn = x / rn_, yn = y / rn_;
     T re[kMaxM + 1], im[kMaxM + 1];
@@ -53,36 +53,46 @@ class Zernike final : public JetSurface<Zernike> {
       im[k] = re[k - 1] * yn + im[k - 1] * xn;
     }
     const T u = 1.0 - 2.0 * (xn * xn + yn * yn);  // the Jacobi argument 1 − 2ρ²
-    for (const Term& t : terms_) {
-      const int am = t.m < 0 ? -t.m : t.m;
-      const double a = am;
+    // One recurrence per azimuthal order |m| serves every term of that order: the
+    // cosine and sine coefficients of each degree k are summed as it goes.
+    for (const Order& o : orders_) {
+      const double a = o.m;
       T previous = T(1.0), current = T(1.0);
-      if (t.k >= 1) current = 0.5 * ((a + 2) * u + a);
-      for (int q = 2; q <= t.k; ++q) {
-        const double c1 = 2.0 * q * (q + a) * (2 * q + a - 2);
-        const double c2 = (2 * q + a - 1) * (2 * q + a) * (2 * q + a - 2);
-        const double c3 = (2 * q + a - 1) * a * a;
-        const double c4 = 2.0 * (q + a - 1) * (q - 1) * (2 * q + a);
-        const T next = ((c2 * u + c3) * current - c4 * previous) / c1;
+      T sum_cos = o.cos_coefficient[0] * current, sum_sin = o.sin_coefficient[0] * current;
+      for (int q = 1; q <= o.k_max; ++q) {
+        T next;
+        if (q == 1) {
+          next = 0.5 * ((a + 2) * u + a);
+        } else {
+          const double c1 = 2.0 * q * (q + a) * (2 * q + a - 2);
+          const double c2 = (2 * q + a - 1) * (2 * q + a) * (2 * q + a - 2);
+          const double c3 = (2 * q + a - 1) * a * a;
+          const double c4 = 2.0 * (q + a - 1) * (q - 1) * (2 * q + a);
+          next = ((c2 / c1) * u + c3 / c1) * current - (c4 / c1) * previous;
+        }
         previous = current;
         current = next;
+        sum_cos += o.cos_coefficient[q] * current;
+        sum_sin += o.sin_coefficient[q] * current;
       }
-      z += t.coefficient * (current * (t.m < 0 ? im[am] : re[am]));
+      z += sum_cos * re[o.m] + sum_sin * im[o.m];
     }
     return z;
   }
 
  private:
   static constexpr int kMaxM = 20;
-  struct Term {
-    int m;               // signed azimuthal frequency
-    int k;               // Jacobi degree (n − |m|)/2
-    double coefficient;  // A_j · N · (−1)^k
+  // All terms of one azimuthal order |m|: coefficient (A_j · N · (−1)^k) of the Jacobi
+  // polynomial of degree k = (n − |m|)/2, for the cosine (m ≥ 0) and sine (m < 0) parts.
+  struct Order {
+    int m = 0;
+    int k_max = 0;
+    std::array<double, 11> cos_coefficient{}, sin_coefficient{};
   };
   double c_, k_, rn_;
   std::array<double, 9> asphere_;
   int max_m_ = 0;
-  std::vector<Term> terms_;
+  std::vector<Order> orders_;
 };
 
 }  // namespace freeturn
