@@ -55,25 +55,9 @@ NurbsCurve interpolate_curve(const std::vector<Vector3d>& points, int degree,
 
 NurbsSurface interpolate_surface(const std::vector<Vector3d>& grid, int rows, int cols,
                                  int degree_u, int degree_v) {
-  if (rows < 2 || cols < 2 || grid.size() != static_cast<std::size_t>(rows) * cols)
-    throw InputError("grid", std::to_string(grid.size()) + " points do not form a " +
-                                 std::to_string(rows) + " x " + std::to_string(cols) + " grid");
-  // Eq. 9.9-9.10: chord-length parameters of every column (row), averaged.
-  std::vector<double> uk(static_cast<std::size_t>(rows), 0.0),
-      vl(static_cast<std::size_t>(cols), 0.0);
-  std::vector<Vector3d> line;
-  for (int j = 0; j < cols; ++j) {
-    line.clear();
-    for (int i = 0; i < rows; ++i) line.push_back(grid[i * cols + j]);
-    const auto t = chord_length_parameters(line);
-    for (int i = 0; i < rows; ++i) uk[i] += t[i] / cols;
-  }
-  for (int i = 0; i < rows; ++i) {
-    line.assign(grid.begin() + i * cols, grid.begin() + (i + 1) * cols);
-    const auto t = chord_length_parameters(line);
-    for (int j = 0; j < cols; ++j) vl[j] += t[j] / rows;
-  }
-  uk.back() = vl.back() = 1.0;
+  const GridParameters params = grid_parameters(grid, rows, cols);
+  const std::vector<double>& uk = params.u;
+  const std::vector<double>& vl = params.v;
   KnotVector ku(degree_u, averaged_knots(uk, degree_u));
   KnotVector kv(degree_v, averaged_knots(vl, degree_v));
   // Along u for every column at once: rows × (3·cols) right-hand sides.

@@ -145,24 +145,9 @@ void measure(SurfaceFit& fit, const std::vector<Vector3d>& points) {
 
 SurfaceFit fit_surface_grid(const std::vector<Vector3d>& grid, int rows, int cols,
                             const SurfaceFitOptions& options) {
-  if (rows < 2 || cols < 2 || grid.size() != static_cast<std::size_t>(rows) * cols)
-    throw InputError("grid", std::to_string(grid.size()) + " points do not form a " +
-                                 std::to_string(rows) + " x " + std::to_string(cols) + " grid");
-  std::vector<double> uk(static_cast<std::size_t>(rows), 0.0),
-      vl(static_cast<std::size_t>(cols), 0.0);
-  std::vector<Vector3d> line;
-  for (int j = 0; j < cols; ++j) {
-    line.clear();
-    for (int i = 0; i < rows; ++i) line.push_back(grid[i * cols + j]);
-    const auto t = chord_length_parameters(line);
-    for (int i = 0; i < rows; ++i) uk[i] += t[i] / cols;
-  }
-  for (int i = 0; i < rows; ++i) {
-    line.assign(grid.begin() + i * cols, grid.begin() + (i + 1) * cols);
-    const auto t = chord_length_parameters(line);
-    for (int j = 0; j < cols; ++j) vl[j] += t[j] / rows;
-  }
-  uk.back() = vl.back() = 1.0;
+  const GridParameters params = grid_parameters(grid, rows, cols);
+  const std::vector<double>& uk = params.u;
+  const std::vector<double>& vl = params.v;
   const KnotVector ku = fit_knots(options.knots_u, uk, options.degree_u, options.count_u);
   const KnotVector kv = fit_knots(options.knots_v, vl, options.degree_v, options.count_v);
 

@@ -28,6 +28,28 @@ std::vector<double> chord_length_parameters(const std::vector<Vector3d>& points,
   return u;
 }
 
+GridParameters grid_parameters(const std::vector<Vector3d>& grid, int rows, int cols) {
+  if (rows < 2 || cols < 2 || grid.size() != static_cast<std::size_t>(rows) * cols)
+    throw InputError("grid", std::to_string(grid.size()) + " points do not form a " +
+                                 std::to_string(rows) + " x " + std::to_string(cols) + " grid");
+  GridParameters g{std::vector<double>(static_cast<std::size_t>(rows), 0.0),
+                   std::vector<double>(static_cast<std::size_t>(cols), 0.0)};
+  std::vector<Vector3d> line;
+  for (int j = 0; j < cols; ++j) {
+    line.clear();
+    for (int i = 0; i < rows; ++i) line.push_back(grid[i * cols + j]);
+    const auto t = chord_length_parameters(line);
+    for (int i = 0; i < rows; ++i) g.u[i] += t[i] / cols;
+  }
+  for (int i = 0; i < rows; ++i) {
+    line.assign(grid.begin() + i * cols, grid.begin() + (i + 1) * cols);
+    const auto t = chord_length_parameters(line);
+    for (int j = 0; j < cols; ++j) g.v[j] += t[j] / rows;
+  }
+  g.u.back() = g.v.back() = 1.0;
+  return g;
+}
+
 std::vector<double> averaged_knots(const std::vector<double>& params, int degree) {
   const int n = static_cast<int>(params.size()) - 1;
   const int p = degree;

@@ -13,6 +13,14 @@ namespace freeturn::nurbs {
 std::vector<double> chord_length_parameters(const std::vector<Vector3d>& points,
                                             bool centripetal = false);
 
+// Parameters of a rows × cols grid of points (row-major, rows along u): the chord-length
+// parameters of every column (row) averaged (Eq. 9.9-9.10). Throws InputError when the
+// points do not form the grid.
+struct GridParameters {
+  std::vector<double> u, v;  // rows and cols values in [0, 1]
+};
+GridParameters grid_parameters(const std::vector<Vector3d>& grid, int rows, int cols);
+
 // Clamped knots for interpolating at `params` with degree p, by averaging (Eq. 9.8).
 std::vector<double> averaged_knots(const std::vector<double>& params, int degree);
 
