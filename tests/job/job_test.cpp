@@ -65,7 +65,11 @@ TEST_SUITE("job") {
         {"name: a\naperture: {outer_radius: 5}\nsurface: {type: torus}\n",
          "job.yaml:3:17: unknown surface type 'torus' (known: plane, sphere, conic, "
          "even_asphere, biconic, toroidal, xy_polynomial, zernike, sinusoidal_ring, "
-         "sinusoidal_grid, alvarez)"},
+         "sinusoidal_grid, alvarez, compound_eye, microlens_array)"},
+        {"name: a\naperture: {outer_radius: 5}\nsurface: {type: compound_eye, base_radius: 20, "
+         "lens_radius: -1.5, lens_diameter: 1.2, pitch: 1.0}\n",
+         "job.yaml:3:82: a lenslet of diameter 1.2 mm is larger than its pitch 1 mm: neighbours "
+         "would overlap"},
         {"name: a\naperture: {outer_radius: 5}\nsurface: {type: sphere, radius: 4}\n",
          "job.yaml:3:33: the surface is undefined beyond r = 4 mm (the conic's square "
          "root goes negative), inside the aperture radius 5 mm"},

@@ -9,6 +9,7 @@
 #include "freeturn/job/yaml_reader.hpp"
 #include "freeturn/surface/biconic.hpp"
 #include "freeturn/surface/even_asphere.hpp"
+#include "freeturn/surface/lenslet_array.hpp"
 #include "freeturn/surface/sinusoidal.hpp"
 #include "freeturn/surface/toroidal.hpp"
 #include "freeturn/surface/transformed_surface.hpp"
@@ -20,7 +21,7 @@ namespace {
 
 constexpr const char* kKnownTypes =
     "plane, sphere, conic, even_asphere, biconic, toroidal, xy_polynomial, zernike, "
-    "sinusoidal_ring, sinusoidal_grid, alvarez";
+    "sinusoidal_ring, sinusoidal_grid, alvarez, compound_eye, microlens_array";
 
 std::string number_text(double v) {
   char buf[32];
@@ -82,7 +83,43 @@ std::vector<double> read_terms(MapReader& map, const std::string& key, int max_i
   return out;
 }
 
-std::unique_ptr<Surface> read_base(MapReader& map, const std::string& type) {
+LensletArrayOptions::Pattern read_pattern(MapReader& map, const std::string& key,
+                                          bool rings_allowed) {
+  if (!map.has(key)) {
+    map.optional_child(key);
+    return LensletArrayOptions::Pattern::kHexagonal;
+  }
+  const std::string p = map.text(key);
+  if (p == "hexagonal") return LensletArrayOptions::Pattern::kHexagonal;
+  if (p == "square" && !rings_allowed) return LensletArrayOptions::Pattern::kSquare;
+  if (p == "rings" && rings_allowed) return LensletArrayOptions::Pattern::kRings;
+  map.fail(key, "surface." + key + " must be " +
+                    (rings_allowed ? "rings or hexagonal" : "square or hexagonal") + ", not '" + p +
+                    "'");
+}
+
+std::unique_ptr<Surface> read_lenslets(MapReader& map, bool compound_eye, double outer_radius) {
+  LensletArrayOptions o;
+  if (compound_eye) {
+    const double rb = map.number("base_radius");
+    if (rb == 0)
+      map.fail("base_radius",
+               "surface.base_radius must not be 0 (use microlens_array for a plane)");
+    o.base_curvature = 1 / rb;
+  }
+  o.lens_radius = map.number("lens_radius");
+  o.lens_diameter = map.positive("lens_diameter");
+  o.pitch = map.positive("pitch");
+  o.pattern = read_pattern(map, compound_eye ? "pattern" : "lattice", compound_eye);
+  o.extent = outer_radius;
+  try {
+    return std::make_unique<LensletArray>(o);
+  } catch (const InputError& e) {
+    map.fail(map.has(e.where()) ? e.where() : "type", e.problem());
+  }
+}
+
+std::unique_ptr<Surface> read_base(MapReader& map, const std::string& type, double outer_radius) {
   if (type == "plane") return std::make_unique<EvenAsphere>(0.0, 0.0);
   if (type == "sphere") {
     const double radius = map.number("radius");
@@ -142,6 +179,8 @@ std::unique_ptr<Surface> read_base(MapReader& map, const std::string& type) {
     return std::make_unique<SinusoidalGrid>(amplitude, map.positive("wavelength_x"),
                                             map.positive("wavelength_y"));
   }
+  if (type == "compound_eye") return read_lenslets(map, true, outer_radius);
+  if (type == "microlens_array") return read_lenslets(map, false, outer_radius);
   if (type == "alvarez") return std::make_unique<Alvarez>(map.number("A"), map.number("D", 0.0));
   map.fail("type", "unknown surface type '" + type + "' (known: " + kKnownTypes + ")");
 }
@@ -187,7 +226,7 @@ std::unique_ptr<Surface> surface_from_yaml(const YAML::Node& node, const std::st
   const std::string type = map.text("type");
   std::unique_ptr<Surface> surface;
   try {
-    surface = read_base(map, type);
+    surface = read_base(map, type, outer_radius);
   } catch (const InputError& e) {
     // Constructors name the parameter; point at it in the file.
     if (e.where().find(':') != std::string::npos) throw;

@@ -5,6 +5,7 @@
 // inverting their parameterisation.
 
 #include <Eigen/Core>
+#include <Eigen/Geometry>
 #include <limits>
 
 namespace freeturn {

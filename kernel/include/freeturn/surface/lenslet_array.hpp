@@ -1,0 +1,70 @@
+#pragma once
+// Spherical lenslets on a spherical base (a compound eye, papers 000 and 002) or on a plane
+// (a microlens array).
+//
+// Lenslet i sits at a centre c_i on the base; its axis is the base normal n_i there, which
+// passes through the base sphere's centre, so in the lenslet's own frame the base and the
+// lens are coaxial spheres. The lens covers the footprint of diameter D (lateral distance
+// from its axis ≤ D/2) and its vertex height is chosen so that it meets the base exactly
+// on the footprint's rim: the surface is continuous, with a crease at each rim. Outside
+// every footprint the surface is the base.
+//
+// A point finds its lenslet through a uniform grid over (x, y) whose cells list the
+// lenslets that can cover them: a few candidates per query, whatever the lenslet count.
+
+#include <Eigen/Core>
+#include <vector>
+
+#include "freeturn/surface/surface.hpp"
+
+namespace freeturn {
+
+struct LensletArrayOptions {
+  double base_curvature = 0;  // 1/mm; 0 for a microlens array on a plane
+  double lens_radius = 0;     // mm, signed (> 0: centre of curvature toward +z), |R| ≥ D/2
+  double lens_diameter = 0;   // mm, footprint diameter D, ≤ pitch
+  double pitch = 0;           // mm, centre spacing (along the base for a compound eye)
+  enum class Pattern { kRings, kHexagonal, kSquare } pattern = Pattern::kHexagonal;
+  double extent = 0;  // mm, lenslets whose footprint lies within this radius
+};
+
+class LensletArray final : public Surface {
+ public:
+  // Throws InputError for a lenslet larger than its pitch, a lens radius smaller than half
+  // its diameter, a base too curved for the extent, or no lenslet inside the extent.
+  explicit LensletArray(const LensletArrayOptions& options);
+
+  const char* type() const override;
+  void sag_gradient(double x, double y, double& z, double& zx, double& zy) const override;
+  HeightDerivatives height_derivatives(double x, double y) const override;
+  double defined_radius() const override;
+
+  int lenslet_count() const { return static_cast<int>(lenslets_.size()); }
+  // Index of the lenslet whose footprint holds (x, y), or −1 on the base.
+  int lenslet_at(double x, double y) const;
+  // The lenslet's vertex and axis (unit, toward +z).
+  Eigen::Vector3d lenslet_vertex(int i) const { return lenslets_[i].vertex; }
+  Eigen::Vector3d lenslet_axis(int i) const { return lenslets_[i].axis; }
+
+ private:
+  struct Lenslet {
+    Eigen::Vector3d base_point;  // c_i on the base
+    Eigen::Vector3d axis;        // n_i
+    Eigen::Vector3d vertex;      // c_i + h n_i
+    Eigen::Vector3d centre;      // of the lens sphere: vertex + R n_i
+  };
+  template <int N>  // 1: value and gradient; 2: and the Hessian
+  HeightDerivatives evaluate(double x, double y) const;
+  void add_lenslet(double x, double y);
+
+  LensletArrayOptions o_;
+  double vertex_height_ = 0;  // h, along the axis
+  std::vector<Lenslet> lenslets_;
+  // Lookup grid: cells of size cell_ over [−extent, extent]²; cell k lists lenslets
+  // cell_items_[cell_start_[k] … cell_start_[k + 1]).
+  double cell_ = 0;
+  int cells_per_side_ = 0;
+  std::vector<int> cell_start_, cell_items_;
+};
+
+}  // namespace freeturn

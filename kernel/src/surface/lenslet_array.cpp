@@ -1,0 +1,167 @@
+#include "freeturn/surface/lenslet_array.hpp"
+
+#include <algorithm>
+#include <cmath>
+#include <numbers>
+#include <string>
+
+#include "freeturn/core/error.hpp"
+#include "freeturn/surface/jet.hpp"
+
+namespace freeturn {
+namespace {
+
+// Sag of a sphere of curvature c at lateral distance a from its vertex.
+double sphere_sag(double c, double a) {
+  return c * a * a / (1 + std::sqrt(1 - c * c * a * a));
+}
+
+std::string mm(double v) {
+  char buf[32];
+  std::snprintf(buf, sizeof buf, "%.6g mm", v);
+  return buf;
+}
+
+}  // namespace
+
+LensletArray::LensletArray(const LensletArrayOptions& options) : o_(options) {
+  const double d = o_.lens_diameter, r = o_.lens_radius, cb = o_.base_curvature;
+  if (!(d > 0)) throw InputError("lens_diameter", "must be greater than 0");
+  if (!(o_.pitch > 0)) throw InputError("pitch", "must be greater than 0");
+  if (d > o_.pitch)
+    throw InputError("lens_diameter", "a lenslet of diameter " + mm(d) +
+                                          " is larger than its pitch " + mm(o_.pitch) +
+                                          ": neighbours would overlap");
+  if (!(std::abs(r) >= d / 2))
+    throw InputError("lens_radius", "|lens_radius| " + mm(std::abs(r)) +
+                                        " is smaller than half the lens diameter " + mm(d / 2));
+  if (!(o_.extent > 0)) throw InputError("extent", "must be greater than 0");
+  if (std::abs(cb) * o_.extent >= 1)
+    throw InputError("base_radius", "the base sphere (radius " + mm(1 / std::abs(cb)) +
+                                        ") does not cover the aperture radius " + mm(o_.extent));
+  // The rim is where lens and base meet: h = base sag − lens sag at D/2 (both coaxial).
+  vertex_height_ = sphere_sag(cb, d / 2) - sphere_sag(1 / r, d / 2);
+
+  // Centres, keeping lenslets whose footprint lies inside the extent.
+  const double reach = o_.extent - d / 2;
+  const auto inside = [&](double x, double y) { return std::hypot(x, y) <= reach + 1e-12; };
+  if (o_.pattern == LensletArrayOptions::Pattern::kRings) {
+    // Rings at arc spacing `pitch` along the base; each ring holds as many lenslets as fit
+    // at arc spacing ≥ pitch (so neighbours never come closer than the pitch).
+    const double rb = cb != 0 ? 1 / std::abs(cb) : INFINITY;
+    for (int k = 0;; ++k) {
+      const double arc = k * o_.pitch;
+      const double rho = std::isinf(rb) ? arc : rb * std::sin(arc / rb);
+      if (rho > reach + 1e-12 || (!std::isinf(rb) && arc / rb >= std::numbers::pi / 2)) break;
+      const int count =
+          k == 0 ? 1 : static_cast<int>(std::floor(2 * std::numbers::pi * rho / o_.pitch));
+      for (int j = 0; j < count; ++j) {
+        const double phi = 2 * std::numbers::pi * j / count;
+        add_lenslet(rho * std::cos(phi), rho * std::sin(phi));
+      }
+    }
+  } else {
+    const bool hex = o_.pattern == LensletArrayOptions::Pattern::kHexagonal;
+    const double dy = hex ? o_.pitch * std::sqrt(3.0) / 2 : o_.pitch;
+    const int n = static_cast<int>(std::ceil(o_.extent / dy)) + 1;
+    for (int row = -n; row <= n; ++row)
+      for (int col = -n; col <= n; ++col) {
+        const double x = (col + (hex && (row % 2 != 0) ? 0.5 : 0.0)) * o_.pitch, y = row * dy;
+        if (inside(x, y)) add_lenslet(x, y);
+      }
+  }
+  if (lenslets_.empty())
+    throw InputError("pitch", "no lenslet of diameter " + mm(d) +
+                                  " fits inside the aperture radius " + mm(o_.extent));
+
+  // Lookup grid: each lenslet is listed in every cell its footprint's bounding square meets.
+  cell_ = o_.pitch;
+  cells_per_side_ = static_cast<int>(std::ceil(2 * o_.extent / cell_)) + 1;
+  std::vector<std::vector<int>> cells(static_cast<std::size_t>(cells_per_side_) * cells_per_side_);
+  const auto cell_of = [&](double v) {
+    return std::clamp(static_cast<int>(std::floor((v + o_.extent) / cell_)), 0,
+                      cells_per_side_ - 1);
+  };
+  for (int i = 0; i < lenslet_count(); ++i) {
+    const Eigen::Vector3d& c = lenslets_[i].base_point;
+    const double half = 0.5 * d * 1.001;
+    for (int a = cell_of(c.x() - half); a <= cell_of(c.x() + half); ++a)
+      for (int b = cell_of(c.y() - half); b <= cell_of(c.y() + half); ++b)
+        cells[static_cast<std::size_t>(b) * cells_per_side_ + a].push_back(i);
+  }
+  cell_start_.push_back(0);
+  for (const auto& list : cells) {
+    cell_items_.insert(cell_items_.end(), list.begin(), list.end());
+    cell_start_.push_back(static_cast<int>(cell_items_.size()));
+  }
+}
+
+void LensletArray::add_lenslet(double x, double y) {
+  const double cb = o_.base_curvature;
+  Lenslet l;
+  l.base_point = {x, y, sphere_sag(cb, std::hypot(x, y))};
+  // The base normal toward +z: for a sphere, along (centre − point) when c > 0.
+  const double s = std::sqrt(1 - cb * cb * (x * x + y * y));
+  l.axis = Eigen::Vector3d(-cb * x, -cb * y, s).normalized();
+  l.vertex = l.base_point + vertex_height_ * l.axis;
+  l.centre = l.vertex + o_.lens_radius * l.axis;
+  lenslets_.push_back(l);
+}
+
+const char* LensletArray::type() const {
+  return o_.base_curvature != 0 ? "compound_eye" : "microlens_array";
+}
+
+double LensletArray::defined_radius() const {
+  return o_.base_curvature != 0 ? 1 / std::abs(o_.base_curvature) : Surface::defined_radius();
+}
+
+int LensletArray::lenslet_at(double x, double y) const {
+  if (std::abs(x) > o_.extent + cell_ || std::abs(y) > o_.extent + cell_) return -1;
+  const int a =
+      std::clamp(static_cast<int>(std::floor((x + o_.extent) / cell_)), 0, cells_per_side_ - 1);
+  const int b =
+      std::clamp(static_cast<int>(std::floor((y + o_.extent) / cell_)), 0, cells_per_side_ - 1);
+  const int k = b * cells_per_side_ + a;
+  const Eigen::Vector3d base(x, y, sphere_sag(o_.base_curvature, std::hypot(x, y)));
+  for (int idx = cell_start_[k]; idx < cell_start_[k + 1]; ++idx) {
+    const Lenslet& l = lenslets_[cell_items_[idx]];
+    const Eigen::Vector3d w = base - l.base_point;
+    const double lateral = (w - w.dot(l.axis) * l.axis).norm();
+    if (lateral < 0.5 * o_.lens_diameter) return cell_items_[idx];
+  }
+  return -1;
+}
+
+template <int N>
+HeightDerivatives LensletArray::evaluate(double x, double y) const {
+  const int i = lenslet_at(x, y);
+  using J = Jet<N>;
+  const J X = J::variable_x(x), Y = J::variable_y(y);
+  J z;
+  if (i < 0) {
+    const double c = o_.base_curvature;
+    const J r2 = X * X + Y * Y;
+    z = c * r2 / (1.0 + sqrt(1.0 - c * c * r2));
+  } else {
+    // The lens sphere along the vertical line: z = C_z − sgn(R) √(R² − (x − C_x)² − (y − C_y)²).
+    const Eigen::Vector3d& c = lenslets_[i].centre;
+    const double r = o_.lens_radius;
+    const J dx = X - c.x(), dy = Y - c.y();
+    z = c.z() - (r > 0 ? 1.0 : -1.0) * sqrt(r * r - dx * dx - dy * dy);
+  }
+  return {z.v, z.dx, z.dy, z.dxx, z.dxy, z.dyy};
+}
+
+void LensletArray::sag_gradient(double x, double y, double& z, double& zx, double& zy) const {
+  const HeightDerivatives h = evaluate<1>(x, y);
+  z = h.z;
+  zx = h.zx;
+  zy = h.zy;
+}
+
+HeightDerivatives LensletArray::height_derivatives(double x, double y) const {
+  return evaluate<2>(x, y);
+}
+
+}  // namespace freeturn

@@ -1,0 +1,153 @@
+#include <doctest/doctest.h>
+
+#include <cmath>
+#include <random>
+
+#include "freeturn/core/error.hpp"
+#include "freeturn/surface/lenslet_array.hpp"
+
+using namespace freeturn;
+using Pattern = LensletArrayOptions::Pattern;
+
+namespace {
+
+LensletArrayOptions eye(Pattern pattern) {
+  LensletArrayOptions o;
+  o.base_curvature = 1 / 20.0;  // base sphere R 20 mm
+  o.lens_radius = -1.5;         // convex lenslets (centre toward −z)
+  o.lens_diameter = 0.9;
+  o.pitch = 1.0;
+  o.pattern = pattern;
+  o.extent = 6.0;
+  return o;
+}
+
+// The lenslet holding (x, y) by scanning every lenslet (independent of the lookup grid).
+int scan(const LensletArray& s, const LensletArrayOptions& o, double x, double y) {
+  const double c = o.base_curvature;
+  const double r2 = x * x + y * y;
+  const Eigen::Vector3d base(x, y, c * r2 / (1 + std::sqrt(1 - c * c * r2)));
+  for (int i = 0; i < s.lenslet_count(); ++i) {
+    const Eigen::Vector3d axis = s.lenslet_axis(i);
+    // The base point of lenslet i is where its axis meets the base.
+    const Eigen::Vector3d w = base - s.lenslet_vertex(i);
+    if ((w - w.dot(axis) * axis).norm() < 0.5 * o.lens_diameter) return i;
+  }
+  return -1;
+}
+
+}  // namespace
+
+TEST_SUITE("surface") {
+  TEST_CASE("compound eye: lenslets on the base sphere, axes through its centre, lookup = scan") {
+    for (Pattern pattern : {Pattern::kRings, Pattern::kHexagonal}) {
+      const LensletArrayOptions o = eye(pattern);
+      const LensletArray s(o);
+      CHECK(std::string(s.type()) == "compound_eye");
+      CHECK(s.lenslet_count() > 50);
+      for (int i = 0; i < s.lenslet_count(); ++i) {
+        // The axis passes through the base sphere's centre (0, 0, 20).
+        const Eigen::Vector3d v = s.lenslet_vertex(i), a = s.lenslet_axis(i);
+        const Eigen::Vector3d to_centre = Eigen::Vector3d(0, 0, 20) - v;
+        CHECK((to_centre - to_centre.dot(a) * a).norm() <= 1e-12);
+        // At the vertex: the sag is the vertex, the normal the axis.
+        CHECK(s.sag(v.x(), v.y()) == doctest::Approx(v.z()).epsilon(1e-13).scale(1e-13));
+        CHECK((s.normal(v.x(), v.y()) - a).norm() <= 1e-12);
+      }
+      std::mt19937 rng(3);
+      std::uniform_real_distribution<double> u(-6, 6);
+      for (int k = 0; k < 3000; ++k) {
+        const double x = u(rng), y = u(rng);
+        CHECK(s.lenslet_at(x, y) == scan(s, o, x, y));
+      }
+    }
+  }
+
+  TEST_CASE("compound eye: lens points on their sphere, continuous at every rim") {
+    const LensletArrayOptions o = eye(Pattern::kRings);
+    const LensletArray s(o);
+    for (int i = 0; i < s.lenslet_count(); i += 7) {
+      const Eigen::Vector3d v = s.lenslet_vertex(i), a = s.lenslet_axis(i);
+      const Eigen::Vector3d centre = v + o.lens_radius * a;
+      // Walk outward from the vertex across the rim, in the direction of +x.
+      const Eigen::Vector3d side = a.cross(Eigen::Vector3d::UnitY()).normalized();
+      double last_inside = NAN, first_outside = NAN;
+      for (int k = 0; k <= 2000; ++k) {
+        const Eigen::Vector3d q = v + side * (0.7 * o.lens_diameter * k / 2000);
+        const Eigen::Vector3d p = s.point(q.x(), q.y());
+        if (s.lenslet_at(q.x(), q.y()) == i) {
+          CHECK(std::abs((p - centre).norm() - std::abs(o.lens_radius)) <= 1e-12);
+          last_inside = p.z();
+        } else if (std::isnan(first_outside)) {
+          first_outside = p.z();
+        }
+      }
+      // Step 0.7·D/2000 ≈ 3e-4 mm with slopes below 1: the jump at the rim is the step's
+      // rise alone; a misplaced vertex height would show as a step of micrometres.
+      CHECK(std::abs(first_outside - last_inside) <= 5e-4);
+    }
+  }
+
+  TEST_CASE("lenslet surfaces: gradient and Hessian by finite differences away from rims") {
+    for (const LensletArrayOptions& o : {eye(Pattern::kHexagonal), [] {
+                                           LensletArrayOptions m = eye(Pattern::kSquare);
+                                           m.base_curvature = 0;
+                                           return m;
+                                         }()}) {
+      const LensletArray s(o);
+      std::mt19937 rng(9);
+      std::uniform_real_distribution<double> u(-5.5, 5.5);
+      const double h = 1e-5;
+      int checked = 0;
+      for (int k = 0; k < 400 && checked < 100; ++k) {
+        const double x = u(rng), y = u(rng);
+        const int at = s.lenslet_at(x, y);
+        bool same = true;
+        for (double dx : {-h, 0.0, h})
+          for (double dy : {-h, 0.0, h}) same = same && s.lenslet_at(x + dx, y + dy) == at;
+        if (!same) continue;
+        ++checked;
+        const auto d = s.height_derivatives(x, y);
+        const auto px = s.height_derivatives(x + h, y), mx = s.height_derivatives(x - h, y);
+        const auto py = s.height_derivatives(x, y + h), my = s.height_derivatives(x, y - h);
+        CHECK(d.zx == doctest::Approx((px.z - mx.z) / (2 * h)).epsilon(1e-6).scale(1e-6));
+        CHECK(d.zy == doctest::Approx((py.z - my.z) / (2 * h)).epsilon(1e-6).scale(1e-6));
+        CHECK(d.zxx == doctest::Approx((px.zx - mx.zx) / (2 * h)).epsilon(1e-5).scale(1e-4));
+        CHECK(d.zxy == doctest::Approx((py.zx - my.zx) / (2 * h)).epsilon(1e-5).scale(1e-4));
+        CHECK(d.zyy == doctest::Approx((py.zy - my.zy) / (2 * h)).epsilon(1e-5).scale(1e-4));
+      }
+      CHECK(checked == 100);
+    }
+  }
+
+  TEST_CASE("microlens array on a plane: square lattice count and sag") {
+    LensletArrayOptions o;
+    o.lens_radius = 2.0;
+    o.lens_diameter = 1.0;
+    o.pitch = 1.2;
+    o.pattern = Pattern::kSquare;
+    o.extent = 5.0;
+    const LensletArray s(o);
+    CHECK(std::string(s.type()) == "microlens_array");
+    // Lattice points (1.2 i, 1.2 j) with |·| ≤ 5 − 0.5 = 4.5: i² + j² ≤ 14.06 → 45.
+    CHECK(s.lenslet_count() == 45);
+    // Concave lens (R = 2, centre toward +z) dipping below the plane; rim at z = 0.
+    const double rim = 2.0 - std::sqrt(4.0 - 0.25);
+    CHECK(s.sag(0.0, 0.0) == doctest::Approx(-rim).epsilon(1e-14));
+    CHECK(s.sag(0.3, 0.0) == doctest::Approx(-rim + 2.0 - std::sqrt(4.0 - 0.09)).epsilon(1e-14));
+    CHECK(s.sag(0.6, 0.6) == 0.0);  // between lenslets: the plane
+  }
+
+  TEST_CASE("lenslet arrays refuse impossible geometry") {
+    LensletArrayOptions o = eye(Pattern::kHexagonal);
+    o.lens_diameter = 1.1;
+    CHECK_THROWS_WITH_AS(
+        LensletArray{o},
+        "lens_diameter: a lenslet of diameter 1.1 mm is larger than its pitch 1 mm: "
+        "neighbours would overlap",
+        InputError);
+    o = eye(Pattern::kHexagonal);
+    o.lens_radius = 0.4;
+    CHECK_THROWS_AS(LensletArray{o}, InputError);
+  }
+}
