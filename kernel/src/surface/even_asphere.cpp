@@ -1,5 +1,7 @@
 #include "freeturn/surface/even_asphere.hpp"
 
+#include "freeturn/surface/conic.hpp"
+
 #include <cmath>
 #include <limits>
 
@@ -9,8 +11,7 @@ EvenAsphere::EvenAsphere(double curvature, double conic, const std::array<double
     : c_(curvature), k_(conic), a_(coefficients) {}
 
 double EvenAsphere::defined_radius() const {
-  const double g = (1.0 + k_) * c_ * c_;
-  return g > 0 ? 1.0 / std::sqrt(g) : std::numeric_limits<double>::infinity();
+  return conic_defined_radius(c_, k_);
 }
 
 void EvenAsphere::sag_in_s(double s, double& f, double& df, double& d2f) const {

@@ -6,7 +6,7 @@
 #include <string>
 
 #include "freeturn/core/error.hpp"
-#include "freeturn/surface/jet.hpp"
+#include "freeturn/surface/conic.hpp"
 
 namespace freeturn {
 namespace {
@@ -142,7 +142,7 @@ HeightDerivatives LensletArray::evaluate(double x, double y) const {
   if (i < 0) {
     const double c = o_.base_curvature;
     const J r2 = X * X + Y * Y;
-    z = c * r2 / (1.0 + sqrt(1.0 - c * c * r2));
+    z = conic_sag(c, 0.0, r2);
   } else {
     // The lens sphere along the vertical line: z = C_z − sgn(R) √(R² − (x − C_x)² − (y − C_y)²).
     const Eigen::Vector3d& c = lenslets_[i].centre;

@@ -32,9 +32,4 @@ XyPolynomial::XyPolynomial(double curvature, double conic, double normalization_
   }
 }
 
-double XyPolynomial::defined_radius() const {
-  const double g = (1.0 + k_) * c_ * c_;
-  return g > 0 ? 1.0 / std::sqrt(g) : Surface::defined_radius();
-}
-
 }  // namespace freeturn

@@ -79,9 +79,4 @@ Zernike::Zernike(double curvature, double conic, const std::array<double, 9>& as
   }
 }
 
-double Zernike::defined_radius() const {
-  const double g = (1.0 + k_) * c_ * c_;
-  return g > 0 ? 1.0 / std::sqrt(g) : Surface::defined_radius();
-}
-
 }  // namespace freeturn

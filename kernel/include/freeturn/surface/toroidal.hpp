@@ -6,6 +6,7 @@
 
 #include <array>
 
+#include "freeturn/surface/conic.hpp"
 #include "freeturn/surface/jet_surface.hpp"
 
 namespace freeturn {
@@ -21,7 +22,7 @@ class Toroidal final : public JetSurface<Toroidal> {
   template <typename T>
   T sag(const T& x, const T& y) const {
     const T y2 = y * y;
-    T zy = c_ * y2 / (1.0 + sqrt(1.0 - (1 + k_) * c_ * c_ * y2));
+    T zy = conic_sag(c_, k_, y2);
     T power = y2;
     for (double a : alpha_) {
       zy += a * power;

@@ -5,6 +5,7 @@
 
 #include <vector>
 
+#include "freeturn/surface/conic.hpp"
 #include "freeturn/surface/jet_surface.hpp"
 
 namespace freeturn {
@@ -22,12 +23,12 @@ class XyPolynomial final : public JetSurface<XyPolynomial> {
   XyPolynomial(double curvature, double conic, double normalization_radius,
                const std::vector<double>& coefficients);
   const char* type() const override { return "xy_polynomial"; }
-  double defined_radius() const override;
+  double defined_radius() const override { return conic_defined_radius(c_, k_); }
 
   template <typename T>
   T sag(const T& x, const T& y) const {
     const T r2 = x * x + y * y;
-    T z = c_ * r2 / (1.0 + sqrt(1.0 - (1 + k_) * c_ * c_ * r2));
+    T z = conic_sag(c_, k_, r2);
     // Powers of x/R_n and y/R_n up to the highest order, then each term's product.
     T px[kMaxOrder + 1], py[kMaxOrder + 1];
     px[0] = py[0] = T(1.0);

@@ -12,6 +12,7 @@
 #include <array>
 #include <vector>
 
+#include "freeturn/surface/conic.hpp"
 #include "freeturn/surface/jet_surface.hpp"
 
 namespace freeturn {
@@ -33,12 +34,12 @@ class Zernike final : public JetSurface<Zernike> {
   Zernike(double curvature, double conic, const std::array<double, 9>& asphere,
           double normalization_radius, const std::vector<double>& coefficients);
   const char* type() const override { return "zernike"; }
-  double defined_radius() const override;
+  double defined_radius() const override { return conic_defined_radius(c_, k_); }
 
   template <typename T>
   T sag(const T& x, const T& y) const {
     const T r2 = x * x + y * y;
-    T z = c_ * r2 / (1.0 + sqrt(1.0 - (1 + k_) * c_ * c_ * r2));
+    T z = conic_sag(c_, k_, r2);
     T p = T(0.0);
     for (int i = 8; i >= 0; --i) p = p * r2 + asphere_[i];
     z += p * r2 * r2;
