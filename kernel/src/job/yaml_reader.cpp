@@ -89,7 +89,9 @@ double MapReader::positive(const std::string& key) {
 }
 
 double MapReader::positive(const std::string& key, double fallback) {
-  return has(key) ? positive(key) : (used_.insert(key), fallback);
+  if (has(key)) return positive(key);
+  used_.insert(key);
+  return fallback;
 }
 
 double MapReader::non_negative(const std::string& key, double fallback) {

@@ -123,17 +123,18 @@ SurfacePointResult SurfaceLocator::closest_point(const Vector3d& p) const {
   const int nv = static_cast<int>(grid_v_.size());
   SurfacePointResult best;
   best.distance = INFINITY;
+  // Newton from one seed; the closer answer wins, and iterations add up over all seeds.
+  const auto refine_from = [&](double u, double v) {
+    const SurfacePointResult r = closest_point(p, u, v);
+    const int iterations = best.iterations + r.iterations;
+    if (r.distance < best.distance || (r.distance == best.distance && best.status != Status::kOk))
+      best = r;
+    best.iterations = iterations;
+  };
   for (int k : seeds) {
     // Seeds come best first; one too far to beat the answer so far ends the search.
     if ((grid_points_[k] - p).norm() - cell_size_ > best.distance) break;
-    SurfacePointResult r = closest_point(p, grid_u_[k / nv], grid_v_[k % nv]);
-    if (r.distance < best.distance || (r.distance == best.distance && best.status != Status::kOk)) {
-      const int it = best.iterations;
-      best = r;
-      best.iterations += it;
-    } else {
-      best.iterations += r.iterations;
-    }
+    refine_from(grid_u_[k / nv], grid_v_[k % nv]);
   }
   // Near a pole, seeds from the fine rings around it: a local minimum along a ring is a
   // direction out of the pole with a basin of its own. Nothing within a pole's reach can
@@ -160,13 +161,7 @@ SurfacePointResult SurfaceLocator::closest_point(const Vector3d& p) const {
   for (const auto& [d, where] : minima) {
     if (where.first < 0) continue;
     const PoleRing& ring = pole_rings_[where.first];
-    const SurfacePointResult r = closest_point(p, ring.u[where.second], ring.v[where.second]);
-    best.iterations += r.iterations;
-    if (r.distance < best.distance) {
-      const int it = best.iterations;
-      best = r;
-      best.iterations = it;
-    }
+    refine_from(ring.u[where.second], ring.v[where.second]);
   }
   return best;
 }
