@@ -1,9 +1,13 @@
 #include <doctest/doctest.h>
 
 #include <cmath>
+#include <cstdio>
+#include <filesystem>
 
 #include "freeturn/core/error.hpp"
+#include "freeturn/io/iges_surface.hpp"
 #include "freeturn/job/job.hpp"
+#include "freeturn/surface/nurbs_height_field.hpp"
 #include "test_files.hpp"
 
 using freeturn::InputError;
@@ -64,8 +68,9 @@ TEST_SUITE("job") {
          "job.yaml:3:10: surface is missing the key 'radius'"},
         {"name: a\naperture: {outer_radius: 5}\nsurface: {type: torus}\n",
          "job.yaml:3:17: unknown surface type 'torus' (known: plane, sphere, conic, "
-         "even_asphere, biconic, toroidal, xy_polynomial, zernike, sinusoidal_ring, "
-         "sinusoidal_grid, alvarez, compound_eye, microlens_array)"},
+         "even_asphere, odd_asphere, biconic, toroidal, xy_polynomial, zernike, qbfs, "
+         "sinusoidal_ring, sinusoidal_grid, alvarez, compound_eye, microlens_array, nurbs, "
+         "height_grid, point_cloud)"},
         {"name: a\naperture: {outer_radius: 5}\nsurface: {type: compound_eye, base_radius: 20, "
          "lens_radius: -1.5, lens_diameter: 1.2, pitch: 1.0}\n",
          "job.yaml:3:82: a lenslet of diameter 1.2 mm is larger than its pitch 1 mm: neighbours "
@@ -133,6 +138,21 @@ TEST_SUITE("job") {
         {"{type: sinusoidal_ring, amplitude: 0.1, period: 8, offset: 1}", 0, 2, 1.1},
         {"{type: sinusoidal_grid, amplitude: 0.1, wavelength_x: 4, wavelength_y: 8}", 1, 2, 0.1},
         {"{type: alvarez, A: 0.003, D: 0.1}", 3, 0, 0.003 * 9 + 0.3},
+        {"{type: odd_asphere, radius: 0, coefficients: [0.01, 0, 0.002]}", 3, 4,
+         0.01 * 5 + 0.002 * 125},
+        // Q-bfs on a plane: u²(1 − u²)·a₀ with u² = 25/100.
+        {"{type: qbfs, radius: 0, normalization_radius: 10, coefficients: [0.02]}", 3, 4,
+         0.25 * 0.75 * 0.02},
+        {"{type: qbfs, radius: 0, normalization_radius: 10, coefficients: {1: 0.02}}", 0, 0, 0.0},
+        // A bilinear patch z = 0.1x + 0.2y.
+        {"{type: nurbs, degree_u: 1, degree_v: 1, knots_u: [0, 0, 1, 1], knots_v: [0, 0, 1, 1], "
+         "points: [[-6, -6, -1.8], [-6, 6, 0.6], [6, -6, -0.6], [6, 6, 1.8]]}",
+         1, 2, 0.5},
+        // z = x²/100 + y/10 on a 5 × 4 grid; bicubic interpolation reproduces it.
+        {"{type: height_grid, x: [-6, -3, 0, 3, 6], y: [-6, -2, 2, 6], z: ["
+         "[-0.24, -0.51, -0.6, -0.51, -0.24], [0.16, -0.11, -0.2, -0.11, 0.16], "
+         "[0.56, 0.29, 0.2, 0.29, 0.56], [0.96, 0.69, 0.6, 0.69, 0.96]]}",
+         1, 2, 0.21},
         // An off-axis parabola: the parent point (30, 0) on the axis, so
         // z = ((x + 30)² + y² − 900) / (2R).
         {"{type: conic, radius: 200, conic: -1, decenter: {x: 30}}", 2, 3,
@@ -145,6 +165,115 @@ TEST_SUITE("job") {
       CAPTURE(yaml);
       const auto job = load_job(dir.write("job.yaml", yaml));
       CHECK(job.surface->sag(c.x, c.y) == doctest::Approx(c.z).epsilon(1e-13).scale(1e-13));
+    }
+  }
+}
+
+namespace {
+
+// z = 0.02x² − 0.01xy + 0.03y + 0.5: inside the bicubic spline space.
+double data_surface(double x, double y) { return 0.02 * x * x - 0.01 * x * y + 0.03 * y + 0.5; }
+
+// A job whose surface reads data files beside it (relative paths).
+std::string write_data_job(const TempDir& dir, const std::string& surface) {
+  std::string grid = "x,y,z\n", cloud;
+  for (int i = 0; i <= 12; ++i)
+    for (int j = 0; j <= 10; ++j) {
+      const double x = -6 + i, y = -5 + j;
+      grid += std::to_string(x) + "," + std::to_string(y) + "," +
+              std::to_string(data_surface(x, y)) + "\n";
+    }
+  // Scattered points: a jittered 25 × 25 lattice.
+  for (int i = 0; i < 25; ++i)
+    for (int j = 0; j < 25; ++j) {
+      const double x = -6 + 0.5 * i + 0.1 * std::sin(7.0 * j + i),
+                   y = -6 + 0.5 * j + 0.1 * std::cos(3.0 * i + j);
+      char line[96];
+      std::snprintf(line, sizeof line, "%.17g %.17g %.17g\n", x, y, data_surface(x, y));
+      cloud += line;
+    }
+  dir.write("grid.csv", grid);
+  dir.write("cloud.xyz", cloud);
+  dir.write("bumps.xyz", "-6 -6 0\n6 -6 0\n-6 6 0\n6 6 0\n0 0 1\n" + cloud);
+  std::filesystem::create_directories(dir.path() / "jobs");
+  return dir.write("jobs/job.yaml",
+                   "name: t\naperture: {outer_radius: 4.5}\nsurface: " + surface + "\n");
+}
+
+}  // namespace
+
+TEST_SUITE("job") {
+  TEST_CASE("data surfaces: height grid and point cloud files, IGES, relative to the job") {
+    TempDir dir;
+    for (const char* surface :
+         {"{type: height_grid, file: ../grid.csv}",
+          "{type: height_grid, file: ../grid.csv, fit: least_squares, control_points: [8, 7]}",
+          "{type: point_cloud, file: ../cloud.xyz, control_points: [6, 6], tolerance: 1e-9}"}) {
+      CAPTURE(surface);
+      const auto job = load_job(write_data_job(dir, surface));
+      for (double x : {-4.0, 0.3, 2.9})
+        for (double y : {-1.7, 0.0, 3.1}) {
+          double z, zx, zy;
+          job.surface->sag_gradient(x, y, z, zx, zy);
+          CHECK(z == doctest::Approx(data_surface(x, y)).epsilon(1e-11).scale(1));
+          CHECK(zx == doctest::Approx(0.04 * x - 0.01 * y).epsilon(1e-10).scale(1));
+          CHECK(zy == doctest::Approx(-0.01 * x + 0.03).epsilon(1e-10).scale(1));
+        }
+    }
+    // The hand-written IGES patch (tests/io/data), seen as a height field.
+    const std::string iges = std::string(FREETURN_SOURCE_DIR) + "/tests/io/data/bicubic_patch.igs";
+    const auto job = load_job(dir.write(
+        "iges.yaml", "name: t\naperture: {outer_radius: 4}\nsurface: {type: nurbs, iges: " + iges +
+                         "}\n"));
+    // Its corner (6, 4.5) is outside the aperture; its sag at the origin is the patch's.
+    const auto patch = freeturn::read_iges_surface(iges);
+    const auto* field = dynamic_cast<const freeturn::NurbsHeightField*>(job.surface.get());
+    REQUIRE(field != nullptr);
+    double u, v;
+    REQUIRE(field->parameters_at(0.5, -0.25, u, v));
+    const auto p = patch.point(u, v);
+    CHECK(p.x() == doctest::Approx(0.5).epsilon(1e-14));
+    CHECK(p.y() == doctest::Approx(-0.25).epsilon(1e-14));
+    CHECK(job.surface->sag(0.5, -0.25) == doctest::Approx(p.z()).epsilon(1e-14));
+  }
+
+  TEST_CASE("data surfaces: bad data names the key and why") {
+    TempDir dir;
+    struct Case {
+      const char* surface;
+      const char* message;
+    };
+    const Case cases[] = {
+        {"{type: height_grid, file: ../missing.csv}", "missing.csv: cannot open the point file"},
+        {"{type: height_grid, file: ../cloud.xyz}",
+         "do not form a regular grid: they have 625 distinct x and 625 distinct y values"},
+        {"{type: height_grid, file: ../grid.csv, fit: spline}",
+         "surface.fit must be interpolate or least_squares, not 'spline'"},
+        {"{type: point_cloud, file: ../cloud.xyz, control_points: [30, 30]}",
+         "surface.control_points must be [count_x, count_y], each at least 4, with "
+         "count_x·count_y at most the 625 points"},
+        {"{type: point_cloud, file: ../bumps.xyz, control_points: [4, 4], tolerance: 1e-6}",
+         "the fit misses point 3 (-6.000000, 6.000000) by 14"},
+        {"{type: nurbs, degree_u: 1, degree_v: 1, knots_u: [0, 0, 1, 1], knots_v: [0, 0, 1, 1], "
+         "points: [[-6, -6, 0], [-6, 6, 0], [6, -6, 0]]}",
+         "the knots give 2 × 2 control points (u-major: 2 per row); the list has 3"},
+        {"{type: nurbs, degree_u: 1, degree_v: 1, knots_u: [0, 0, 1, 1], knots_v: [0, 0, 1, 1], "
+         "points: [[-2, -2, 0], [-2, 2, 0], [2, -2, 0], [2, 2, 0]]}",
+         "undefined beyond r = 2 mm (the edge of its data in x-y), inside the aperture radius 4.5"},
+    };
+    for (const Case& c : cases) {
+      const std::string surface = c.surface;
+      CAPTURE(surface);
+      const std::string path = write_data_job(dir, c.surface);
+      try {
+        load_job(path);
+        FAIL("no error");
+      } catch (const InputError& e) {
+        const std::string message = e.what();
+        CAPTURE(message);
+        CHECK(message.find(c.message) != std::string::npos);
+        CHECK(std::string(e.what()).find("job.yaml:3:") != std::string::npos);
+      }
     }
   }
 }

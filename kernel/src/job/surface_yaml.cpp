@@ -7,9 +7,12 @@
 #include <vector>
 
 #include "freeturn/job/yaml_reader.hpp"
+#include "surface_data_yaml.hpp"
 #include "freeturn/surface/biconic.hpp"
 #include "freeturn/surface/even_asphere.hpp"
 #include "freeturn/surface/lenslet_array.hpp"
+#include "freeturn/surface/odd_asphere.hpp"
+#include "freeturn/surface/qbfs.hpp"
 #include "freeturn/surface/sinusoidal.hpp"
 #include "freeturn/surface/toroidal.hpp"
 #include "freeturn/surface/transformed_surface.hpp"
@@ -20,8 +23,13 @@ namespace freeturn {
 namespace {
 
 constexpr const char* kKnownTypes =
-    "plane, sphere, conic, even_asphere, biconic, toroidal, xy_polynomial, zernike, "
-    "sinusoidal_ring, sinusoidal_grid, alvarez, compound_eye, microlens_array";
+    "plane, sphere, conic, even_asphere, odd_asphere, biconic, toroidal, xy_polynomial, "
+    "zernike, qbfs, sinusoidal_ring, sinusoidal_grid, alvarez, compound_eye, microlens_array, "
+    "nurbs, height_grid, point_cloud";
+
+bool is_data_type(const std::string& type) {
+  return type == "nurbs" || type == "height_grid" || type == "point_cloud";
+}
 
 std::string number_text(double v) {
   char buf[32];
@@ -135,6 +143,43 @@ std::unique_ptr<Surface> read_base(MapReader& map, const std::string& type, doub
     const double k = map.number("conic", 0.0);
     return std::make_unique<EvenAsphere>(c, k, read_asphere_terms(map));
   }
+  if (type == "odd_asphere") {
+    const double c = read_curvature(map);
+    const double k = map.number("conic", 0.0);
+    return std::make_unique<OddAsphere>(
+        c, k, map.has("coefficients") ? read_terms(map, "coefficients", 30) : std::vector<double>{});
+  }
+  if (type == "qbfs") {
+    const double c = read_curvature(map);
+    const double rn = map.positive("normalization_radius");
+    // a_0 … a_M: a list, or a map {m: a_m} with m from 0.
+    std::vector<double> a;
+    if (map.has("coefficients")) {
+      const YAML::Node node = map.node()["coefficients"];
+      if (node.IsMap()) {
+        // read_terms indexes from 1; shift the keys by reading each one here.
+        for (auto it = node.begin(); it != node.end(); ++it) {
+          int m = -1;
+          double value;
+          if (!YAML::convert<int>::decode(it->first, m) || m < 0 || m > 30)
+            throw InputError(location_of(it->first, map.file()),
+                             "surface.coefficients term '" + it->first.Scalar() +
+                                 "' must be an index m from 0 to 30");
+          if (!it->second.IsScalar() || !YAML::convert<double>::decode(it->second, value) ||
+              !std::isfinite(value))
+            throw InputError(location_of(it->second, map.file()),
+                             "surface.coefficients a_" + std::to_string(m) +
+                                 " must be a finite number");
+          if (static_cast<int>(a.size()) <= m) a.resize(static_cast<std::size_t>(m + 1), 0.0);
+          a[static_cast<std::size_t>(m)] = value;
+        }
+        map.child("coefficients");
+      } else {
+        a = read_terms(map, "coefficients", 31);
+      }
+    }
+    return std::make_unique<Qbfs>(c, rn, std::move(a));
+  }
   if (type == "biconic") {
     const double cx = read_curvature(map, "radius_x", "curvature_x");
     const double cy = read_curvature(map, "radius_y", "curvature_y");
@@ -181,6 +226,9 @@ std::unique_ptr<Surface> read_base(MapReader& map, const std::string& type, doub
   }
   if (type == "compound_eye") return read_lenslets(map, true, outer_radius);
   if (type == "microlens_array") return read_lenslets(map, false, outer_radius);
+  if (type == "nurbs") return detail::read_nurbs_surface(map);
+  if (type == "height_grid") return detail::read_height_grid(map);
+  if (type == "point_cloud") return detail::read_point_cloud(map);
   if (type == "alvarez") return std::make_unique<Alvarez>(map.number("A"), map.number("D", 0.0));
   map.fail("type", "unknown surface type '" + type + "' (known: " + kKnownTypes + ")");
 }
@@ -237,13 +285,17 @@ std::unique_ptr<Surface> surface_from_yaml(const YAML::Node& node, const std::st
   map.finish();
   if (base_radius < outer_radius && !map.has("decenter") && !map.has("tilt_deg") &&
       !map.has("align_normal"))
-    map.fail(map.has("conic")       ? "conic"
+    map.fail(is_data_type(type)      ? (map.has("iges")   ? "iges"
+                                         : map.has("file") ? "file"
+                                                           : "type")
+             : map.has("conic")     ? "conic"
              : map.has("radius")    ? "radius"
              : map.has("curvature") ? "curvature"
                                     : "type",
-             "the surface is undefined beyond r = " + number_text(base_radius) +
-                 " mm (the conic's square root goes negative), inside the aperture radius " +
-                 number_text(outer_radius) + " mm");
+             "the surface is undefined beyond r = " + number_text(base_radius) + " mm (" +
+                 (is_data_type(type) ? "the edge of its data in x-y"
+                                     : "the conic's square root goes negative") +
+                 "), inside the aperture radius " + number_text(outer_radius) + " mm");
   // Every surface, whatever its type: sampled over the aperture, it must be finite.
   for (int i = 0; i <= 32; ++i)
     for (int j = 0; j < 64; ++j) {

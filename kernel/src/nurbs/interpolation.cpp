@@ -54,8 +54,11 @@ NurbsCurve interpolate_curve(const std::vector<Vector3d>& points, int degree,
 }
 
 NurbsSurface interpolate_surface(const std::vector<Vector3d>& grid, int rows, int cols,
-                                 int degree_u, int degree_v) {
-  const GridParameters params = grid_parameters(grid, rows, cols);
+                                 int degree_u, int degree_v, const GridParameters* given) {
+  const GridParameters params = given ? *given : grid_parameters(grid, rows, cols);
+  if (static_cast<int>(params.u.size()) != rows || static_cast<int>(params.v.size()) != cols)
+    throw InputError("params", "need one parameter per row (" + std::to_string(rows) +
+                                   ") and per column (" + std::to_string(cols) + ")");
   const std::vector<double>& uk = params.u;
   const std::vector<double>& vl = params.v;
   KnotVector ku(degree_u, averaged_knots(uk, degree_u));

@@ -145,7 +145,15 @@ void measure(SurfaceFit& fit, const std::vector<Vector3d>& points) {
 
 SurfaceFit fit_surface_grid(const std::vector<Vector3d>& grid, int rows, int cols,
                             const SurfaceFitOptions& options) {
-  const GridParameters params = grid_parameters(grid, rows, cols);
+  GridParameters params;
+  if (options.params_u.empty() && options.params_v.empty()) {
+    params = grid_parameters(grid, rows, cols);
+  } else {
+    params = {options.params_u, options.params_v};
+    if (static_cast<int>(params.u.size()) != rows || static_cast<int>(params.v.size()) != cols)
+      throw InputError("params", "need one parameter per row (" + std::to_string(rows) +
+                                     ") and per column (" + std::to_string(cols) + ")");
+  }
   const std::vector<double>& uk = params.u;
   const std::vector<double>& vl = params.v;
   const KnotVector ku = fit_knots(options.knots_u, uk, options.degree_u, options.count_u);

@@ -4,6 +4,7 @@
 #include <vector>
 
 #include "freeturn/nurbs/curve.hpp"
+#include "freeturn/nurbs/parameterization.hpp"
 #include "freeturn/nurbs/surface.hpp"
 
 namespace freeturn::nurbs {
@@ -16,8 +17,10 @@ NurbsCurve interpolate_curve(const std::vector<Vector3d>& points, int degree,
 
 // The non-rational surface through a rows × cols grid of points (row-major; the row index
 // runs along u). Parameters are the chord-length ones averaged over rows and columns
-// (Eq. 9.9-9.10); knots by averaging. A9.4: curves through each column, then each row.
+// (Eq. 9.9-9.10) unless given (`params`: rows values in u, cols in v, increasing in
+// [0, 1]); knots by averaging. A9.4: curves through each column, then each row.
 NurbsSurface interpolate_surface(const std::vector<Vector3d>& grid, int rows, int cols,
-                                 int degree_u, int degree_v);
+                                 int degree_u, int degree_v,
+                                 const GridParameters* params = nullptr);
 
 }  // namespace freeturn::nurbs

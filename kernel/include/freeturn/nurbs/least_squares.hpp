@@ -41,6 +41,9 @@ struct SurfaceFitOptions {
   std::vector<double> knots_u, knots_v;
   double smoothing = 0;           // λ ≥ 0 on the thin-plate energy
   int parameter_corrections = 0;  // scattered fits only
+  // Grid fits: the parameters of the rows (u) and columns (v), increasing in [0, 1];
+  // empty → averaged chord lengths.
+  std::vector<double> params_u, params_v;
 };
 
 struct SurfaceFit {

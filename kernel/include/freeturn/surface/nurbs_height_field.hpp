@@ -1,0 +1,54 @@
+#pragma once
+// A NURBS surface seen as a height field z = f(x, y): (x, y) is mapped back to (u, v) by
+// Newton's method on the first two coordinates of S(u, v), warm-started from the previous
+// query of the same thread (a tool path moves a little between points), with the
+// kernel's cold ray intersection along −z as the fallback. Surfaces fitted to data on
+// x-y parameters (height_grid, point_cloud) have x affine in u and y in v; they skip the
+// inversion altogether.
+//
+// Derivatives of the graph from those of S (implicit function theorem): with J the 2×2
+// Jacobian of (S_x, S_y) in (u, v) and g = (∂S_z/∂u, ∂S_z/∂v),
+//   ∇z = J⁻ᵀ g,    ∇²z = J⁻ᵀ (∇²S_z − z_x ∇²S_x − z_y ∇²S_y) J⁻¹.
+
+#include "freeturn/nurbs/surface_locator.hpp"
+#include "freeturn/surface/surface.hpp"
+
+namespace freeturn {
+
+class NurbsHeightField final : public Surface {
+ public:
+  // Throws InputError("surface", …) when the surface is not a graph over x-y (its
+  // projection folds over: the Jacobian of (S_x, S_y) changes sign), naming (u, v).
+  explicit NurbsHeightField(nurbs::NurbsSurface surface);
+
+  const char* type() const override { return "nurbs"; }
+  // NaN outside the surface's projection onto the x-y plane.
+  void sag_gradient(double x, double y, double& z, double& zx, double& zy) const override;
+  HeightDerivatives height_derivatives(double x, double y) const override;
+  // The largest disc about the origin inside the projection (0 if the origin is outside).
+  double defined_radius() const override { return defined_radius_; }
+
+  const nurbs::NurbsSurface& nurbs() const { return locator_.surface(); }
+  const nurbs::SurfaceLocator& locator() const { return locator_; }
+  // True when x = x0 + sx·u and y = y0 + sy·v exactly (no inversion needed).
+  bool affine_parameters() const { return affine_; }
+
+  // The parameters of the surface point above (x, y); false outside the projection.
+  bool parameters_at(double x, double y, double& u, double& v) const;
+
+ private:
+  bool newton(double x, double y, double& u, double& v) const;
+  // Derivatives at (u, v) over the point (x, y); at a pole (J singular) the gradient comes
+  // from the limit normal and the Hessian from central differences of the gradient.
+  HeightDerivatives derivatives_at(double x, double y, double u, double v, int order) const;
+  double boundary_distance() const;
+
+  nurbs::SurfaceLocator locator_;
+  bool affine_ = false;
+  double x0_ = 0, sx_ = 1, y0_ = 0, sy_ = 1;
+  double z_above_ = 0;  // above every control point: the origin of cold rays
+  double scale_ = 1;    // size of the control net, for tolerances
+  double defined_radius_ = 0;
+};
+
+}  // namespace freeturn

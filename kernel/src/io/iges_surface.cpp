@@ -1,0 +1,330 @@
+#include "freeturn/io/iges_surface.hpp"
+
+#include <cmath>
+#include <fstream>
+#include <map>
+#include <string>
+
+#include "freeturn/core/error.hpp"
+
+namespace freeturn {
+namespace {
+
+struct Record {
+  std::string data;  // columns 1-72
+  int file_line = 0;
+};
+
+struct Sections {
+  std::vector<Record> global, directory, parameter;
+};
+
+Sections read_sections(const std::string& path) {
+  std::ifstream in(path, std::ios::binary);
+  if (!in) throw InputError(SourceLocation{path, 0, 0}, "cannot open the IGES file");
+  Sections s;
+  std::string line;
+  int n = 0;
+  while (std::getline(in, line)) {
+    ++n;
+    if (!line.empty() && line.back() == '\r') line.pop_back();
+    if (line.empty()) continue;
+    if (line.size() < 73)
+      throw InputError(SourceLocation{path, n, 0},
+                       "IGES records are 80 columns with the section letter in column 73; "
+                       "this line has " +
+                           std::to_string(line.size()) + " characters");
+    const char section = line[72];
+    const Record r{line.substr(0, 72), n};
+    switch (section) {
+      case 'S': case 'T': break;
+      case 'G': s.global.push_back(r); break;
+      case 'D': s.directory.push_back(r); break;
+      case 'P': s.parameter.push_back(r); break;
+      case 'B': case 'C':
+        throw InputError(SourceLocation{path, n, 73},
+                         "binary or compressed IGES is not supported; export fixed ASCII");
+      default:
+        throw InputError(SourceLocation{path, n, 73},
+                         std::string("unknown IGES section letter '") + section + "'");
+    }
+  }
+  if (s.directory.empty())
+    throw InputError(SourceLocation{path, n, 0}, "no directory section: not an IGES file");
+  return s;
+}
+
+// Splits free-format data into fields at `delimiter`, up to `terminator`, honouring
+// Hollerith strings (nH…), which may contain either character.
+std::vector<std::string> split_fields(const std::string& text, char delimiter, char terminator) {
+  std::vector<std::string> fields;
+  std::string field;
+  for (std::size_t i = 0; i < text.size(); ++i) {
+    const char ch = text[i];
+    if ((ch == 'H' || ch == 'h') && !field.empty()) {
+      std::size_t digits = 0;
+      while (digits < field.size() && field[digits] == ' ') ++digits;
+      const std::string count = field.substr(digits);
+      if (!count.empty() && count.find_first_not_of("0123456789") == std::string::npos) {
+        const std::size_t len = std::stoul(count);
+        field = text.substr(i + 1, len);
+        i += len;
+        continue;
+      }
+    }
+    if (ch == delimiter || ch == terminator) {
+      fields.push_back(field);
+      field.clear();
+      if (ch == terminator) return fields;
+      continue;
+    }
+    field += ch;
+  }
+  fields.push_back(field);
+  return fields;
+}
+
+std::string trim(const std::string& s) {
+  const std::size_t a = s.find_first_not_of(' ');
+  if (a == std::string::npos) return {};
+  return s.substr(a, s.find_last_not_of(' ') - a + 1);
+}
+
+class ParameterReader {
+ public:
+  ParameterReader(std::vector<std::string> fields, std::string where)
+      : fields_(std::move(fields)), where_(std::move(where)) {}
+
+  double real(const std::string& what) {
+    std::string t = trim(next(what));
+    for (char& ch : t)
+      if (ch == 'D' || ch == 'd') ch = 'E';
+    std::size_t used = 0;
+    double value = 0;
+    try {
+      value = std::stod(t, &used);
+    } catch (const std::exception&) {
+      used = 0;
+    }
+    if (used != t.size() || t.empty() || !std::isfinite(value))
+      throw InputError(where_, what + " must be a number, not '" + t + "'");
+    return value;
+  }
+  int integer(const std::string& what) {
+    const double v = real(what);
+    if (v != std::floor(v) || std::abs(v) > 1e9)
+      throw InputError(where_, what + " must be an integer");
+    return static_cast<int>(v);
+  }
+
+ private:
+  const std::string& next(const std::string& what) {
+    if (index_ >= fields_.size())
+      throw InputError(where_, "the parameter data ends before " + what);
+    return fields_[index_++];
+  }
+  std::vector<std::string> fields_;
+  std::size_t index_ = 0;
+  std::string where_;
+};
+
+struct Directory {
+  int type = 0, parameter_start = 0, parameter_count = 0, transform = 0, form = 0;
+  int line = 0;  // sequence number of its first record
+  int file_line = 0;
+};
+
+int directory_field(const Record& r, int field, const std::string& path) {
+  const std::string t = trim(r.data.substr(static_cast<std::size_t>(8 * field), 8));
+  if (t.empty()) return 0;
+  if (t.find_first_not_of("-0123456789") != std::string::npos)
+    throw InputError(SourceLocation{path, r.file_line, 8 * field + 1},
+                     "directory field " + std::to_string(field + 1) + " must be an integer, not '" +
+                         t + "'");
+  return std::stoi(t);
+}
+
+class IgesFile {
+ public:
+  explicit IgesFile(const std::string& path) : path_(path), sections_(read_sections(path)) {
+    read_global();
+    if (sections_.directory.size() % 2 != 0)
+      throw InputError(SourceLocation{path_, sections_.directory.back().file_line, 0},
+                       "the directory section has an odd number of records");
+    for (std::size_t k = 0; k < sections_.directory.size(); k += 2) {
+      const Record& a = sections_.directory[k];
+      const Record& b = sections_.directory[k + 1];
+      Directory d;
+      d.type = directory_field(a, 0, path_);
+      d.parameter_start = directory_field(a, 1, path_);
+      d.transform = directory_field(a, 6, path_);
+      d.parameter_count = directory_field(b, 3, path_);
+      d.form = directory_field(b, 4, path_);
+      d.line = static_cast<int>(k) + 1;
+      d.file_line = a.file_line;
+      entries_[d.line] = d;
+    }
+  }
+
+  const std::map<int, Directory>& entries() const { return entries_; }
+
+  ParameterReader parameters(const Directory& d) const {
+    if (d.parameter_start < 1 || d.parameter_count < 1 ||
+        static_cast<std::size_t>(d.parameter_start - 1 + d.parameter_count) >
+            sections_.parameter.size())
+      throw InputError(SourceLocation{path_, d.file_line, 9},
+                       "the entity's parameter data pointer is outside the parameter section");
+    std::string text;
+    for (int k = 0; k < d.parameter_count; ++k)
+      text += sections_.parameter[static_cast<std::size_t>(d.parameter_start - 1 + k)].data.substr(
+          0, 64);
+    const Record& first = sections_.parameter[static_cast<std::size_t>(d.parameter_start - 1)];
+    return ParameterReader(split_fields(text, delimiter_, terminator_),
+                           SourceLocation{path_, first.file_line, 0}.to_string() + ": entity " +
+                               std::to_string(d.type) + " (directory line " +
+                               std::to_string(d.line) + ")");
+  }
+
+  // x ↦ R x + t of the entity's transformation chain (entity 124).
+  void transformation(int line, Eigen::Matrix3d& r, Eigen::Vector3d& t, int depth = 0) const {
+    r.setIdentity();
+    t.setZero();
+    if (line == 0) return;
+    const auto it = entries_.find(line);
+    if (it == entries_.end() || it->second.type != 124 || depth > 16)
+      throw InputError(SourceLocation{path_, 0, 0},
+                       "transformation pointer " + std::to_string(line) +
+                           " does not name a transformation matrix (entity 124)");
+    ParameterReader p = parameters(it->second);
+    p.integer("the entity type");
+    static const char* const kNames[3][4] = {
+        {"R11", "R12", "R13", "T1"}, {"R21", "R22", "R23", "T2"}, {"R31", "R32", "R33", "T3"}};
+    for (int row = 0; row < 3; ++row) {
+      for (int col = 0; col < 3; ++col) r(row, col) = p.real(kNames[row][col]);
+      t(row) = p.real(kNames[row][3]);
+    }
+    Eigen::Matrix3d r_outer;
+    Eigen::Vector3d t_outer;
+    transformation(it->second.transform, r_outer, t_outer, depth + 1);
+    t = r_outer * t + t_outer;
+    r = r_outer * r;
+  }
+
+  double millimetres_per_unit() const { return mm_per_unit_; }
+  const std::string& path() const { return path_; }
+
+ private:
+  void read_global() {
+    std::string text;
+    for (const Record& r : sections_.global) text += r.data;
+    const int line = sections_.global.empty() ? 0 : sections_.global.front().file_line;
+    // Fields 1 and 2 name the delimiters ("1H," and "1H;"), or are empty for the defaults.
+    if (text.size() >= 3 && (text[0] == '1') && (text[1] == 'H' || text[1] == 'h'))
+      delimiter_ = text[2];
+    const std::vector<std::string> g = split_fields(text, delimiter_, '\0');
+    if (g.size() >= 2 && g[1].size() == 1) terminator_ = g[1][0];
+    const std::vector<std::string> fields = split_fields(text, delimiter_, terminator_);
+    const auto field = [&](std::size_t k) { return k < fields.size() ? trim(fields[k]) : ""; };
+    const std::string scale = field(12), unit = field(13);
+    if (!scale.empty() && std::stod(scale) != 1.0)
+      throw InputError(SourceLocation{path_, line, 0},
+                       "model space scale " + scale + " is not supported (only 1.0)");
+    static const std::map<int, double> kMillimetres = {{1, 25.4}, {2, 1.0},     {4, 304.8},
+                                                       {6, 1000}, {8, 0.0254}, {9, 0.001},
+                                                       {10, 10},  {11, 2.54e-5}};
+    const int flag = unit.empty() ? 2 : std::stoi(unit);
+    const auto it = kMillimetres.find(flag);
+    if (it == kMillimetres.end())
+      throw InputError(SourceLocation{path_, line, 0},
+                       "units flag " + unit + " is not supported (use 2 = mm)");
+    mm_per_unit_ = it->second;
+  }
+
+  std::string path_;
+  Sections sections_;
+  char delimiter_ = ',', terminator_ = ';';
+  double mm_per_unit_ = 1.0;
+  std::map<int, Directory> entries_;
+};
+
+nurbs::NurbsSurface read_entity_128(const IgesFile& file, const Directory& d) {
+  ParameterReader p = file.parameters(d);
+  if (p.integer("the entity type") != 128)
+    throw InputError(file.path(), "directory line " + std::to_string(d.line) +
+                                      " points at parameters of another entity");
+  const int k1 = p.integer("K1"), k2 = p.integer("K2"), m1 = p.integer("M1"),
+            m2 = p.integer("M2");
+  if (k1 < 1 || k2 < 1 || m1 < 1 || m2 < 1 || m1 > k1 || m2 > k2)
+    throw InputError(SourceLocation{file.path(), d.file_line, 0},
+                     "entity 128 needs 1 ≤ M ≤ K in both directions (K1=" + std::to_string(k1) +
+                         ", M1=" + std::to_string(m1) + ", K2=" + std::to_string(k2) +
+                         ", M2=" + std::to_string(m2) + ")");
+  for (int k = 1; k <= 5; ++k) p.integer("PROP" + std::to_string(k));
+  std::vector<double> s(static_cast<std::size_t>(k1 + m1 + 2)), t(static_cast<std::size_t>(k2 + m2 + 2));
+  for (std::size_t k = 0; k < s.size(); ++k) s[k] = p.real("knot S(" + std::to_string(k) + ")");
+  for (std::size_t k = 0; k < t.size(); ++k) t[k] = p.real("knot T(" + std::to_string(k) + ")");
+  const int nu = k1 + 1, nv = k2 + 1;
+  std::vector<double> w(static_cast<std::size_t>(nu * nv));
+  std::vector<nurbs::Vector3d> points(w.size());
+  // The file runs the u index fastest; the net is row-major with u as the row.
+  for (int k = 0; k < nu * nv; ++k)
+    w[static_cast<std::size_t>((k % nu) * nv + k / nu)] = p.real("weight " + std::to_string(k));
+  Eigen::Matrix3d r;
+  Eigen::Vector3d shift;
+  file.transformation(d.transform, r, shift);
+  const double mm = file.millimetres_per_unit();
+  for (int k = 0; k < nu * nv; ++k) {
+    nurbs::Vector3d x;
+    for (int c = 0; c < 3; ++c) x[c] = p.real("control point " + std::to_string(k));
+    points[static_cast<std::size_t>((k % nu) * nv + k / nu)] = mm * (r * x + shift);
+  }
+  const double u0 = p.real("U0"), u1 = p.real("U1"), v0 = p.real("V0"), v1 = p.real("V1");
+  nurbs::NurbsSurface surface;
+  try {
+    surface = nurbs::NurbsSurface(m1, m2, s, t, points, w);
+  } catch (const InputError& e) {
+    throw InputError(SourceLocation{file.path(), d.file_line, 0},
+                     "entity 128 (directory line " + std::to_string(d.line) + "): " + e.where() +
+                         " " + e.problem());
+  }
+  const double tol_u = 1e-9 * (surface.back_u() - surface.front_u());
+  const double tol_v = 1e-9 * (surface.back_v() - surface.front_v());
+  if (std::abs(u0 - surface.front_u()) > tol_u || std::abs(u1 - surface.back_u()) > tol_u ||
+      std::abs(v0 - surface.front_v()) > tol_v || std::abs(v1 - surface.back_v()) > tol_v)
+    throw InputError(SourceLocation{file.path(), d.file_line, 0},
+                     "entity 128 (directory line " + std::to_string(d.line) +
+                         ") uses a parameter range narrower than its knots; sub-patches are "
+                         "not supported (export the untrimmed surface)");
+  return surface;
+}
+
+}  // namespace
+
+std::vector<IgesSurfaceEntry> read_iges_surfaces(const std::string& path) {
+  const IgesFile file(path);
+  std::vector<IgesSurfaceEntry> out;
+  for (const auto& [line, d] : file.entries())
+    if (d.type == 128) out.push_back({line, read_entity_128(file, d)});
+  return out;
+}
+
+nurbs::NurbsSurface read_iges_surface(const std::string& path, int directory_line) {
+  std::vector<IgesSurfaceEntry> all = read_iges_surfaces(path);
+  std::string lines;
+  for (const IgesSurfaceEntry& e : all) lines += (lines.empty() ? "" : ", ") + std::to_string(e.directory_line);
+  if (directory_line > 0) {
+    for (IgesSurfaceEntry& e : all)
+      if (e.directory_line == directory_line) return std::move(e.surface);
+    throw InputError(path, "no rational B-spline surface (entity 128) at directory line " +
+                               std::to_string(directory_line) + " (there are: " +
+                               (lines.empty() ? "none" : lines) + ")");
+  }
+  if (all.empty()) throw InputError(path, "the file has no rational B-spline surface (entity 128)");
+  if (all.size() > 1)
+    throw InputError(path, "the file has " + std::to_string(all.size()) +
+                               " B-spline surfaces (entity 128, directory lines " + lines +
+                               "); choose one with 'entity'");
+  return std::move(all.front().surface);
+}
+
+}  // namespace freeturn

@@ -1,0 +1,259 @@
+#include "freeturn/surface/nurbs_height_field.hpp"
+
+#include <Eigen/LU>
+#include <algorithm>
+#include <cmath>
+#include <limits>
+#include <string>
+
+#include "freeturn/core/error.hpp"
+
+namespace freeturn {
+namespace {
+
+constexpr double kNaN = std::numeric_limits<double>::quiet_NaN();
+
+// The last answer of this thread, per surface: consecutive queries of a path are close.
+struct WarmStart {
+  const void* owner = nullptr;
+  double u = 0, v = 0;
+};
+thread_local WarmStart warm_start;
+
+// Greville abscissa of control point i: the knot average that reproduces linear functions.
+double greville(const nurbs::KnotVector& k, int i) {
+  double sum = 0;
+  for (int j = 1; j <= k.degree(); ++j) sum += k.knots()[static_cast<std::size_t>(i + j)];
+  return k.degree() == 0 ? k.knots()[static_cast<std::size_t>(i)] : sum / k.degree();
+}
+
+double segment_distance(const Eigen::Vector2d& a, const Eigen::Vector2d& b) {
+  const Eigen::Vector2d d = b - a;
+  const double len2 = d.squaredNorm();
+  const double t = len2 > 0 ? std::clamp(-a.dot(d) / len2, 0.0, 1.0) : 0.0;
+  return (a + t * d).norm();
+}
+
+}  // namespace
+
+NurbsHeightField::NurbsHeightField(nurbs::NurbsSurface surface)
+    : locator_(std::move(surface)) {
+  const nurbs::NurbsSurface& s = locator_.surface();
+  double z_max = -std::numeric_limits<double>::infinity();
+  Eigen::AlignedBox3d box;
+  for (const nurbs::Vector4d& p : s.homogeneous_points()) {
+    z_max = std::max(z_max, p.z() / p.w());
+    box.extend(Eigen::Vector3d(p.head<3>() / p.w()));
+  }
+  scale_ = std::max(1.0, box.diagonal().norm());
+  z_above_ = z_max + scale_;
+
+  // Affine parameters: every control point's x (y) is an affine function of its Greville
+  // abscissa in u (v), and the surface is not rational.
+  if (!s.is_rational() && s.count_u() >= 2 && s.count_v() >= 2) {
+    const double gu0 = greville(s.knots_u(), 0), gu1 = greville(s.knots_u(), s.count_u() - 1);
+    const double gv0 = greville(s.knots_v(), 0), gv1 = greville(s.knots_v(), s.count_v() - 1);
+    const Eigen::Vector3d p00 = s.control_point(0, 0);
+    sx_ = (s.control_point(s.count_u() - 1, 0).x() - p00.x()) / (gu1 - gu0);
+    sy_ = (s.control_point(0, s.count_v() - 1).y() - p00.y()) / (gv1 - gv0);
+    x0_ = p00.x() - sx_ * gu0;
+    y0_ = p00.y() - sy_ * gv0;
+    affine_ = sx_ != 0 && sy_ != 0;
+    for (int i = 0; affine_ && i < s.count_u(); ++i)
+      for (int j = 0; affine_ && j < s.count_v(); ++j) {
+        const Eigen::Vector3d p = s.control_point(i, j);
+        affine_ = std::abs(p.x() - (x0_ + sx_ * greville(s.knots_u(), i))) <= 1e-13 * scale_ &&
+                  std::abs(p.y() - (y0_ + sy_ * greville(s.knots_v(), j))) <= 1e-13 * scale_;
+      }
+  }
+
+  // A graph over x-y: the Jacobian of (S_x, S_y) keeps one sign away from poles.
+  const int n = 8 * std::max(s.count_u(), s.count_v());
+  int sign = 0;
+  for (int a = 0; a <= n; ++a)
+    for (int b = 0; b <= n; ++b) {
+      const double u = s.front_u() + (s.back_u() - s.front_u()) * a / n;
+      const double v = s.front_v() + (s.back_v() - s.front_v()) * b / n;
+      const nurbs::SurfaceDerivatives d = s.evaluate(u, v, 1);
+      const double det = d.su.x() * d.sv.y() - d.su.y() * d.sv.x();
+      if (std::abs(det) <= 1e-9 * d.su.norm() * d.sv.norm()) continue;  // pole or edge-on
+      const int this_sign = det > 0 ? 1 : -1;
+      if (sign == 0) sign = this_sign;
+      if (this_sign != sign)
+        throw InputError("surface",
+                         "the NURBS surface is not a height field z = f(x, y): its projection "
+                         "onto the x-y plane folds over near (u, v) = (" +
+                             std::to_string(u) + ", " + std::to_string(v) + ")");
+    }
+  if (sign == 0)
+    throw InputError("surface", "the NURBS surface is edge-on to the z axis everywhere");
+  double u, v;
+  defined_radius_ = parameters_at(0, 0, u, v) ? boundary_distance() : 0.0;
+}
+
+double NurbsHeightField::boundary_distance() const {
+  const nurbs::NurbsSurface& s = locator_.surface();
+  // Each edge as a fine polyline in x-y; chords of a convex boundary lie inside it, so
+  // the distance is a slight underestimate, never an overestimate there. An edge that
+  // collapses to a point (a pole) or is a seam of a closed direction is not a boundary.
+  const int n = 64 * std::max(s.count_u(), s.count_v());
+  double best = std::numeric_limits<double>::infinity();
+  for (int edge = 0; edge < 4; ++edge) {
+    const bool along_v = edge < 2;  // u fixed
+    if ((along_v && locator_.closed_u()) || (!along_v && locator_.closed_v())) continue;
+    const double fixed = edge == 0   ? s.front_u()
+                         : edge == 1 ? s.back_u()
+                         : edge == 2 ? s.front_v()
+                                     : s.back_v();
+    const auto at = [&](int k) {
+      const double t = along_v ? s.front_v() + (s.back_v() - s.front_v()) * k / n
+                               : s.front_u() + (s.back_u() - s.front_u()) * k / n;
+      const nurbs::Vector3d p = along_v ? s.point(fixed, t) : s.point(t, fixed);
+      return Eigen::Vector2d(p.x(), p.y());
+    };
+    double length = 0, edge_best = std::numeric_limits<double>::infinity();
+    Eigen::Vector2d previous = at(0);
+    for (int k = 1; k <= n; ++k) {
+      const Eigen::Vector2d p = at(k);
+      length += (p - previous).norm();
+      edge_best = std::min(edge_best, segment_distance(previous, p));
+      previous = p;
+    }
+    if (length > 1e-9 * scale_) best = std::min(best, edge_best);
+  }
+  return best;
+}
+
+bool NurbsHeightField::newton(double x, double y, double& u, double& v) const {
+  const nurbs::NurbsSurface& s = locator_.surface();
+  const double tolerance = 1e-13 * scale_;
+  double previous = std::numeric_limits<double>::infinity();
+  for (int it = 0; it < 30; ++it) {
+    const nurbs::SurfaceDerivatives d = s.evaluate(u, v, 1);
+    const Eigen::Vector2d r(d.point.x() - x, d.point.y() - y);
+    const double residual = r.norm();
+    if (residual <= tolerance) return true;
+    // Stalled: rounding (the tolerance is below what S can resolve here) or outside.
+    if (it > 3 && residual >= 0.5 * previous) return residual <= 1e-10 * scale_;
+    previous = residual;
+    Eigen::Matrix2d j;
+    j << d.su.x(), d.sv.x(), d.su.y(), d.sv.y();
+    Eigen::Vector2d step;
+    const double det = j.determinant();
+    if (std::abs(det) > 1e-12 * j.squaredNorm()) {
+      step = j.partialPivLu().solve(-r);
+    } else {  // at a pole: Levenberg–Marquardt
+      const Eigen::Matrix2d a =
+          j.transpose() * j + 1e-6 * j.squaredNorm() * Eigen::Matrix2d::Identity();
+      step = a.ldlt().solve(-j.transpose() * r);
+    }
+    u += step.x();
+    v += step.y();
+    const auto wrap_or_clamp = [](double& t, double lo, double hi, bool closed) {
+      if (closed) {
+        t = lo + std::fmod(std::fmod(t - lo, hi - lo) + (hi - lo), hi - lo);
+      } else {
+        t = std::clamp(t, lo, hi);
+      }
+    };
+    wrap_or_clamp(u, s.front_u(), s.back_u(), locator_.closed_u());
+    wrap_or_clamp(v, s.front_v(), s.back_v(), locator_.closed_v());
+  }
+  return false;
+}
+
+bool NurbsHeightField::parameters_at(double x, double y, double& u, double& v) const {
+  const nurbs::NurbsSurface& s = locator_.surface();
+  if (affine_) {
+    u = (x - x0_) / sx_;
+    v = (y - y0_) / sy_;
+    const double tu = 1e-12 * (s.back_u() - s.front_u()), tv = 1e-12 * (s.back_v() - s.front_v());
+    if (!(u >= s.front_u() - tu && u <= s.back_u() + tu && v >= s.front_v() - tv &&
+          v <= s.back_v() + tv))
+      return false;
+    u = std::clamp(u, s.front_u(), s.back_u());
+    v = std::clamp(v, s.front_v(), s.back_v());
+    return true;
+  }
+  if (warm_start.owner == this) {
+    u = warm_start.u;
+    v = warm_start.v;
+    if (newton(x, y, u, v)) {
+      warm_start = {this, u, v};
+      return true;
+    }
+  }
+  const nurbs::RayHit hit =
+      locator_.intersect_ray(nurbs::Vector3d(x, y, z_above_), nurbs::Vector3d(0, 0, -1));
+  if (hit.status != Status::kOk) return false;
+  u = hit.u;
+  v = hit.v;
+  if (!newton(x, y, u, v)) return false;
+  warm_start = {this, u, v};
+  return true;
+}
+
+HeightDerivatives NurbsHeightField::derivatives_at(double x, double y, double u, double v,
+                                                   int order) const {
+  const nurbs::NurbsSurface& s = locator_.surface();
+  const nurbs::SurfaceDerivatives d = s.evaluate(u, v, order);
+  HeightDerivatives h;
+  h.z = d.point.z();
+  Eigen::Matrix2d j;
+  j << d.su.x(), d.sv.x(), d.su.y(), d.sv.y();
+  if (std::abs(j.determinant()) <= 1e-10 * j.squaredNorm()) {
+    // A pole: the graph is smooth there even though the parameterisation is not.
+    const nurbs::Vector3d n = s.normal(u, v);
+    h.zx = -n.x() / n.z();
+    h.zy = -n.y() / n.z();
+    if (order >= 2) {
+      const double step = 1e-4 * scale_;
+      double zp, zm, gxp, gyp, gxm, gym;
+      sag_gradient(x + step, y, zp, gxp, gyp);
+      sag_gradient(x - step, y, zm, gxm, gym);
+      h.zxx = (gxp - gxm) / (2 * step);
+      const double zxy_from_x = (gyp - gym) / (2 * step);
+      sag_gradient(x, y + step, zp, gxp, gyp);
+      sag_gradient(x, y - step, zm, gxm, gym);
+      h.zyy = (gyp - gym) / (2 * step);
+      h.zxy = 0.5 * (zxy_from_x + (gxp - gxm) / (2 * step));
+    }
+    return h;
+  }
+  const Eigen::Matrix2d j_inv = j.inverse();
+  const Eigen::Vector2d grad = j_inv.transpose() * Eigen::Vector2d(d.su.z(), d.sv.z());
+  h.zx = grad.x();
+  h.zy = grad.y();
+  if (order >= 2) {
+    Eigen::Matrix2d m;
+    m << d.suu.z() - grad.x() * d.suu.x() - grad.y() * d.suu.y(),
+        d.suv.z() - grad.x() * d.suv.x() - grad.y() * d.suv.y(), 0,
+        d.svv.z() - grad.x() * d.svv.x() - grad.y() * d.svv.y();
+    m(1, 0) = m(0, 1);
+    const Eigen::Matrix2d hess = j_inv.transpose() * m * j_inv;
+    h.zxx = hess(0, 0);
+    h.zxy = 0.5 * (hess(0, 1) + hess(1, 0));
+    h.zyy = hess(1, 1);
+  }
+  return h;
+}
+
+void NurbsHeightField::sag_gradient(double x, double y, double& z, double& zx, double& zy) const {
+  double u, v;
+  if (!parameters_at(x, y, u, v)) {
+    z = zx = zy = kNaN;
+    return;
+  }
+  const HeightDerivatives h = derivatives_at(x, y, u, v, 1);
+  z = h.z;
+  zx = h.zx;
+  zy = h.zy;
+}
+
+HeightDerivatives NurbsHeightField::height_derivatives(double x, double y) const {
+  double u, v;
+  if (!parameters_at(x, y, u, v)) return {kNaN, kNaN, kNaN, kNaN, kNaN, kNaN};
+  return derivatives_at(x, y, u, v, 2);
+}
+
+}  // namespace freeturn

@@ -1,0 +1,69 @@
+#include "freeturn/surface/odd_asphere.hpp"
+
+#include <cmath>
+#include <string>
+
+#include "freeturn/core/error.hpp"
+#include "freeturn/surface/conic.hpp"
+
+namespace freeturn {
+
+OddAsphere::OddAsphere(double curvature, double conic, std::vector<double> coefficients)
+    : c_(curvature), k_(conic), beta_(std::move(coefficients)) {
+  if (beta_.size() > 30)
+    throw InputError("coefficients", "has " + std::to_string(beta_.size()) +
+                                         " terms; an odd asphere takes at most 30");
+}
+
+double OddAsphere::defined_radius() const { return conic_defined_radius(c_, k_); }
+
+void OddAsphere::radial(double x, double y, double& z, double& g1, double& g2) const {
+  const double s = x * x + y * y;
+  const double r = std::sqrt(s);
+  // Conic in s = r² (as EvenAsphere): F = c s/(1+q), F' = c/(2q), F'' = (1+k)c³/(4q³);
+  // then z'/r = 2F' and (z'' − z'/r)/r² = 4F''.
+  const double q = std::sqrt(1.0 - (1.0 + k_) * c_ * c_ * s);
+  z = c_ * s / (1.0 + q);
+  g1 = c_ / q;
+  g2 = (1.0 + k_) * c_ * c_ * c_ / (q * q * q);
+  // β_i r^i: z'/r = i β_i r^(i−2), (z'' − z'/r)/r² = i(i−2) β_i r^(i−4). At the vertex
+  // the terms with negative powers are dropped: they multiply x, y or xy, which vanish
+  // faster (i ≥ 3) or are the cone's undefined gradient (i = 1).
+  double power = 1.0;  // r^i
+  for (std::size_t n = 0; n < beta_.size(); ++n) {
+    const int i = static_cast<int>(n) + 1;
+    power *= r;
+    const double b = beta_[n];
+    if (b == 0) continue;
+    z += b * power;
+    if (r > 0) {
+      g1 += i * b * power / s;
+      g2 += i * (i - 2) * b * power / (s * s);
+    } else if (i == 2) {
+      g1 += 2 * b;
+    } else if (i == 4) {
+      g2 += 8 * b;
+    }
+  }
+}
+
+void OddAsphere::sag_gradient(double x, double y, double& z, double& zx, double& zy) const {
+  double g1, g2;
+  radial(x, y, z, g1, g2);
+  zx = g1 * x;
+  zy = g1 * y;
+}
+
+HeightDerivatives OddAsphere::height_derivatives(double x, double y) const {
+  HeightDerivatives h;
+  double g1, g2;
+  radial(x, y, h.z, g1, g2);
+  h.zx = g1 * x;
+  h.zy = g1 * y;
+  h.zxx = g1 + g2 * x * x;
+  h.zxy = g2 * x * y;
+  h.zyy = g1 + g2 * y * y;
+  return h;
+}
+
+}  // namespace freeturn

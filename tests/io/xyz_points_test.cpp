@@ -1,0 +1,31 @@
+#include <doctest/doctest.h>
+
+#include "freeturn/core/error.hpp"
+#include "freeturn/io/xyz_points.hpp"
+#include "test_files.hpp"
+
+using freeturn::InputError;
+using freeturn::read_xyz_points;
+
+TEST_SUITE("io") {
+  TEST_CASE("xyz points: commas, spaces, a header and comments") {
+    freeturn::test::TempDir dir;
+    const auto points = read_xyz_points(
+        dir.write("p.csv", "x,y,z\n1,2,3\n# a comment\n-1.5e-1  2\t0.25 # trailing\r\n\n4;5;6\n"));
+    REQUIRE(points.size() == 3);
+    CHECK(points[0] == Eigen::Vector3d(1, 2, 3));
+    CHECK(points[1] == Eigen::Vector3d(-0.15, 2, 0.25));
+    CHECK(points[2] == Eigen::Vector3d(4, 5, 6));
+  }
+
+  TEST_CASE("xyz points: a bad line is an error at its line") {
+    freeturn::test::TempDir dir;
+    CHECK_THROWS_WITH_AS(read_xyz_points(dir.write("p.csv", "1,2,3\n1,2\n")),
+                         doctest::Contains("p.csv:2: expected three numbers x y z (mm)"),
+                         InputError);
+    CHECK_THROWS_WITH_AS(read_xyz_points(dir.write("q.csv", "1,2,3\n1,2,nan\n")),
+                         doctest::Contains("q.csv:2:"), InputError);
+    CHECK_THROWS_WITH_AS(read_xyz_points(dir.write("r.csv", "x y z\n")),
+                         doctest::Contains("the file has no points"), InputError);
+  }
+}
