@@ -6,6 +6,9 @@
 
 #include "freeturn/surface/even_asphere.hpp"
 #include "freeturn/surface/lenslet_array.hpp"
+#include "freeturn/surface/nurbs_height_field.hpp"
+#include "freeturn/surface/qbfs.hpp"
+#include "nurbs/fixtures.hpp"
 #include "freeturn/surface/zernike.hpp"
 
 static void BM_EvenAsphereSagGradient(benchmark::State& state) {
@@ -76,5 +79,38 @@ static void BM_CompoundEyeSagGradient(benchmark::State& state) {
   state.SetItemsProcessed(state.iterations());
 }
 BENCHMARK(BM_CompoundEyeSagGradient);
+
+static void BM_Qbfs12SagGradient(benchmark::State& state) {
+  std::vector<double> a(12);
+  for (int m = 0; m < 12; ++m) a[m] = 1e-3 * std::cos(1.0 + m);
+  const freeturn::Qbfs s(1 / 60.0, 10.0, a);
+  double x = -7.0, y = 2.0, sum = 0;
+  for (auto _ : state) {
+    double z, zx, zy;
+    s.sag_gradient(x, y, z, zx, zy);
+    sum += z + zx + zy;
+    x += 1e-6;
+    benchmark::DoNotOptimize(sum);
+  }
+  state.SetItemsProcessed(state.iterations());
+}
+BENCHMARK(BM_Qbfs12SagGradient);
+
+// A rational bicubic 20 × 20 freeform seen as z(x, y): each query inverts (x, y) → (u, v)
+// by Newton from the previous query, as along a spiral (steps of 10 µm on a circle).
+static void BM_NurbsHeightFieldSagGradient(benchmark::State& state) {
+  const freeturn::NurbsHeightField s(freeturn::test::freeform_with_pole());
+  double phi = 0.1, sum = 0;
+  for (auto _ : state) {
+    double z, zx, zy;
+    s.sag_gradient(5.0 * std::cos(phi), 5.0 * std::sin(phi), z, zx, zy);
+    sum += z + zx + zy;
+    phi += 0.002;
+    if (phi > 4.5) phi = 0.1;
+    benchmark::DoNotOptimize(sum);
+  }
+  state.SetItemsProcessed(state.iterations());
+}
+BENCHMARK(BM_NurbsHeightFieldSagGradient);
 
 BENCHMARK_MAIN();

@@ -128,3 +128,27 @@ TEST_SUITE("surface") {
     }
   }
 }
+
+#include "freeturn/surface/height_field_queries.hpp"
+
+TEST_SUITE("surface") {
+  TEST_CASE("NURBS height field: ray and closest point queries agree with the NURBS kernel") {
+    const NurbsHeightField cap(spherical_cap(20.0, std::numbers::pi / 6));
+    const Eigen::Vector3d origin(1.0, -2.0, 8.0), direction(0.3, 0.4, -1.0);
+    const auto hit = freeturn::intersect_ray(cap, origin, direction);
+    REQUIRE(hit.status == freeturn::Status::kOk);
+    const auto kernel_hit = cap.locator().intersect_ray(origin, direction);
+    REQUIRE(kernel_hit.status == freeturn::Status::kOk);
+    CHECK((hit.point - kernel_hit.point).norm() < 1e-9);
+    // And both lie on the sphere |p − (0, 0, 20)| = 20.
+    CHECK((hit.point - Eigen::Vector3d(0, 0, 20)).norm() == doctest::Approx(20.0).epsilon(1e-13));
+    const Eigen::Vector3d p(3.0, 4.0, 2.0);
+    const auto near = freeturn::closest_point(cap, p);
+    REQUIRE(near.status == freeturn::Status::kOk);
+    const auto kernel_near = cap.locator().closest_point(p);
+    CHECK((near.point - kernel_near.point).norm() < 1e-9);
+    // Closed form: the sphere point on the line from its centre through p.
+    const Eigen::Vector3d c(0, 0, 20), expected = c + 20.0 * (p - c).normalized();
+    CHECK((near.point - expected).norm() < 1e-9);
+  }
+}
