@@ -1,0 +1,66 @@
+#pragma once
+// The planner's output record and the stream that carries it (docs/path.md).
+//
+// A path is never held whole: planners fill a fixed-size chunk of ContactPoints and hand
+// it to a ContactSink, so a 50-million-point pass runs in the memory of one chunk.
+
+#include <Eigen/Core>
+#include <span>
+#include <vector>
+
+namespace freeturn {
+
+// One cutter contact point, in the workpiece frame (docs/conventions.md).
+struct ContactPoint {
+  double theta = 0;  // spindle angle (rad), unwrapped, non-decreasing along the path
+  double r = 0;      // radial position of the contact, ≥ 0 (mm)
+  Eigen::Vector3d point = Eigen::Vector3d::Zero();   // on the design surface: (r cos θ, r sin θ, z)
+  Eigen::Vector3d normal = Eigen::Vector3d::UnitZ();  // unit, toward the tool
+  // Predicted chord error of the segment that ends here (mm): the largest distance of the
+  // machine's interpolated motion from the design surface; 0 for the first point.
+  double chord_error = 0;
+  // Pass spacing across adjacent turns along the surface (mm), the curvature of the
+  // surface's radial section (1/mm, > 0 concave as seen from the tool), and the scallop
+  // height they leave with the tool's nose radius (mm; 0 when no nose radius was given).
+  double pass_spacing = 0;
+  double section_curvature = 0;
+  double scallop = 0;
+};
+
+class ContactSink {
+ public:
+  virtual ~ContactSink() = default;
+  // Called with consecutive chunks of the path, in order.
+  virtual void write(std::span<const ContactPoint> chunk) = 0;
+};
+
+// Collects everything (tests and small jobs only: memory grows with the path).
+class ContactCollector final : public ContactSink {
+ public:
+  void write(std::span<const ContactPoint> chunk) override {
+    points.insert(points.end(), chunk.begin(), chunk.end());
+  }
+  std::vector<ContactPoint> points;
+};
+
+// Buffers points into fixed chunks for a sink. flush() sends the rest; the destructor
+// does not (a planner that throws must not deliver half a chunk).
+class ContactChunker {
+ public:
+  static constexpr std::size_t kChunkSize = 4096;
+  explicit ContactChunker(ContactSink& sink) : sink_(sink) { buffer_.reserve(kChunkSize); }
+  void push(const ContactPoint& p) {
+    buffer_.push_back(p);
+    if (buffer_.size() == kChunkSize) flush();
+  }
+  void flush() {
+    if (!buffer_.empty()) sink_.write(buffer_);
+    buffer_.clear();
+  }
+
+ private:
+  ContactSink& sink_;
+  std::vector<ContactPoint> buffer_;
+};
+
+}  // namespace freeturn

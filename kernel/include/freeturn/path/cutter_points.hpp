@@ -1,0 +1,44 @@
+#pragma once
+// Where the cutter points go along a path (paper 001).
+//
+// Equal angle (N per revolution) and equal arc length are the classical rules. The chord
+// controlled rule places each point as far from the previous one as the form accuracy
+// allows: the segment's chord error, measured in the machine's interpolation space (the
+// controller moves X, C, Z linearly between blocks, or along cubics in PVT mode), stays
+// at or below ε, which makes the point count close to the lower bound ∫ √(κ / 8ε) ds.
+
+#include <numbers>
+
+namespace freeturn {
+
+enum class CutterPointRule { kEqualAngle, kEqualArcLength, kChordError };
+
+// How the controller moves the axes between two blocks.
+enum class Interpolation {
+  kLinear,  // X, C, Z linear in time (G01)
+  kCubic,   // PVT: each axis a cubic Hermite through the positions and velocities of the
+            // path at the two blocks (the post writes the path's velocities)
+};
+
+struct CutterPointOptions {
+  CutterPointRule rule = CutterPointRule::kChordError;
+  int points_per_revolution = 360;  // kEqualAngle
+  double arc_length = 0.05;         // mm, kEqualArcLength
+  double tolerance = 1e-3;          // ε (mm), kChordError
+  Interpolation interpolation = Interpolation::kLinear;
+  // Caps on one step, whatever the rule: the spindle angle on a spiral and the radial
+  // step in profile mode.
+  double max_angle_step = 5 * std::numbers::pi / 180;
+  double max_radial_step = 0.5;  // mm
+};
+
+// What a planner reports once the path is complete.
+struct PathSummary {
+  long points = 0;
+  double theta_end = 0;         // rad
+  double max_chord_error = 0;   // mm, over all segments
+  double max_scallop = 0;       // mm
+  double max_pass_spacing = 0;  // mm
+};
+
+}  // namespace freeturn

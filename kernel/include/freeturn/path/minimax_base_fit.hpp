@@ -1,0 +1,48 @@
+#pragma once
+// The minimax base surface (paper 000, Eq. 10-11): the generating curve, and optionally
+// the axis, that minimise the largest quasi-revolution angle max_i α_i.
+//
+// Solved with Ipopt in epigraph form: minimise A subject to 1 − cos α_i ≤ A for every
+// sample (1 − cos α is monotone in α and smooth where α is not). The constraint gradients
+// are analytic in the coefficients of H and by forward-mode automatic differentiation
+// (Eigen's AutoDiffScalar) in the axis parameters. Ipopt's MUMPS is not thread-safe, so
+// every solve holds one process-wide lock for the whole life of its IpoptApplication
+// (shared/notes/dependencies.md); Ipopt prints nothing unless `verbose`.
+
+#include <Eigen/Core>
+#include <vector>
+
+#include "freeturn/core/status.hpp"
+#include "freeturn/path/base_surface.hpp"
+#include "freeturn/path/base_surface_fit.hpp"
+
+namespace freeturn {
+
+struct MinimaxBaseOptions {
+  // Also search the axis: its tilt (about x, then y, as TransformedSurface's tilts) and
+  // where it crosses the plane z = 0.
+  bool search_axis = false;
+  double max_tilt = 0.1;    // rad, bound on each tilt
+  double max_shift = 1.0;   // mm, bound on each coordinate of the crossing
+  int max_iterations = 300;
+  bool verbose = false;
+};
+
+struct MinimaxBaseResult {
+  BaseSurface base;          // H in the axis frame (ρ measured from the axis)
+  double max_angle = 0;      // max α at the solution (rad)
+  double start_max_angle = 0;  // max α of the starting base
+  // The axis: unit direction and its crossing of z = 0, in the design surface's frame.
+  Eigen::Vector3d axis_direction = Eigen::Vector3d::UnitZ();
+  Eigen::Vector3d axis_point = Eigen::Vector3d::Zero();
+  double tilt_x = 0, tilt_y = 0;  // rad: direction = R_y(tilt_y) R_x(tilt_x) e_z
+  Status status = Status::kNotConverged;
+  int iterations = 0;
+};
+
+// Starts from `start` (e.g. the least-squares base, whose knots are kept; its domain
+// should cover the samples' radii about any axis the search may reach).
+MinimaxBaseResult fit_base_minimax(const std::vector<SurfaceSample>& samples,
+                                   const BaseSurface& start, const MinimaxBaseOptions& options = {});
+
+}  // namespace freeturn

@@ -1,0 +1,31 @@
+#pragma once
+// Spiral tool paths for slow-tool-servo turning (paper 000).
+//
+// The spiral lives on a base surface of revolution about z, as s = s_e − bθ from the
+// aperture's edge to its centre (or the reverse), with s the arc length of the base's
+// generating curve and b = pitch/2π; each base point is moved along the base normal to
+// the design surface (ray intersection warm-started from the previous point). A plane
+// base is the traditional Archimedean spiral r = r_e − bθ projected along z: the code is
+// the same, and the plane's projection is the sag itself.
+
+#include "freeturn/path/base_surface.hpp"
+#include "freeturn/path/contact_point.hpp"
+#include "freeturn/path/cutter_points.hpp"
+#include "freeturn/surface/surface.hpp"
+
+namespace freeturn {
+
+struct SpiralOptions {
+  double pitch = 0.01;  // mm per revolution, along the base's generating curve
+  double outer_radius = 0, inner_radius = 0;  // aperture (mm), measured on the base
+  bool centre_to_edge = false;
+  double nose_radius = 0;  // mm, for the scallop prediction (0: none)
+  CutterPointOptions points;
+};
+
+// Streams the contact points into `sink` and returns the summary. Throws InputError
+// naming θ and r when a projection misses the design surface, and for bad options.
+PathSummary plan_spiral(const Surface& design, const BaseSurface& base,
+                        const SpiralOptions& options, ContactSink& sink);
+
+}  // namespace freeturn

@@ -1,0 +1,79 @@
+#include "freeturn/path/base_surface.hpp"
+
+#include <algorithm>
+#include <cmath>
+#include <string>
+
+#include "freeturn/core/error.hpp"
+
+namespace freeturn {
+namespace {
+
+// The generating curve as (ρ, H(ρ), 0) with parameter u = ρ: the ρ coordinates of the
+// control points are the Greville abscissae, which reproduce ρ exactly.
+nurbs::NurbsCurve generating_curve(int degree, const std::vector<double>& knots,
+                                   const std::vector<double>& coefficients) {
+  const std::size_t n = coefficients.size();
+  if (knots.size() != n + static_cast<std::size_t>(degree) + 1)
+    throw InputError("base surface", "a degree-" + std::to_string(degree) + " curve with " +
+                                         std::to_string(n) + " coefficients needs " +
+                                         std::to_string(n + degree + 1) + " knots, not " +
+                                         std::to_string(knots.size()));
+  std::vector<nurbs::Vector3d> points;
+  for (std::size_t i = 0; i < n; ++i) {
+    double g = 0;
+    for (int j = 1; j <= degree; ++j) g += knots[i + static_cast<std::size_t>(j)];
+    points.emplace_back(g / degree, coefficients[i], 0.0);
+  }
+  return nurbs::NurbsCurve(degree, knots, points);
+}
+
+}  // namespace
+
+BaseSurface BaseSurface::plane(double rho_max) {
+  BaseSurface b(1, {0, 0, rho_max, rho_max}, {0, 0});
+  b.plane_ = true;
+  return b;
+}
+
+BaseSurface::BaseSurface(int degree, std::vector<double> knots, std::vector<double> coefficients)
+    : degree_(degree),
+      knots_(std::move(knots)),
+      coefficients_(std::move(coefficients)),
+      rho_max_(knots_.empty() ? 0.0 : knots_.back()),
+      table_(generating_curve(degree_, knots_, coefficients_)) {
+  if (!(knots_.front() == 0.0 && rho_max_ > 0))
+    throw InputError("base surface", "the generating curve must run from ρ = 0 to ρ_max > 0");
+}
+
+BasePoint BaseSurface::from_parameter(double u) const {
+  if (plane_) return {u, 0.0, 0.0, 0.0};
+  // x(u) = u, so dH/dρ = y'(u) and d²H/dρ² = y''(u).
+  const nurbs::CurveDerivatives d = table_.curve().evaluate(u, 2);
+  return {u, d.point.y(), d.d1.y(), d.d2.y()};
+}
+
+BasePoint BaseSurface::at_radius(double rho) const {
+  return from_parameter(std::clamp(rho, 0.0, rho_max_));
+}
+
+BasePoint BaseSurface::at_arc_length(double s) const {
+  if (plane_) return {std::clamp(s, 0.0, rho_max_), 0.0, 0.0, 0.0};
+  return from_parameter(table_.parameter_at(s));
+}
+
+double BaseSurface::arc_length(double rho) const {
+  if (plane_) return std::clamp(rho, 0.0, rho_max_);
+  return table_.length_to(std::clamp(rho, 0.0, rho_max_));
+}
+
+Eigen::Vector3d BaseSurface::point(const BasePoint& b, double theta) {
+  return {b.rho * std::cos(theta), b.rho * std::sin(theta), b.h};
+}
+
+Eigen::Vector3d BaseSurface::normal(const BasePoint& b, double theta) {
+  const double k = 1.0 / std::sqrt(1.0 + b.slope * b.slope);
+  return {-b.slope * std::cos(theta) * k, -b.slope * std::sin(theta) * k, k};
+}
+
+}  // namespace freeturn

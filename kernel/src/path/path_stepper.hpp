@@ -1,0 +1,165 @@
+#pragma once
+// The cutter-point rules (cutter_points.hpp) over any path with a monotonic parameter τ
+// and machine axes X (radius), C (spindle angle), Z (axial) as functions of τ. Internal to
+// the path module: spiral.cpp and profile.cpp supply the path.
+//
+// A Path provides:
+//   double tau_end() const;
+//   void at(double tau, AxisState& s);      // may throw InputError (a missed projection)
+//   void commit(const AxisState& s);        // the accepted point: the next warm start
+//   double cap() const;                     // the largest step in τ
+//   double deviation(double x_axis, double c, double z) const;  // distance to the design
+//   double angle_per_tau() const;           // dC/dτ (1 on a spiral, 0 in profile mode)
+
+#include <algorithm>
+#include <cmath>
+#include <numbers>
+#include <string>
+
+#include "freeturn/core/error.hpp"
+#include "freeturn/path/cutter_points.hpp"
+
+namespace freeturn::detail {
+
+struct AxisState {
+  double tau = 0;
+  double x_axis = 0, c = 0, z = 0;  // X, C, Z
+  double dx = 0, dz = 0;            // dX/dτ, dZ/dτ (cubic interpolation only)
+  Eigen::Vector3d point = Eigen::Vector3d::Zero();
+  double warm = 0;  // the path's warm start for the next point (a projection distance)
+};
+
+// The machine's position a fraction t of the way from block a to block b.
+inline void interpolate(const AxisState& a, const AxisState& b, double t, Interpolation mode,
+                        double angle_per_tau, double& x, double& c, double& z) {
+  if (mode == Interpolation::kLinear) {
+    x = a.x_axis + t * (b.x_axis - a.x_axis);
+    c = a.c + t * (b.c - a.c);
+    z = a.z + t * (b.z - a.z);
+    return;
+  }
+  // Cubic Hermite on each axis, tangents scaled by the segment's length in τ.
+  const double h = b.tau - a.tau, t2 = t * t, t3 = t2 * t;
+  const double h00 = 2 * t3 - 3 * t2 + 1, h10 = t3 - 2 * t2 + t, h01 = -2 * t3 + 3 * t2,
+               h11 = t3 - t2;
+  x = h00 * a.x_axis + h10 * h * a.dx + h01 * b.x_axis + h11 * h * b.dx;
+  z = h00 * a.z + h10 * h * a.dz + h01 * b.z + h11 * h * b.dz;
+  c = h00 * a.c + h10 * h * angle_per_tau + h01 * b.c + h11 * h * angle_per_tau;
+}
+
+// The largest distance of the interpolated motion from the design over one segment:
+// seven interior samples, then a parabola through the largest and its neighbours.
+template <class Path>
+double segment_error(const Path& path, const AxisState& a, const AxisState& b,
+                     Interpolation mode) {
+  constexpr int kSamples = 7;
+  double e[kSamples + 2];
+  e[0] = e[kSamples + 1] = 0;
+  int best = 1;
+  const double k = path.angle_per_tau();
+  for (int j = 1; j <= kSamples; ++j) {
+    double x, c, z;
+    interpolate(a, b, j / (kSamples + 1.0), mode, k, x, c, z);
+    e[j] = path.deviation(x, c, z);
+    if (e[j] > e[best]) best = j;
+  }
+  double worst = e[best];
+  const double denominator = e[best - 1] - 2 * e[best] + e[best + 1];
+  if (denominator < 0) {
+    const double shift = 0.5 * (e[best - 1] - e[best + 1]) / denominator;
+    const double t = (best + std::clamp(shift, -1.0, 1.0)) / (kSamples + 1.0);
+    double x, c, z;
+    interpolate(a, b, t, mode, k, x, c, z);
+    worst = std::max(worst, path.deviation(x, c, z));
+  }
+  return worst;
+}
+
+// Walks τ from 0 to tau_end, calling emit(state, chord_error) for every point.
+template <class Path, class Emit>
+void distribute(Path& path, const CutterPointOptions& o, Emit&& emit) {
+  const double end = path.tau_end();
+  AxisState current, trial;
+  path.at(0.0, current);
+  path.commit(current);
+  emit(current, 0.0);
+  if (!(end > 0)) return;
+  const double order = o.interpolation == Interpolation::kLinear ? 2.0 : 4.0;
+  const double target = 0.97 * o.tolerance;  // margin for the sampled maximum
+  const double min_step = 1e-12 * std::max(1.0, end);
+  double step = std::min(path.cap(), end);
+  while (current.tau < end) {
+    const double remaining = end - current.tau;
+    // The end is reached exactly, never by a sum that rounds short of it.
+    const auto advance = [&](double d) { return d >= remaining ? end : current.tau + d; };
+    const double limit = std::min(path.cap(), remaining);
+    double error = 0;
+    if (o.rule == CutterPointRule::kEqualAngle) {
+      step = std::min(2 * std::numbers::pi / o.points_per_revolution, remaining);
+      path.at(advance(step), trial);
+      error = segment_error(path, current, trial, o.interpolation);
+    } else if (o.rule == CutterPointRule::kEqualArcLength) {
+      step = std::min(step, limit);
+      for (int it = 0; it < 3; ++it) {
+        path.at(advance(step), trial);
+        const double chord = (trial.point - current.point).norm();
+        const double next = chord > 0 ? std::min(limit, step * o.arc_length / chord) : limit;
+        if (std::abs(next - step) <= 1e-3 * step) break;
+        step = next;
+      }
+      path.at(advance(step), trial);
+      error = segment_error(path, current, trial, o.interpolation);
+    } else {
+      // The largest step whose error is at most the target: e ∝ step^order locally, so
+      // the secant-like update converges in a few evaluations.
+      step = std::min(step, limit);
+      double accepted = 0;
+      AxisState best;
+      double best_error = 0;
+      for (int it = 0; it < 40; ++it) {
+        path.at(advance(step), trial);
+        error = segment_error(path, current, trial, o.interpolation);
+        double next;
+        if (error <= target) {
+          if (step > accepted) {
+            accepted = step;
+            best = trial;
+            best_error = error;
+          }
+          if (step >= limit || error >= 0.9 * target) break;
+          next = error > 0 ? step * std::min(2.0, std::pow(target / error, 1 / order) * 0.995)
+                           : 2 * step;
+          next = std::min(next, limit);
+        } else {
+          next = step * std::max(0.2, 0.99 * std::pow(target / error, 1 / order));
+          if (accepted > 0 && next <= accepted) break;  // nothing between them is better
+        }
+        if (next < min_step)
+          throw InputError("θ = " + std::to_string(current.c) + " rad, r = " +
+                               std::to_string(current.x_axis) + " mm",
+                           "cannot meet the chord tolerance " + std::to_string(o.tolerance * 1e3) +
+                               " µm: the path is not smooth here");
+        if (std::abs(next - step) <= 1e-6 * step && accepted > 0) break;
+        step = next;
+      }
+      if (accepted == 0)
+        throw InputError("θ = " + std::to_string(current.c) + " rad, r = " +
+                             std::to_string(current.x_axis) + " mm",
+                         "no step meets the chord tolerance " + std::to_string(o.tolerance * 1e3) +
+                             " µm");
+      trial = best;
+      error = best_error;
+      step = accepted;
+    }
+    // A last sliver shorter than a millionth of a step joins this one instead.
+    if (end - trial.tau < 1e-6 * step && trial.tau < end) {
+      path.at(end, trial);
+      error = segment_error(path, current, trial, o.interpolation);
+    }
+    path.commit(trial);
+    current = trial;
+    emit(current, error);
+  }
+}
+
+}  // namespace freeturn::detail

@@ -1,0 +1,35 @@
+#pragma once
+// Per-point prediction shared by the planners: the surface's radial section at a contact
+// point, the pass spacing along it, and the scallop the tool's nose leaves.
+
+#include <cmath>
+
+#include "freeturn/path/contact_point.hpp"
+#include "freeturn/surface/surface.hpp"
+
+namespace freeturn::detail {
+
+// Fills normal and section_curvature of `p` (point and θ set) from the design surface.
+// The section is the surface's curve in the radial plane at θ; its curvature is the
+// normal curvature along T = (e_r + z_r e_z)/√(1 + z_r²):
+//   κ = e_rᵀ ∇²z e_r / ((1 + z_r²) √(1 + |∇z|²)), > 0 concave as seen from the tool.
+// Returns z_r, the radial slope.
+inline double fill_section(const Surface& design, ContactPoint& p) {
+  const HeightDerivatives h = design.height_derivatives(p.point.x(), p.point.y());
+  const double c = std::cos(p.theta), s = std::sin(p.theta);
+  p.normal = Eigen::Vector3d(-h.zx, -h.zy, 1).normalized();
+  const double zr = h.zx * c + h.zy * s;
+  const double zrr = h.zxx * c * c + 2 * h.zxy * c * s + h.zyy * s * s;
+  p.section_curvature =
+      zrr / ((1 + zr * zr) * std::sqrt(1 + h.zx * h.zx + h.zy * h.zy));
+  return zr;
+}
+
+// Scallop height between passes f apart on a section of curvature κ cut by a nose of
+// radius R: h = (f²/8)(1/R − κ) (the two circles' sagittas), 0 without a nose radius.
+inline double scallop_height(double spacing, double curvature, double nose_radius) {
+  if (!(nose_radius > 0)) return 0.0;
+  return std::max(0.0, spacing * spacing / 8 * (1 / nose_radius - curvature));
+}
+
+}  // namespace freeturn::detail

@@ -1,0 +1,140 @@
+#include "freeturn/path/spiral.hpp"
+
+#include <cmath>
+#include <numbers>
+#include <string>
+
+#include "freeturn/core/error.hpp"
+#include "freeturn/surface/height_field_queries.hpp"
+#include "path_stepper.hpp"
+#include "section_prediction.hpp"
+
+namespace freeturn {
+namespace {
+
+std::string where(double theta, double r) {
+  return "θ = " + std::to_string(theta) + " rad (" + std::to_string(theta * 180 / std::numbers::pi) +
+         "°), r = " + std::to_string(r) + " mm";
+}
+
+// τ = θ. The base point at arc length s(θ), moved along the base normal to the design.
+class SpiralPath {
+ public:
+  SpiralPath(const Surface& design, const BaseSurface& base, const SpiralOptions& o)
+      : design_(design), base_(base), o_(o), b_(o.pitch / (2 * std::numbers::pi)) {
+    s_outer_ = base.arc_length(o.outer_radius);
+    s_inner_ = base.arc_length(o.inner_radius);
+    end_ = (s_outer_ - s_inner_) / b_;
+  }
+
+  double tau_end() const { return end_; }
+  double cap() const { return o_.points.max_angle_step; }
+  double angle_per_tau() const { return 1.0; }
+  double pitch() const { return o_.pitch; }
+
+  double deviation(double x_axis, double c, double z) const {
+    double f, fx, fy;
+    design_.sag_gradient(x_axis * std::cos(c), x_axis * std::sin(c), f, fx, fy);
+    return std::abs(z - f) / std::sqrt(1 + fx * fx + fy * fy);
+  }
+
+  void at(double theta, detail::AxisState& s) const {
+    evaluate(theta, s);
+    if (o_.points.interpolation == Interpolation::kCubic) {
+      // The path's velocities, which a PVT post writes with each block.
+      const double d = 1e-6, lo_theta = std::max(0.0, theta - d), hi_theta = std::min(end_, theta + d);
+      detail::AxisState lo, hi;
+      evaluate(lo_theta, lo);
+      evaluate(hi_theta, hi);
+      s.dx = (hi.x_axis - lo.x_axis) / (hi_theta - lo_theta);
+      s.dz = (hi.z - lo.z) / (hi_theta - lo_theta);
+    }
+  }
+  void commit(const detail::AxisState& s) { lambda_ = s.warm; }
+
+  BasePoint base_point(double theta) const {
+    // The ends are exact radii, not the inverse of an arc length.
+    const double s = o_.centre_to_edge ? s_inner_ + b_ * theta : s_outer_ - b_ * theta;
+    if (theta <= 0) return base_.at_radius(o_.centre_to_edge ? o_.inner_radius : o_.outer_radius);
+    if (theta >= end_) return base_.at_radius(o_.centre_to_edge ? o_.outer_radius : o_.inner_radius);
+    return base_.at_arc_length(s);
+  }
+
+ private:
+  void evaluate(double theta, detail::AxisState& s) const {
+    const BasePoint bp = base_point(theta);
+    s.tau = theta;
+    s.c = theta;
+    const double c = std::cos(theta), sn = std::sin(theta);
+    if (base_.is_plane()) {
+      const double x = bp.rho * c, y = bp.rho * sn;
+      double z, zx, zy;
+      design_.sag_gradient(x, y, z, zx, zy);
+      if (!std::isfinite(z))
+        throw InputError(where(theta, bp.rho), "the design surface is undefined here");
+      s.point = {x, y, z};
+      s.x_axis = bp.rho;
+      s.z = z;
+      return;
+    }
+    const Eigen::Vector3d origin = BaseSurface::point(bp, theta);
+    const Eigen::Vector3d direction = BaseSurface::normal(bp, theta);
+    const HeightFieldHit hit = intersect_ray(design_, origin, direction, lambda_);
+    if (hit.status != Status::kOk || !hit.point.allFinite())
+      throw InputError(where(theta, bp.rho),
+                       "the projection along the base normal misses the design surface");
+    s.warm = hit.t;
+    s.point = hit.point;
+    // The base normal lies in the radial plane at θ, so the contact does too.
+    s.x_axis = std::max(0.0, hit.point.x() * c + hit.point.y() * sn);
+    s.z = hit.point.z();
+  }
+
+  const Surface& design_;
+  const BaseSurface& base_;
+  const SpiralOptions& o_;
+  double b_, s_outer_ = 0, s_inner_ = 0, end_ = 0;
+  double lambda_ = 0;  // the committed point's projection distance
+};
+
+}  // namespace
+
+PathSummary plan_spiral(const Surface& design, const BaseSurface& base,
+                        const SpiralOptions& o, ContactSink& sink) {
+  if (!(o.pitch > 0)) throw InputError("pitch", "must be > 0 mm per revolution");
+  if (!(o.outer_radius > o.inner_radius && o.inner_radius >= 0))
+    throw InputError("aperture", "needs 0 ≤ inner radius < outer radius");
+  if (o.outer_radius > base.rho_max() * (1 + 1e-12))
+    throw InputError("aperture", "the base surface ends at ρ = " + std::to_string(base.rho_max()) +
+                                     " mm, inside the outer radius");
+  if (o.points.rule == CutterPointRule::kEqualAngle && o.points.points_per_revolution < 3)
+    throw InputError("points_per_revolution", "must be at least 3");
+  SpiralPath path(design, base, o);
+  ContactChunker out(sink);
+  PathSummary summary;
+  detail::distribute(path, o.points, [&](const detail::AxisState& s, double error) {
+    ContactPoint p;
+    p.theta = s.c;
+    p.r = s.x_axis;
+    p.point = s.point;
+    p.chord_error = error;
+    const double zr = detail::fill_section(design, p);
+    // Adjacent turns are p apart along the base's generating curve; on the design they
+    // are p / cos β apart, β the angle between the two sections' tangents.
+    const BasePoint bp = path.base_point(s.c);
+    const double cos_beta =
+        (1 + bp.slope * zr) / (std::sqrt(1 + bp.slope * bp.slope) * std::sqrt(1 + zr * zr));
+    p.pass_spacing = o.pitch / cos_beta;
+    p.scallop = detail::scallop_height(p.pass_spacing, p.section_curvature, o.nose_radius);
+    summary.points++;
+    summary.theta_end = p.theta;
+    summary.max_chord_error = std::max(summary.max_chord_error, error);
+    summary.max_scallop = std::max(summary.max_scallop, p.scallop);
+    summary.max_pass_spacing = std::max(summary.max_pass_spacing, p.pass_spacing);
+    out.push(p);
+  });
+  out.flush();
+  return summary;
+}
+
+}  // namespace freeturn
