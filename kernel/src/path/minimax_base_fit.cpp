@@ -6,17 +6,15 @@
 #include <algorithm>
 #include <cmath>
 #include <mutex>
-#include <unsupported/Eigen/AutoDiff>
 
-#include "freeturn/nurbs/basis.hpp"
-#include "freeturn/nurbs/knot_vector.hpp"
+#include "freeturn/path/base_axis_fit.hpp"
+#include "revolution_terms.hpp"
 
 namespace freeturn {
 namespace {
 
 using Ipopt::Index;
 using Ipopt::Number;
-using Ad = Eigen::AutoDiffScalar<Eigen::Vector4d>;
 
 // Ipopt with MUMPS is not thread-safe: one lock for the whole application lifetime.
 std::mutex& ipopt_mutex() {
@@ -30,10 +28,9 @@ std::mutex& ipopt_mutex() {
 class MinimaxProblem final : public Ipopt::TNLP {
  public:
   MinimaxProblem(const std::vector<SurfaceSample>& samples, const BaseSurface& start,
-                 const MinimaxBaseOptions& options)
-      : samples_(samples), options_(options), degree_(start.degree()),
-        knots_(start.knots()), kv_(start.degree(), start.knots()),
-        coefficient_count_(static_cast<int>(start.coefficients().size())) {
+                 const BaseAxis& start_axis, const MinimaxBaseOptions& options)
+      : samples_(samples), options_(options), start_axis_(start_axis),
+        slope_(start.degree(), start.knots()) {
     const std::vector<double>& c = start.coefficients();
     start_.assign(c.begin() + 2, c.end());
     const double c0 = c[0];
@@ -41,8 +38,6 @@ class MinimaxProblem final : public Ipopt::TNLP {
     free_coefficients_ = static_cast<int>(start_.size());
     axis_offset_ = free_coefficients_;
     epigraph_ = axis_offset_ + (options_.search_axis ? 4 : 0);
-    ders_.resize(static_cast<std::size_t>(3 * (degree_ + 1)));
-    work_.resize(nurbs::basis_derivatives_work_size(degree_));
   }
 
   bool get_nlp_info(Index& n, Index& m, Index& nnz_jac_g, Index& nnz_h_lag,
@@ -81,6 +76,12 @@ class MinimaxProblem final : public Ipopt::TNLP {
                           Number*) override {
     std::fill(x, x + n, 0.0);
     std::copy(start_.begin(), start_.end(), x);
+    if (options_.search_axis) {
+      x[axis_offset_] = start_axis_.tilt_x;
+      x[axis_offset_ + 1] = start_axis_.tilt_y;
+      x[axis_offset_ + 2] = start_axis_.shift_x;
+      x[axis_offset_ + 3] = start_axis_.shift_y;
+    }
     double worst = 0;
     for (std::size_t k = 0; k < samples_.size(); ++k)
       worst = std::max(worst, 1 - cosine(k, x, nullptr));
@@ -137,48 +138,18 @@ class MinimaxProblem final : public Ipopt::TNLP {
 
   // cos α_k at x; with `gradient`, adds ∂cos α_k/∂x into it.
   double cosine(std::size_t k, const Number* x, Number* gradient) {
-    const SurfaceSample& s = samples_[k];
-    const Eigen::Vector3d& n = s.normal;
-    Ad rho, nh, nrho;
-    if (options_.search_axis) {
-      const Ad tx(x[axis_offset_], 4, 0), ty(x[axis_offset_ + 1], 4, 1);
-      const Ad ox(x[axis_offset_ + 2], 4, 2), oy(x[axis_offset_ + 3], 4, 3);
-      // t = R_y(ty) R_x(tx) e_z.
-      const Ad t0 = cos(tx) * sin(ty), t1 = -sin(tx), t2 = cos(tx) * cos(ty);
-      const Ad d0 = s.point.x() - ox, d1 = s.point.y() - oy;
-      const double d2 = s.point.z();
-      const Ad h = d0 * t0 + d1 * t1 + d2 * t2;
-      const Ad w0 = d0 - h * t0, w1 = d1 - h * t1, w2 = d2 - h * t2;
-      rho = sqrt(w0 * w0 + w1 * w1 + w2 * w2);
-      nh = n.x() * t0 + n.y() * t1 + n.z() * t2;
-      nrho = rho.value() > 1e-12 ? Ad((n.x() * w0 + n.y() * w1 + n.z() * w2) / rho) : Ad(0.0);
-    } else {
-      const double r = s.point.head<2>().norm();
-      rho = Ad(r, Eigen::Vector4d::Zero());
-      nh = Ad(n.z(), Eigen::Vector4d::Zero());
-      nrho = Ad(r > 1e-12 ? n.head<2>().dot(s.point.head<2>()) / r : 0.0, Eigen::Vector4d::Zero());
-    }
-    // H'(ρ) and H''(ρ) from the basis derivatives at ρ (clamped to the domain).
-    const double r = std::clamp(rho.value(), knots_.front(), knots_.back());
-    const int span = kv_.find_span(r);
-    nurbs::basis_function_derivatives(span, r, degree_, 2, knots_.data(), ders_.data(), work_.data());
-    const int q = degree_ + 1;
-    double h1 = 0, h2 = 0;
-    for (int j = 0; j < q; ++j) {
-      const int i = span - degree_ + j;
-      const double c = i <= 1 ? 0.0 : x[i - 2];
-      h1 += c * ders_[static_cast<std::size_t>(q + j)];
-      h2 += c * ders_[static_cast<std::size_t>(2 * q + j)];
-    }
-    const Ad slope(h1, h2 * rho.derivatives());
-    const Ad g = (nh - nrho * slope) / sqrt(1.0 + slope * slope);
+    const detail::RevolutionTerms t = detail::revolution_terms(
+        samples_[k], options_.search_axis ? x + axis_offset_ : nullptr);
+    slope_.evaluate(t.rho.value(), x);
+    const detail::AxisAd hp(slope_.slope, slope_.curvature * t.rho.derivatives());
+    const detail::AxisAd g = (t.n_h - t.n_rho * hp) / sqrt(1.0 + hp * hp);
     if (gradient != nullptr) {
-      const double sv = slope.value();
-      const double dg_dslope =
-          (-nrho.value() - nh.value() * sv) / std::pow(1.0 + sv * sv, 1.5);
-      for (int j = 0; j < q; ++j) {
-        const int i = span - degree_ + j;
-        if (i >= 2) gradient[i - 2] += dg_dslope * ders_[static_cast<std::size_t>(q + j)];
+      const double h = hp.value();
+      // ∂cos α/∂H' = (−n_ρ − n_h H')/(1 + H'²)^{3/2}.
+      const double dg_dslope = (-t.n_rho.value() - t.n_h.value() * h) / std::pow(1.0 + h * h, 1.5);
+      for (int b = 0; b < slope_.count(); ++b) {
+        const int i = slope_.first() + b;
+        if (i >= 2) gradient[i - 2] += dg_dslope * slope_.basis_slope(b);
       }
       if (options_.search_axis)
         for (int a = 0; a < 4; ++a) gradient[axis_offset_ + a] += g.derivatives()(a);
@@ -189,13 +160,11 @@ class MinimaxProblem final : public Ipopt::TNLP {
  private:
   const std::vector<SurfaceSample>& samples_;
   MinimaxBaseOptions options_;
-  int degree_;
-  std::vector<double> knots_;
-  nurbs::KnotVector kv_;
-  int coefficient_count_;
+  BaseAxis start_axis_;
+  detail::BaseSlope slope_;
   std::vector<double> start_;
   int free_coefficients_ = 0, axis_offset_ = 0, epigraph_ = 0;
-  std::vector<double> ders_, work_, solution_;
+  std::vector<double> solution_;
   bool solved_ = false;
   double start_max_ = 0;
 };
@@ -204,61 +173,70 @@ class MinimaxProblem final : public Ipopt::TNLP {
 
 MinimaxBaseResult fit_base_minimax(const std::vector<SurfaceSample>& samples,
                                    const BaseSurface& start, const MinimaxBaseOptions& options) {
-  Ipopt::SmartPtr<MinimaxProblem> problem = new MinimaxProblem(samples, start, options);
-  Ipopt::ApplicationReturnStatus status;
-  int iterations = 0;
+  MinimaxBaseResult result{start, {}};
+  double rms;
+  measure_angles(samples, start, BaseAxis{}, result.start_max_angle, rms);
+  BaseSurface first = start;
+  BaseAxis first_axis;
+  result.least_squares_max_angle = result.start_max_angle;
+  if (options.search_axis) {
+    const BaseAxisFit lsq = fit_base_and_axis_least_squares(samples, start);
+    first = lsq.base;
+    first_axis = lsq.axis;
+    result.least_squares_max_angle = lsq.max_angle;
+    // A surface of revolution about some axis: the least-squares fit has found it, and no
+    // maximum can be lower.
+    if (lsq.max_angle < 1e-9) {
+      result.base = lsq.base;
+      result.axis = lsq.axis;
+      result.max_angle = lsq.max_angle;
+      result.status = lsq.status;
+      return result;
+    }
+  }
+  Ipopt::SmartPtr<MinimaxProblem> problem = new MinimaxProblem(samples, first, first_axis, options);
+  Ipopt::ApplicationReturnStatus status = Ipopt::Internal_Error;
   {
     const std::lock_guard<std::mutex> lock(ipopt_mutex());
     Ipopt::SmartPtr<Ipopt::IpoptApplication> app = IpoptApplicationFactory();
     app->Options()->SetIntegerValue("print_level", options.verbose ? 5 : 0);
     app->Options()->SetStringValue("sb", "yes");
     app->Options()->SetStringValue("hessian_approximation", "limited-memory");
-    app->Options()->SetNumericValue("tol", 1e-12);
-    app->Options()->SetNumericValue("acceptable_tol", 1e-9);
+    app->Options()->SetNumericValue("tol", 1e-10);
+    app->Options()->SetNumericValue("acceptable_tol", 1e-8);
+    app->Options()->SetIntegerValue("acceptable_iter", 5);
     app->Options()->SetIntegerValue("max_iter", options.max_iterations);
     app->Options()->SetStringValue("mu_strategy", "adaptive");
     status = app->Initialize("");  // "": no ipopt.opt from the working directory
     if (status == Ipopt::Solve_Succeeded) {
       status = app->OptimizeTNLP(Ipopt::SmartPtr<Ipopt::TNLP>(GetRawPtr(problem)));
-      if (IsValid(app->Statistics())) iterations = app->Statistics()->IterationCount();
+      if (IsValid(app->Statistics())) result.iterations = app->Statistics()->IterationCount();
     }
   }
-  MinimaxBaseResult result{start};
-  result.start_max_angle = std::acos(std::clamp(1.0 - problem->start_max(), -1.0, 1.0));
-  result.iterations = iterations;
-  result.max_angle = result.start_max_angle;
-  if (problem->solution().empty()) return result;
-  const std::vector<double>& x = problem->solution();
-  std::vector<double> c(start.coefficients().size(), 0.0);
-  for (std::size_t i = 2; i < c.size(); ++i) c[i] = x[i - 2];
-  if (options.search_axis) {
-    const int a = problem->axis_offset();
-    result.tilt_x = x[a];
-    result.tilt_y = x[a + 1];
-    result.axis_direction = Eigen::Vector3d(std::cos(x[a]) * std::sin(x[a + 1]), -std::sin(x[a]),
-                                            std::cos(x[a]) * std::cos(x[a + 1]));
-    result.axis_point = Eigen::Vector3d(x[a + 2], x[a + 3], 0);
-  }
-  // The offset c_0 = c_1 is free for the angles; set it to the samples' mean height
-  // residual so the base passes through the part.
-  double offset = 0;
-  {
-    const BaseSurface shape(start.degree(), start.knots(), c);
-    for (const SurfaceSample& s : samples) {
-      const Eigen::Vector3d d = s.point - result.axis_point;
-      const double h = d.dot(result.axis_direction);
-      const double rho = (d - h * result.axis_direction).norm();
-      offset += h - shape.at_radius(rho).h;
+  // The better of the start and the optimiser's answer (it may stop early on a flat
+  // minimax), never worse than the start.
+  result.base = first;
+  result.axis = first_axis;
+  measure_angles(samples, first, first_axis, result.max_angle, rms);
+  if (!problem->solution().empty()) {
+    const std::vector<double>& x = problem->solution();
+    std::vector<double> c(start.coefficients().size(), 0.0);
+    for (std::size_t i = 2; i < c.size(); ++i) c[i] = x[i - 2];
+    BaseAxis axis = first_axis;
+    if (options.search_axis) {
+      const int a = problem->axis_offset();
+      axis = {x[a], x[a + 1], x[a + 2], x[a + 3]};
     }
-    offset /= static_cast<double>(samples.size());
+    const BaseSurface base =
+        with_height_offset(samples, BaseSurface(start.degree(), start.knots(), c), axis);
+    double max_angle;
+    measure_angles(samples, base, axis, max_angle, rms);
+    if (max_angle <= result.max_angle) {
+      result.base = base;
+      result.axis = axis;
+      result.max_angle = max_angle;
+    }
   }
-  for (double& v : c) v += offset;
-  result.base = BaseSurface(start.degree(), start.knots(), c);
-  std::vector<double> probe(x);
-  double worst = 0;
-  for (std::size_t k = 0; k < samples.size(); ++k)
-    worst = std::max(worst, 1 - problem->cosine(k, probe.data(), nullptr));
-  result.max_angle = std::acos(std::clamp(1.0 - worst, -1.0, 1.0));
   result.status = problem->solved() || status == Ipopt::Solved_To_Acceptable_Level
                       ? Status::kOk
                       : Status::kNotConverged;

@@ -5,7 +5,10 @@
 // Solved with Ipopt in epigraph form: minimise A subject to 1 − cos α_i ≤ A for every
 // sample (1 − cos α is monotone in α and smooth where α is not). The constraint gradients
 // are analytic in the coefficients of H and by forward-mode automatic differentiation
-// (Eigen's AutoDiffScalar) in the axis parameters. Ipopt's MUMPS is not thread-safe, so
+// (Eigen's AutoDiffScalar) in the axis parameters. The paper leaves the axis to the user;
+// with `search_axis` it is searched too, starting from the least-squares fit of base and
+// axis (base_axis_fit.hpp), because the minimax alone is flat along directions that trade
+// the largest angle of one place for another's. Ipopt's MUMPS is not thread-safe, so
 // every solve holds one process-wide lock for the whole life of its IpoptApplication
 // (shared/notes/dependencies.md); Ipopt prints nothing unless `verbose`.
 
@@ -13,6 +16,7 @@
 #include <vector>
 
 #include "freeturn/core/status.hpp"
+#include "freeturn/path/base_axis.hpp"
 #include "freeturn/path/base_surface.hpp"
 #include "freeturn/path/base_surface_fit.hpp"
 
@@ -29,15 +33,13 @@ struct MinimaxBaseOptions {
 };
 
 struct MinimaxBaseResult {
-  BaseSurface base;          // H in the axis frame (ρ measured from the axis)
-  double max_angle = 0;      // max α at the solution (rad)
-  double start_max_angle = 0;  // max α of the starting base
-  // The axis: unit direction and its crossing of z = 0, in the design surface's frame.
-  Eigen::Vector3d axis_direction = Eigen::Vector3d::UnitZ();
-  Eigen::Vector3d axis_point = Eigen::Vector3d::Zero();
-  double tilt_x = 0, tilt_y = 0;  // rad: direction = R_y(tilt_y) R_x(tilt_x) e_z
+  BaseSurface base;             // H about the axis (ρ measured from it)
+  BaseAxis axis;                // the z axis unless searched
+  double max_angle = 0;         // max α at the solution (rad)
+  double start_max_angle = 0;   // max α of `start` about the z axis
+  double least_squares_max_angle = 0;  // max α after the least-squares axis stage
   Status status = Status::kNotConverged;
-  int iterations = 0;
+  int iterations = 0;  // Ipopt's
 };
 
 // Starts from `start` (e.g. the least-squares base, whose knots are kept; its domain
