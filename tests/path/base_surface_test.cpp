@@ -155,3 +155,42 @@ TEST_SUITE("path") {
     CHECK((d - d.dot(r.axis.direction()) * r.axis.direction()).norm() < 0.01);
   }
 }
+
+#include "freeturn/core/error.hpp"
+#include "freeturn/path/base_plan.hpp"
+
+TEST_SUITE("path") {
+  TEST_CASE("base plan: a searched axis re-expresses the design about it; α limits refuse or warn") {
+    const Eigen::Matrix3d rotation = TransformedSurface::rotation_from_tilts(0.02, -0.01);
+    const TransformedSurface part(std::make_unique<EvenAsphere>(0.1, -1.0), 0.2, -0.1, rotation);
+    BasePlanOptions o;
+    o.kind = BaseKind::kMinimax;
+    o.search_axis = true;
+    o.radial_samples = 16;
+    o.angular_samples = 32;
+    const BasePlan plan = plan_base_surface(part, 0, 5.0, o);
+    REQUIRE(plan.design_about_axis != nullptr);
+    const Surface& cut = plan.design_to_cut(part);
+    // About the found axis the paraboloid is a paraboloid again: z = r²/20, vertex at 0.
+    for (double r : {0.0, 1.0, 4.5})
+      for (double phi : {0.0, 2.0, 4.0})
+        CHECK(cut.sag(r * std::cos(phi), r * std::sin(phi)) ==
+              doctest::Approx(r * r / 20).epsilon(1e-9).scale(1));
+    CHECK(plan.quasi_revolution.max_angle < 1e-8);
+
+    const LensletArray eye(eye_options());
+    BasePlanOptions limited;
+    limited.angle_limit = 3 * std::numbers::pi / 180;
+    limited.radial_samples = 30;
+    limited.angular_samples = 60;
+    CHECK_THROWS_WITH_AS(plan_base_surface(eye, 0, 6.0, limited),
+                         doctest::Contains("the design is not of quasi-revolution for its base: α "
+                                           "reaches 7."),
+                         freeturn::InputError);
+    limited.refuse_above_limit = false;
+    const BasePlan warned = plan_base_surface(eye, 0, 6.0, limited);
+    REQUIRE(warned.warnings.size() == 1);
+    CHECK(warned.warnings[0].find("above the limit 3.000000°") != std::string::npos);
+    CHECK(warned.design_about_axis == nullptr);
+  }
+}
