@@ -44,6 +44,24 @@ BaseSurface::BaseSurface(int degree, std::vector<double> knots, std::vector<doub
       table_(generating_curve(degree_, knots_, coefficients_)) {
   if (!(knots_.front() == 0.0 && rho_max_ > 0))
     throw InputError("base surface", "the generating curve must run from ρ = 0 to ρ_max > 0");
+  build_inverse_table();
+}
+
+void BaseSurface::build_inverse_table() {
+  const double total = table_.total();
+  const int n = static_cast<int>(std::clamp(total / 0.002, 1024.0, 65536.0));
+  ds_ = total / n;
+  inverse_rho_.resize(static_cast<std::size_t>(n) + 1);
+  inverse_d1_.resize(inverse_rho_.size());
+  inverse_d2_.resize(inverse_rho_.size());
+  for (int k = 0; k <= n; ++k) {
+    const double rho = k == n ? rho_max_ : table_.parameter_at(k * ds_);
+    const BasePoint b = from_parameter(rho);
+    const double q = 1 + b.slope * b.slope;
+    inverse_rho_[static_cast<std::size_t>(k)] = rho;
+    inverse_d1_[static_cast<std::size_t>(k)] = 1 / std::sqrt(q);
+    inverse_d2_[static_cast<std::size_t>(k)] = -b.slope * b.curvature / (q * q);
+  }
 }
 
 BasePoint BaseSurface::from_parameter(double u) const {
@@ -59,7 +77,21 @@ BasePoint BaseSurface::at_radius(double rho) const {
 
 BasePoint BaseSurface::at_arc_length(double s) const {
   if (plane_) return {std::clamp(s, 0.0, rho_max_), 0.0, 0.0, 0.0};
-  return from_parameter(table_.parameter_at(s));
+  const int n = static_cast<int>(inverse_rho_.size()) - 1;
+  if (s <= 0) return from_parameter(0.0);
+  if (s >= ds_ * n) return from_parameter(rho_max_);
+  const int k = std::min(n - 1, static_cast<int>(s / ds_));
+  const double t = s / ds_ - k, h = ds_;
+  const std::size_t a = static_cast<std::size_t>(k), b = a + 1;
+  // Quintic Hermite basis on [0, 1].
+  const double t2 = t * t, t3 = t2 * t, t4 = t3 * t, t5 = t4 * t;
+  const double h0 = 1 - 10 * t3 + 15 * t4 - 6 * t5, h1 = t - 6 * t3 + 8 * t4 - 3 * t5,
+               h2 = 0.5 * (t2 - 3 * t3 + 3 * t4 - t5), h3 = 0.5 * (t3 - 2 * t4 + t5),
+               h4 = -4 * t3 + 7 * t4 - 3 * t5, h5 = 10 * t3 - 15 * t4 + 6 * t5;
+  const double rho = h0 * inverse_rho_[a] + h1 * h * inverse_d1_[a] +
+                     h2 * h * h * inverse_d2_[a] + h3 * h * h * inverse_d2_[b] +
+                     h4 * h * inverse_d1_[b] + h5 * inverse_rho_[b];
+  return from_parameter(rho);
 }
 
 double BaseSurface::arc_length(double rho) const {
