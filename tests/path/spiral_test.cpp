@@ -147,3 +147,127 @@ TEST_SUITE("path") {
                          InputError);
   }
 }
+
+#include "freeturn/path/profile.hpp"
+#include "freeturn/surface/lenslet_array.hpp"
+
+namespace {
+
+// The largest distance of the PVT motion (cubic Hermite in X, Z with the path's own
+// velocities, C linear) from the surface, with velocities by central differences of the
+// profile itself: the same model the post writes, checked densely.
+double densest_cubic_error(const Surface& s, const std::vector<ContactPoint>& path) {
+  const auto profile = [&](double r) { return s.sag(r, 0); };
+  double worst = 0;
+  for (std::size_t k = 1; k < path.size(); ++k) {
+    const ContactPoint &a = path[k - 1], &b = path[k];
+    const double h = 1e-6;
+    const double da = (profile(a.r + h) - profile(a.r - h)) / (2 * h),
+                 db = (profile(b.r + h) - profile(b.r - h)) / (2 * h);
+    const double dr = b.r - a.r;  // X runs linearly in τ = −r, so its Hermite is linear
+    for (int j = 1; j < 200; ++j) {
+      const double t = j / 200.0, t2 = t * t, t3 = t2 * t;
+      const double z = (2 * t3 - 3 * t2 + 1) * a.point.z() + (t3 - 2 * t2 + t) * dr * da +
+                       (-2 * t3 + 3 * t2) * b.point.z() + (t3 - t2) * dr * db;
+      const double r = a.r + t * dr;
+      double f, fx, fy;
+      s.sag_gradient(r, 0, f, fx, fy);
+      worst = std::max(worst, std::abs(z - f) / std::sqrt(1 + fx * fx + fy * fy));
+    }
+  }
+  return worst;
+}
+
+}  // namespace
+
+TEST_SUITE("path") {
+  TEST_CASE("PVT (cubic) interpolation: ε holds on the cubic motion with fewer points than linear") {
+    const SinusoidalRing ring(0.05, std::numbers::pi, 0.0);
+    ProfileOptions o;
+    o.outer_radius = 10;
+    o.points.tolerance = 1e-4;
+    o.points.max_radial_step = 1.0;
+    ContactCollector linear;
+    plan_profile(ring, o, linear);
+    o.points.interpolation = Interpolation::kCubic;
+    ContactCollector cubic;
+    plan_profile(ring, o, cubic);
+    CHECK(densest_cubic_error(ring, cubic.points) <= 1e-4);
+    MESSAGE("0.1 µm: linear " << linear.points.size() << " points, cubic " << cubic.points.size());
+    CHECK(cubic.points.size() < linear.points.size() / 2);
+  }
+
+  TEST_CASE("scallop prediction: f²/8 (1/R − κ) on a plane and a concave sphere") {
+    const double pitch = 0.02, nose = 0.5;
+    SpiralOptions o;
+    o.outer_radius = 3;
+    o.pitch = pitch;
+    o.nose_radius = nose;
+    o.points = equal_angle(36);
+    ContactCollector flat;
+    plan_spiral(EvenAsphere(0, 0), BaseSurface::plane(3), o, flat);
+    for (const auto& p : flat.points) CHECK(p.scallop == doctest::Approx(pitch * pitch / (8 * nose)).epsilon(1e-12));
+    // A concave sphere (R = 2 mm, seen from the tool) on its own base: f = p, κ = 1/2.
+    const EvenAsphere bowl(0.5, 0);
+    ContactCollector cut;
+    BaseFitOptions fo;
+    fo.spans = 32;
+    plan_spiral(bowl, fit_base_least_squares(sample_aperture(bowl, 0, 1.5), fo),
+                [&] { SpiralOptions s = o; s.outer_radius = 1.5; return s; }(), cut);
+    for (const auto& p : cut.points) {
+      CHECK(p.section_curvature == doctest::Approx(0.5).epsilon(1e-9));
+      CHECK(p.scallop == doctest::Approx(pitch * pitch / 8 * (1 / nose - 0.5)).epsilon(1e-5));
+    }
+  }
+
+  TEST_CASE("centre-to-edge spirals and chunked streaming") {
+    struct ChunkCounter final : ContactSink {
+      void write(std::span<const ContactPoint> chunk) override {
+        sizes.push_back(chunk.size());
+        if (!chunk.empty()) last = chunk.back();
+      }
+      std::vector<std::size_t> sizes;
+      ContactPoint last;
+    } sink;
+    SpiralOptions o;
+    o.outer_radius = 4;
+    o.inner_radius = 1;
+    o.pitch = 0.01;
+    o.centre_to_edge = true;
+    o.points = equal_angle(100);
+    const auto summary = plan_spiral(EvenAsphere(1 / 30.0, 0), BaseSurface::plane(4), o, sink);
+    // 300 revolutions × 100 points + the first.
+    CHECK(summary.points == 30001);
+    REQUIRE(sink.sizes.size() == 8);
+    for (std::size_t k = 0; k + 1 < sink.sizes.size(); ++k) CHECK(sink.sizes[k] == ContactChunker::kChunkSize);
+    CHECK(sink.sizes.back() == 30001 - 7 * ContactChunker::kChunkSize);
+    CHECK(sink.last.r == 4.0);
+  }
+
+  TEST_CASE("space spiral on a compound eye: every point on the design, in order, exact ends") {
+    LensletArrayOptions lo;
+    lo.base_curvature = 1 / 20.0;
+    lo.lens_radius = -5.0;
+    lo.lens_diameter = 0.9;
+    lo.pitch = 1.0;
+    lo.pattern = LensletArrayOptions::Pattern::kRings;
+    lo.extent = 5.5;
+    const LensletArray eye(lo);
+    SpiralOptions o;
+    o.outer_radius = 5;
+    o.pitch = 0.05;
+    o.points.tolerance = 2e-4;
+    ContactCollector out;
+    plan_spiral(eye, fit_base_least_squares(sample_aperture(eye, 0, 5)), o, out);
+    const auto& p = out.points;
+    REQUIRE(p.size() > 100);
+    CHECK(p.front().theta == 0);
+    CHECK(p.back().r == 0);
+    CHECK(p.back().theta == doctest::Approx(2 * std::numbers::pi * 5 / 0.05).epsilon(0.05));
+    for (std::size_t k = 0; k < p.size(); ++k) {
+      CHECK(p[k].point.z() == doctest::Approx(eye.sag(p[k].point.x(), p[k].point.y())).epsilon(1e-12).scale(1));
+      if (k > 0) CHECK(p[k].theta > p[k - 1].theta);
+    }
+    CHECK(test::densest_chord_error(eye, p) <= 2e-4);
+  }
+}

@@ -23,6 +23,7 @@ class BorrowedSurface final : public Surface {
     return s_.height_derivatives(x, y);
   }
   double defined_radius() const override { return s_.defined_radius(); }
+  bool has_creases() const override { return s_.has_creases(); }
 
  private:
   const Surface& s_;

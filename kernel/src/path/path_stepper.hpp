@@ -10,6 +10,7 @@
 //   double cap() const;                     // the largest step in τ
 //   double deviation(double x_axis, double c, double z) const;  // distance to the design
 //   double angle_per_tau() const;           // dC/dτ (1 on a spiral, 0 in profile mode)
+//   bool creased() const;                   // the design has creases (Surface::has_creases)
 
 #include <algorithm>
 #include <cmath>
@@ -48,31 +49,57 @@ inline void interpolate(const AxisState& a, const AxisState& b, double t, Interp
 }
 
 // The largest distance of the interpolated motion from the design over one segment:
-// seven interior samples, then a parabola through the largest and its neighbours.
+// samples (8 intervals; 32 on a surface with creases, where the peak is a sharp tent at
+// the crease), then a parabola through the largest and its neighbours. Where the parabola
+// mispredicts the value at its own vertex, the deviation is not smooth there and a
+// golden-section search of the bracket finds the peak instead.
 template <class Path>
 double segment_error(const Path& path, const AxisState& a, const AxisState& b,
                      Interpolation mode) {
-  constexpr int kSamples = 7;
-  double e[kSamples + 2];
-  e[0] = e[kSamples + 1] = 0;
-  int best = 1;
+  constexpr int kMaxIntervals = 32;
+  const int intervals = path.creased() ? kMaxIntervals : 8;
   const double k = path.angle_per_tau();
-  for (int j = 1; j <= kSamples; ++j) {
+  const auto deviation_at = [&](double t) {
     double x, c, z;
-    interpolate(a, b, j / (kSamples + 1.0), mode, k, x, c, z);
-    e[j] = path.deviation(x, c, z);
+    interpolate(a, b, t, mode, k, x, c, z);
+    return path.deviation(x, c, z);
+  };
+  double e[kMaxIntervals + 1];
+  e[0] = e[intervals] = 0;  // the blocks themselves lie on the design
+  int best = 1;
+  for (int j = 1; j < intervals; ++j) {
+    e[j] = deviation_at(static_cast<double>(j) / intervals);
     if (e[j] > e[best]) best = j;
   }
   double worst = e[best];
   const double denominator = e[best - 1] - 2 * e[best] + e[best + 1];
-  if (denominator < 0) {
-    const double shift = 0.5 * (e[best - 1] - e[best + 1]) / denominator;
-    const double t = (best + std::clamp(shift, -1.0, 1.0)) / (kSamples + 1.0);
-    double x, c, z;
-    interpolate(a, b, t, mode, k, x, c, z);
-    worst = std::max(worst, path.deviation(x, c, z));
+  if (!(denominator < 0)) return worst;
+  const double shift = std::clamp(0.5 * (e[best - 1] - e[best + 1]) / denominator, -1.0, 1.0);
+  const double predicted = e[best] - 0.25 * (e[best - 1] - e[best + 1]) * shift;
+  const double at_vertex = deviation_at((best + shift) / intervals);
+  worst = std::max(worst, at_vertex);
+  if (std::abs(at_vertex - predicted) <= (path.creased() ? 1e-3 : 1e-2) * predicted) return worst;
+  // Golden-section search for the maximum on [t_{best−1}, t_{best+1}].
+  constexpr double kGolden = 0.6180339887498949;
+  double lo = (best - 1.0) / intervals, hi = (best + 1.0) / intervals;
+  double x1 = hi - kGolden * (hi - lo), x2 = lo + kGolden * (hi - lo);
+  double f1 = deviation_at(x1), f2 = deviation_at(x2);
+  for (int it = 0; it < 20; ++it) {
+    if (f1 > f2) {
+      hi = x2;
+      x2 = x1;
+      f2 = f1;
+      x1 = hi - kGolden * (hi - lo);
+      f1 = deviation_at(x1);
+    } else {
+      lo = x1;
+      x1 = x2;
+      f1 = f2;
+      x2 = lo + kGolden * (hi - lo);
+      f2 = deviation_at(x2);
+    }
   }
-  return worst;
+  return std::max({worst, f1, f2});
 }
 
 // Walks τ from 0 to tau_end, calling emit(state, chord_error) for every point.
@@ -116,7 +143,11 @@ void distribute(Path& path, const CutterPointOptions& o, Emit&& emit) {
       double accepted = 0;
       AxisState best;
       double best_error = 0;
-      for (int it = 0; it < 40; ++it) {
+      // The last rejected step: across a crease (a lenslet's rim) the error stops falling
+      // with the step while the chord still spans the crease, so the local order is
+      // measured and a step that barely helps is halved instead.
+      double failed_step = 0, failed_error = 0;
+      for (int it = 0; it < 80; ++it) {
         path.at(advance(step), trial);
         error = segment_error(path, current, trial, o.interpolation);
         double next;
@@ -131,7 +162,15 @@ void distribute(Path& path, const CutterPointOptions& o, Emit&& emit) {
                            : 2 * step;
           next = std::min(next, limit);
         } else {
-          next = step * std::max(0.2, 0.99 * std::pow(target / error, 1 / order));
+          double local_order = order;
+          if (failed_step > 0 && failed_step != step && failed_error > 0)
+            local_order = std::log(failed_error / error) / std::log(failed_step / step);
+          next = local_order < 0.5
+                     ? 0.5 * step
+                     : step * std::max(0.2, 0.99 * std::pow(target / error,
+                                                            1 / std::min(local_order, order)));
+          failed_step = step;
+          failed_error = error;
           if (accepted > 0 && next <= accepted) break;  // nothing between them is better
         }
         if (next < min_step)

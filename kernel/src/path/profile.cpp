@@ -19,6 +19,7 @@ class ProfilePath {
   double tau_end() const { return o_.outer_radius - o_.inner_radius; }
   double cap() const { return o_.points.max_radial_step; }
   double angle_per_tau() const { return 0.0; }
+  bool creased() const { return design_.has_creases(); }
 
   double deviation(double x_axis, double, double z) const {
     double f, fx, fy;

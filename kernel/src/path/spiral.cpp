@@ -30,6 +30,7 @@ class SpiralPath {
   double tau_end() const { return end_; }
   double cap() const { return o_.points.max_angle_step; }
   double angle_per_tau() const { return 1.0; }
+  bool creased() const { return design_.has_creases(); }
   double pitch() const { return o_.pitch; }
 
   double deviation(double x_axis, double c, double z) const {

@@ -38,6 +38,7 @@ class LensletArray final : public Surface {
   void sag_gradient(double x, double y, double& z, double& zx, double& zy) const override;
   HeightDerivatives height_derivatives(double x, double y) const override;
   double defined_radius() const override;
+  bool has_creases() const override { return true; }
 
   int lenslet_count() const { return static_cast<int>(lenslets_.size()); }
   // Index of the lenslet whose footprint holds (x, y), or −1 on the base.

@@ -15,6 +15,7 @@ class SinusoidalRing final : public JetSurface<SinusoidalRing> {
   SinusoidalRing(double amplitude, double angular_frequency, double offset)
       : a_(amplitude), w_(angular_frequency), d_(offset) {}
   const char* type() const override { return "sinusoidal_ring"; }
+  bool has_creases() const override { return a_ * w_ != 0; }  // the cone at the vertex
 
   template <typename T>
   T sag(const T& x, const T& y) const {

@@ -33,6 +33,10 @@ class Surface {
   // root stays real, a lens array has lenslets); infinity when defined everywhere.
   virtual double defined_radius() const { return std::numeric_limits<double>::infinity(); }
 
+  // True when the surface has creases (slope discontinuities: lenslet rims, a cone's
+  // vertex). Chord errors across a crease peak sharply, so they are sampled more densely.
+  virtual bool has_creases() const { return false; }
+
   double sag(double x, double y) const;
   // (x, y, z(x, y)).
   Eigen::Vector3d point(double x, double y) const;

@@ -33,6 +33,7 @@ class TransformedSurface final : public Surface {
   const char* type() const override { return parent_->type(); }
   void sag_gradient(double x, double y, double& z, double& zx, double& zy) const override;
   HeightDerivatives height_derivatives(double x, double y) const override;
+  bool has_creases() const override { return parent_->has_creases(); }
 
   const Surface& parent() const { return *parent_; }
   // The parent-frame point of world point w.
