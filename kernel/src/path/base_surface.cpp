@@ -5,6 +5,7 @@
 #include <string>
 
 #include "freeturn/core/error.hpp"
+#include "freeturn/nurbs/gauss_legendre.hpp"
 
 namespace freeturn {
 namespace {
@@ -54,13 +55,44 @@ void BaseSurface::build_inverse_table() {
   inverse_rho_.resize(static_cast<std::size_t>(n) + 1);
   inverse_d1_.resize(inverse_rho_.size());
   inverse_d2_.resize(inverse_rho_.size());
-  for (int k = 0; k <= n; ++k) {
-    const double rho = k == n ? rho_max_ : table_.parameter_at(k * ds_);
+  // March along the curve: ρ_k solves s(ρ_k) = k·ds by Newton, with s(ρ) − s(ρ_{k−1}) from
+  // an 8-point Gauss–Legendre rule over the short step (a smooth integrand there, error
+  // far below 1e-15 mm), started from the Taylor step ds·ρ' + ds²ρ''/2.
+  const nurbs::QuadratureRule rule = nurbs::gauss_legendre(8);
+  const auto speed = [&](double rho) {
+    const double slope = from_parameter(rho).slope;
+    return std::sqrt(1 + slope * slope);
+  };
+  const auto length = [&](double a, double b) {
+    double sum = 0;
+    for (std::size_t i = 0; i < rule.nodes.size(); ++i)
+      sum += rule.weights[i] * speed(0.5 * (a + b) + 0.5 * (b - a) * rule.nodes[i]);
+    return 0.5 * (b - a) * sum;
+  };
+  const auto store = [&](int k, double rho) {
     const BasePoint b = from_parameter(rho);
     const double q = 1 + b.slope * b.slope;
     inverse_rho_[static_cast<std::size_t>(k)] = rho;
     inverse_d1_[static_cast<std::size_t>(k)] = 1 / std::sqrt(q);
     inverse_d2_[static_cast<std::size_t>(k)] = -b.slope * b.curvature / (q * q);
+  };
+  store(0, 0.0);
+  double rho = 0, s = 0;  // the last node and its exact arc length
+  for (int k = 1; k <= n; ++k) {
+    const std::size_t a = static_cast<std::size_t>(k - 1);
+    double next = std::min(rho_max_, rho + ds_ * inverse_d1_[a] + 0.5 * ds_ * ds_ * inverse_d2_[a]);
+    if (k == n) {
+      next = rho_max_;
+    } else {
+      for (int it = 0; it < 8; ++it) {
+        const double step = (s + length(rho, next) - k * ds_) / speed(next);
+        next = std::clamp(next - step, rho, rho_max_);
+        if (std::abs(step) <= 1e-15 * rho_max_) break;
+      }
+    }
+    s += length(rho, next);
+    rho = next;
+    store(k, rho);
   }
 }
 
