@@ -1,0 +1,41 @@
+#pragma once
+// Nose-radius compensation by the sectional curve method (paper 002, Fig. 2-6), and the
+// B axis of 4-axis turning (paper 000, §5).
+//
+// In the radial plane at θ (coordinates (ρ, z), e_r = (cos θ, sin θ, 0)) the contact p
+// has the in-plane normal n̂_p = (n·e_r, n_z)/|·| at angle ψ = atan2(n·e_r, n_z) from +z.
+// The tool axis a(B) = (sin B, cos B) points from the nose centre toward the holder; the
+// edge touches at ψ − B from it. The nose centre is
+//   c = p + (R + δ(ψ − B)) n̂_p         (δ: the measured waviness),
+// which keeps c in the radial plane: offsetting along the full 3D normal would move it to
+// another angle. The programmed point is c (nose centre), c − R a(B) (the tip), or, with
+// a B axis, its pivot c + L a(B). With the edge's centre height h above the spindle line,
+// the programmed radial position x becomes √(x² − h²) and the spindle angle θ − atan2(h, ·).
+
+#include "freeturn/tool/cutter_location.hpp"
+#include "freeturn/tool/tool_geometry.hpp"
+
+namespace freeturn {
+
+enum class BMode {
+  kFixed,   // B stays at `b_fixed` (3-axis machines: 0)
+  kFollow,  // B = ψ − edge_angle: the edge touches at `edge_angle` from the tool axis
+};
+
+struct CompensationOptions {
+  ToolGeometry tool;
+  BMode b_mode = BMode::kFixed;
+  double b_fixed = 0;     // rad
+  double edge_angle = 0;  // rad, the nose point that touches when B follows (0: its centre)
+  double pivot_distance = 0;  // L (mm): B pivot to nose centre; 0: program the nose point
+};
+
+// The cutter location for one contact point. No checks (tool_checks.hpp); no allocation.
+CutterLocation compensate(const ContactPoint& contact, const CompensationOptions& options);
+
+// The inverse for tests and verification: from programmed axes (x, z, B) back to the nose
+// centre in the radial plane (ρ, z) — x, z being the point `options` programs.
+Eigen::Vector2d nose_centre_from_axes(double x, double z, double b,
+                                      const CompensationOptions& options);
+
+}  // namespace freeturn

@@ -1,0 +1,39 @@
+#pragma once
+// The stage between the planner and the machine: contact points in, checked cutter
+// locations out, chunk by chunk (the chunk in is the chunk out; nothing else is held).
+
+#include <vector>
+
+#include "freeturn/path/contact_point.hpp"
+#include "freeturn/tool/tool_checks.hpp"
+
+namespace freeturn {
+
+class ToolCompensator final : public ContactSink {
+ public:
+  // `design` and `out` must outlive the compensator.
+  ToolCompensator(const Surface& design, const CompensationOptions& compensation,
+                  const ToolCheckOptions& checks, CutterSink& out)
+      : options_(compensation), checker_(design, compensation, checks), out_(out) {}
+
+  // Throws InputError from the first check whose policy is kError.
+  void write(std::span<const ContactPoint> chunk) override {
+    buffer_.clear();
+    for (const ContactPoint& p : chunk) {
+      const CutterLocation cl = compensate(p, options_);
+      checker_.check(cl);
+      buffer_.push_back(cl);
+    }
+    out_.write(buffer_);
+  }
+
+  const ToolCheckReport& report() const { return checker_.report(); }
+
+ private:
+  CompensationOptions options_;
+  ToolChecker checker_;
+  CutterSink& out_;
+  std::vector<CutterLocation> buffer_;  // grows once to the chunk size
+};
+
+}  // namespace freeturn

@@ -1,0 +1,58 @@
+#include "freeturn/tool/compensation.hpp"
+
+#include <cmath>
+#include <limits>
+
+namespace freeturn {
+
+CutterLocation compensate(const ContactPoint& contact, const CompensationOptions& o) {
+  CutterLocation cl;
+  cl.contact = contact;
+  const double ct = std::cos(contact.theta), st = std::sin(contact.theta);
+  const Eigen::Vector3d& n = contact.normal;
+  const double n_r = n.x() * ct + n.y() * st, n_z = n.z();
+  const double length = std::hypot(n_r, n_z);
+  const double u_r = n_r / length, u_z = n_z / length;  // n̂_p in (ρ, z)
+  cl.psi = std::atan2(n_r, n_z);
+  cl.b = o.b_mode == BMode::kFollow ? cl.psi - o.edge_angle : o.b_fixed;
+  const double radius = o.tool.nose_radius + o.tool.waviness_at(cl.psi - cl.b);
+  // In the radial plane: the contact's ρ is its signed distance along e_r.
+  const double p_r = contact.point.x() * ct + contact.point.y() * st;
+  const double c_r = p_r + radius * u_r, c_z = contact.point.z() + radius * u_z;
+  cl.nose_centre = {c_r * ct, c_r * st, c_z};
+  const double a_r = std::sin(cl.b), a_z = std::cos(cl.b);
+  double x = c_r, z = c_z;
+  if (o.pivot_distance > 0) {
+    x += o.pivot_distance * a_r;
+    z += o.pivot_distance * a_z;
+  } else if (o.tool.program_point == ProgramPoint::kTip) {
+    x -= o.tool.nose_radius * a_r;
+    z -= o.tool.nose_radius * a_z;
+  }
+  cl.c = contact.theta;
+  const double h = o.tool.centre_height;
+  if (h != 0) {
+    // The edge sits h above the spindle line: at machine X it touches radius √(X² + h²),
+    // turned by atan2(h, X). NaN where |x| < |h| (the centre check reports it).
+    const double reach = x * x - h * h;
+    const double corrected = reach >= 0 ? std::copysign(std::sqrt(reach), x)
+                                        : std::numeric_limits<double>::quiet_NaN();
+    cl.c = contact.theta - std::atan2(h, corrected);
+    x = corrected;
+  }
+  cl.x = x;
+  cl.z = z;
+  return cl;
+}
+
+Eigen::Vector2d nose_centre_from_axes(double x, double z, double b, const CompensationOptions& o) {
+  const double a_r = std::sin(b), a_z = std::cos(b);
+  const double h = o.tool.centre_height;
+  if (h != 0) x = std::copysign(std::sqrt(x * x + h * h), x);
+  if (o.pivot_distance > 0) return {x - o.pivot_distance * a_r, z - o.pivot_distance * a_z};
+  if (o.tool.program_point == ProgramPoint::kTip)
+    return {x + o.tool.nose_radius * a_r, z + o.tool.nose_radius * a_z};
+  return {x, z};
+}
+
+}  // namespace freeturn

@@ -1,0 +1,157 @@
+#include "freeturn/tool/tool_checks.hpp"
+
+#include <cmath>
+#include <cstdio>
+#include <numbers>
+
+#include "freeturn/core/error.hpp"
+
+namespace freeturn {
+namespace {
+
+// Angles in degrees, curvatures as radii, lengths in µm: the units a user reads.
+std::string value_text(ToolCheck check, double v) {
+  char buf[64];
+  switch (check) {
+    case ToolCheck::kContactAngle:
+    case ToolCheck::kClearance:
+    case ToolCheck::kBLimits:
+      std::snprintf(buf, sizeof buf, "%.4f°", v * 180 / std::numbers::pi);
+      break;
+    case ToolCheck::kLocalGouge:
+      std::snprintf(buf, sizeof buf, "concave radius %.6g mm", 1 / v);
+      break;
+    default:
+      std::snprintf(buf, sizeof buf, "%.4f µm", v * 1e3);
+  }
+  return buf;
+}
+
+std::string where_text(const CheckFinding& f) {
+  char buf[160];
+  std::snprintf(buf, sizeof buf, "θ = %.6f rad (%.4f°), r = %.6f mm, (x, y) = (%.6f, %.6f) mm",
+                f.theta, f.theta * 180 / std::numbers::pi, f.r, f.x, f.y);
+  return buf;
+}
+
+}  // namespace
+
+const char* tool_check_name(ToolCheck check) {
+  static const char* const kNames[kToolCheckCount] = {"contact angle", "clearance",  "gouge",
+                                                      "global gouge",  "centre",     "B limits"};
+  return kNames[static_cast<int>(check)];
+}
+
+std::string ToolCheckReport::summary() const {
+  std::string out;
+  for (int i = 0; i < kToolCheckCount; ++i) {
+    const CheckFinding& f = findings[i];
+    if (f.count == 0) continue;
+    const ToolCheck c = static_cast<ToolCheck>(i);
+    const std::string limit = c == ToolCheck::kLocalGouge
+                                  ? " < nose radius " + std::to_string(1 / f.limit) + " mm"
+                                  : " > limit " + value_text(c, f.limit);
+    out += std::string(tool_check_name(c)) + ": " + std::to_string(f.count) + " points, worst " +
+           value_text(c, f.worst) + limit + " at " + where_text(f) + "\n";
+  }
+  return out;
+}
+
+ToolChecker::ToolChecker(const Surface& design, const CompensationOptions& compensation,
+                         ToolCheckOptions options)
+    : design_(design), compensation_(compensation), options_(options) {}
+
+void ToolChecker::found(ToolCheck check, double value, double limit, const CutterLocation& cl) {
+  const int i = static_cast<int>(check);
+  CheckPolicy policy = options_.policy[i];
+  if (check == ToolCheck::kBLimits) policy = CheckPolicy::kError;
+  if (policy == CheckPolicy::kOff) return;
+  CheckFinding& f = report_.findings[i];
+  f.limit = limit;
+  f.count++;
+  if (f.count == 1 || value > f.worst) {
+    f.worst = value;
+    f.theta = cl.contact.theta;
+    f.r = cl.contact.r;
+    f.x = cl.contact.point.x();
+    f.y = cl.contact.point.y();
+  }
+  if (policy == CheckPolicy::kError) {
+    CheckFinding here = f;
+    here.worst = value;
+    here.theta = cl.contact.theta;
+    here.r = cl.contact.r;
+    here.x = cl.contact.point.x();
+    here.y = cl.contact.point.y();
+    const bool curvature = check == ToolCheck::kLocalGouge;
+    throw InputError(where_text(here),
+                     std::string(tool_check_name(check)) + " check: " + value_text(check, value) +
+                         (curvature ? " is below the nose radius " +
+                                          std::to_string(compensation_.tool.nose_radius) + " mm"
+                                    : " exceeds the limit " + value_text(check, limit)));
+  }
+}
+
+double ToolChecker::global_gouge_depth(const CutterLocation& cl) const {
+  // The edge arc: angles within half the included angle of the tool axis a(B). Its
+  // lowest points face the part; the section z_s(ρ) = f(ρ cos θ, ρ sin θ) must stay below
+  // the arc, z_s(ρ) ≤ c_z − √(R² − (ρ − c_r)²), everywhere under it.
+  const double R = compensation_.tool.nose_radius;
+  const double half = 0.5 * compensation_.tool.included_angle;
+  const double ct = std::cos(cl.contact.theta), st = std::sin(cl.contact.theta);
+  const double c_r = cl.nose_centre.x() * ct + cl.nose_centre.y() * st;
+  const double c_z = cl.nose_centre.z();
+  double deepest = -1e300;
+  const int n = options_.gouge_samples;
+  for (int k = 0; k <= n; ++k) {
+    // Angle on the edge from the tool axis's opposite (the tip), −half … +half, about B.
+    const double phi = cl.b - half + 2 * half * k / n;
+    const double rho = c_r - R * std::sin(phi);
+    if (std::abs(rho) > options_.outer_radius) continue;
+    const double arc_z = c_z - R * std::cos(phi);
+    const double zs = design_.sag(rho * ct, rho * st);
+    if (!std::isfinite(zs)) continue;
+    deepest = std::max(deepest, zs - arc_z);
+  }
+  return deepest;
+}
+
+void ToolChecker::check(const CutterLocation& cl) {
+  const ToolGeometry& tool = compensation_.tool;
+  const auto enabled = [&](ToolCheck c) {
+    return options_.policy[static_cast<int>(c)] != CheckPolicy::kOff;
+  };
+  if (compensation_.b_mode == BMode::kFollow && (cl.b < options_.b_min || cl.b > options_.b_max))
+    found(ToolCheck::kBLimits, cl.b < options_.b_min ? options_.b_min - cl.b : cl.b - options_.b_max,
+          0.0, cl);
+  if (enabled(ToolCheck::kContactAngle)) {
+    const double relative = std::abs(cl.psi - cl.b), limit = 0.5 * tool.included_angle;
+    if (relative > limit) found(ToolCheck::kContactAngle, relative, limit, cl);
+  }
+  const ContactPoint& p = cl.contact;
+  if (enabled(ToolCheck::kClearance)) {
+    // |∂z/∂θ| / r = |∇z · e_θ| = |n · e_θ| / n_z.
+    const double n_theta = -p.normal.x() * std::sin(p.theta) + p.normal.y() * std::cos(p.theta);
+    const double slope = std::atan(std::abs(n_theta) / p.normal.z());
+    if (slope >= tool.clearance_angle) found(ToolCheck::kClearance, slope, tool.clearance_angle, cl);
+  }
+  if (enabled(ToolCheck::kLocalGouge) && p.section_curvature * tool.nose_radius > 1.0)
+    found(ToolCheck::kLocalGouge, p.section_curvature, 1 / tool.nose_radius, cl);
+  if (enabled(ToolCheck::kGlobalGouge)) {
+    const double depth = global_gouge_depth(cl);
+    if (depth > options_.gouge_tolerance)
+      found(ToolCheck::kGlobalGouge, depth, options_.gouge_tolerance, cl);
+  }
+  if (enabled(ToolCheck::kCentre)) {
+    const double ct = std::cos(p.theta), st = std::sin(p.theta);
+    const double c_r = cl.nose_centre.x() * ct + cl.nose_centre.y() * st;
+    // The nose centre crossing the axis while the contact has not, or a centre height
+    // that keeps the edge from reaching this radius.
+    if (!std::isfinite(cl.x))
+      found(ToolCheck::kCentre, std::abs(tool.centre_height), 0.0, cl);
+    else if (c_r < -options_.gouge_tolerance && p.r >= 0)
+      found(ToolCheck::kCentre, -c_r, 0.0, cl);
+  }
+}
+
+}  // namespace freeturn
