@@ -1,0 +1,141 @@
+#include <doctest/doctest.h>
+
+#include <cmath>
+#include <numbers>
+
+#include "freeturn/core/error.hpp"
+#include "freeturn/path/profile.hpp"
+#include "freeturn/path/spiral.hpp"
+#include "freeturn/surface/lenslet_array.hpp"
+#include "freeturn/surface/sinusoidal.hpp"
+#include "freeturn/tool/tool_compensator.hpp"
+
+using namespace freeturn;
+
+namespace {
+
+ToolCheckOptions warn_all(double outer) {
+  ToolCheckOptions o;
+  o.policy.fill(CheckPolicy::kWarning);
+  o.outer_radius = outer;
+  return o;
+}
+
+// Plans a spiral (equal angles) through a compensator and returns its report.
+ToolCheckReport spiral_report(const Surface& s, double outer, const CompensationOptions& c,
+                              const ToolCheckOptions& checks, std::vector<CutterLocation>* out = nullptr,
+                              int per_revolution = 180) {
+  SpiralOptions o;
+  o.outer_radius = outer;
+  o.pitch = 0.05;
+  o.points.rule = CutterPointRule::kEqualAngle;
+  o.points.points_per_revolution = per_revolution;
+  CutterCollector sink;
+  ToolCompensator compensator(s, c, checks, sink);
+  plan_spiral(s, BaseSurface::plane(outer), o, compensator);
+  if (out) *out = sink.locations;
+  return compensator.report();
+}
+
+}  // namespace
+
+TEST_SUITE("tool") {
+  TEST_CASE("gouge: a concave section radius below the nose radius fails where it is tightest") {
+    // z = A sin(ωr): concave where sin(ωr) < 0, radius 1/(Aω²) = 0.507 mm at r = 0.75 + k.
+    const SinusoidalRing ring(0.05, 2 * std::numbers::pi, 0);
+    ProfileOptions o;
+    o.outer_radius = 2.5;
+    o.points.tolerance = 1e-5;
+    CompensationOptions c;
+    c.tool.nose_radius = 0.6;
+    c.tool.included_angle = 2.5;
+    CutterCollector out;
+    ToolCheckOptions checks = warn_all(2.5);
+    checks.policy[static_cast<int>(ToolCheck::kCentre)] = CheckPolicy::kOff;
+    ToolCompensator compensator(ring, c, checks, out);
+    plan_profile(ring, o, compensator);
+    const CheckFinding& f = compensator.report()[ToolCheck::kLocalGouge];
+    CHECK(f.count > 0);
+    CHECK(1 / f.worst == doctest::Approx(1 / (0.05 * 4 * std::numbers::pi * std::numbers::pi)).epsilon(1e-3));
+    CHECK(std::abs(std::remainder(f.r - 0.75, 1.0)) < 0.01);
+    // As an error it stops at the first tight place, naming it.
+    checks.policy[static_cast<int>(ToolCheck::kLocalGouge)] = CheckPolicy::kError;
+    CutterCollector none;
+    ToolCompensator strict(ring, c, checks, none);
+    CHECK_THROWS_WITH_AS(plan_profile(ring, o, strict),
+                         doctest::Contains("gouge check: concave radius 0.5"), InputError);
+  }
+
+  TEST_CASE("clearance: a steep tangential slope fails at θ = 90°; ψ = slope with B at 0, 0 with B following") {
+    // A tilted flat z = 0.3x: tangential slope atan(0.3 |sin θ|), radial slope 0.3 cos θ.
+    const Alvarez flat(0, 0.3);
+    CompensationOptions c;
+    c.tool.clearance_angle = 10 * std::numbers::pi / 180;
+    std::vector<CutterLocation> cls;
+    const ToolCheckReport report = spiral_report(flat, 3, c, warn_all(3), &cls);
+    const CheckFinding& f = report[ToolCheck::kClearance];
+    CHECK(f.count > 0);
+    CHECK(f.worst == doctest::Approx(std::atan(0.3)).epsilon(1e-4));
+    CHECK(std::abs(std::sin(f.theta)) == doctest::Approx(1.0).epsilon(1e-3));
+    for (const CutterLocation& cl : cls) {
+      CHECK(cl.b == 0);
+      CHECK(cl.psi == doctest::Approx(std::atan(-0.3 * std::cos(cl.contact.theta))).epsilon(1e-12).scale(1));
+    }
+    c.b_mode = BMode::kFollow;
+    spiral_report(flat, 3, c, warn_all(3), &cls);
+    for (const CutterLocation& cl : cls) CHECK(cl.psi - cl.b == 0);
+  }
+
+  TEST_CASE("global gouge: the nose reaches into a lenslet beside the contact; the local check sees nothing") {
+    LensletArrayOptions lo;
+    lo.lens_radius = -1.0;  // convex bumps of D 0.8 on a plane
+    lo.lens_diameter = 0.8;
+    lo.pitch = 1.2;
+    lo.pattern = LensletArrayOptions::Pattern::kSquare;
+    lo.extent = 3.5;
+    const LensletArray array(lo);
+    CompensationOptions c;
+    c.tool.nose_radius = 0.5;
+    c.tool.included_angle = 2.0;
+    ToolCheckOptions checks = warn_all(3);
+    checks.policy[static_cast<int>(ToolCheck::kContactAngle)] = CheckPolicy::kOff;
+    checks.policy[static_cast<int>(ToolCheck::kClearance)] = CheckPolicy::kOff;
+    const ToolCheckReport report = spiral_report(array, 3, c, checks, nullptr, 360);
+    CHECK(report[ToolCheck::kLocalGouge].count == 0);
+    const CheckFinding& g = report[ToolCheck::kGlobalGouge];
+    REQUIRE(g.count > 0);
+    // The worst place is at a rim (a concave crease: the nose, tangent on one side,
+    // overhangs the other) or on the flat within a nose radius of it.
+    const double cx = 1.2 * std::round(g.x / 1.2), cy = 1.2 * std::round(g.y / 1.2);
+    CHECK(std::hypot(g.x - cx, g.y - cy) > 0.4 - 0.01);
+    CHECK(std::hypot(g.x - cx, g.y - cy) < 0.4 + 0.5);
+    // A real gouge (over a micrometre deep), not rounding.
+    CHECK(g.worst > 1e-3);
+  }
+
+  TEST_CASE("centre: a cone at the vertex pushes the nose centre across the axis") {
+    const SinusoidalRing ring(0.05, 2 * std::numbers::pi, 0);  // slope 0.314 at r = 0
+    CompensationOptions c;
+    c.tool.nose_radius = 0.5;
+    c.tool.included_angle = 2.5;
+    ToolCheckOptions checks = warn_all(2);
+    checks.policy[static_cast<int>(ToolCheck::kCentre)] = CheckPolicy::kError;
+    checks.policy[static_cast<int>(ToolCheck::kLocalGouge)] = CheckPolicy::kOff;
+    checks.policy[static_cast<int>(ToolCheck::kGlobalGouge)] = CheckPolicy::kOff;
+    CHECK_THROWS_WITH_AS(spiral_report(ring, 2, c, checks), doctest::Contains("centre check"),
+                         InputError);
+  }
+
+  TEST_CASE("B limits: a B that would leave its range is refused, never clamped") {
+    const Alvarez flat(0, 0.3);  // ψ up to atan 0.3 = 0.29 rad
+    CompensationOptions c;
+    c.b_mode = BMode::kFollow;
+    c.pivot_distance = 30;
+    ToolCheckOptions checks = warn_all(3);
+    checks.b_min = -0.2;
+    checks.b_max = 0.2;
+    checks.policy[static_cast<int>(ToolCheck::kBLimits)] = CheckPolicy::kWarning;  // ignored
+    CHECK_THROWS_WITH_AS(spiral_report(flat, 3, c, checks), doctest::Contains("B limits check"),
+                         InputError);
+  }
+}
