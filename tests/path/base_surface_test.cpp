@@ -9,22 +9,13 @@
 #include "freeturn/surface/even_asphere.hpp"
 #include "freeturn/surface/lenslet_array.hpp"
 #include "freeturn/surface/transformed_surface.hpp"
+#include "path/fixtures.hpp"
 
 using namespace freeturn;
 
 namespace {
 
-// A compound eye: lenslets R 5 mm, D 0.9 mm, pitch 1 mm in rings on a sphere of R 20 mm.
-LensletArrayOptions eye_options() {
-  LensletArrayOptions o;
-  o.base_curvature = 1 / 20.0;
-  o.lens_radius = -5.0;
-  o.lens_diameter = 0.9;
-  o.pitch = 1.0;
-  o.pattern = LensletArrayOptions::Pattern::kRings;
-  o.extent = 6.5;
-  return o;
-}
+LensletArrayOptions eye_options() { return test::compound_eye_options(6.5); }
 
 }  // namespace
 

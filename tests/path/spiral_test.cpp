@@ -11,6 +11,7 @@
 #include "freeturn/surface/sinusoidal.hpp"
 #include "freeturn/surface/zernike.hpp"
 #include "path/dense_check.hpp"
+#include "path/fixtures.hpp"
 
 using namespace freeturn;
 
@@ -245,14 +246,7 @@ TEST_SUITE("path") {
   }
 
   TEST_CASE("space spiral on a compound eye: every point on the design, in order, exact ends") {
-    LensletArrayOptions lo;
-    lo.base_curvature = 1 / 20.0;
-    lo.lens_radius = -5.0;
-    lo.lens_diameter = 0.9;
-    lo.pitch = 1.0;
-    lo.pattern = LensletArrayOptions::Pattern::kRings;
-    lo.extent = 5.5;
-    const LensletArray eye(lo);
+    const LensletArray eye(test::compound_eye_options(5.5));
     SpiralOptions o;
     o.outer_radius = 5;
     o.pitch = 0.05;
