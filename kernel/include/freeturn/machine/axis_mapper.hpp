@@ -1,0 +1,67 @@
+#pragma once
+// Cutter locations → machine axis values, block times and the machine's limits: the stage
+// between tool compensation and the post-processor.
+//
+// Block times come from the spindle speed on a spiral (Δθ / ω) and from the feed along the
+// path in profile mode. Travel and B limits are errors at the first block that breaks
+// them. Dynamics (velocity, acceleration, block rate) scale with the spindle speed, so
+// the mapper also finds the highest rpm at which every block stays within the limits:
+// velocity and block rate ∝ rpm, acceleration ∝ rpm².
+
+#include <string>
+#include <vector>
+
+#include "freeturn/machine/axis_record.hpp"
+#include "freeturn/machine/machine.hpp"
+#include "freeturn/tool/cutter_location.hpp"
+
+namespace freeturn {
+
+struct MotionOptions {
+  double spindle_rpm = 0;  // spiral modes: block time = Δθ / (2π rpm / 60)
+  double feed = 0;         // mm/min, profile mode (used when spindle_rpm is 0)
+  bool enforce_dynamics = true;  // a dynamics violation is an error (else only reported)
+};
+
+struct DynamicsReport {
+  double peak_velocity[4] = {0, 0, 0, 0};      // per Axis, machine units per second
+  double peak_acceleration[4] = {0, 0, 0, 0};  // per Axis, per second²
+  double peak_block_rate = 0;                  // blocks per second
+  double max_rpm = 0;  // the highest spindle speed every block can follow (spiral modes)
+  double cycle_time = 0;  // s
+  long blocks = 0;
+  std::string limiting;  // what sets max_rpm ("X velocity at θ = …")
+};
+
+class AxisMapper final : public CutterSink {
+ public:
+  // `machine` and `out` must outlive the mapper. Throws InputError for options the machine
+  // cannot use (no rpm on a C machine, no feed in profile mode).
+  AxisMapper(const MachineDescription& machine, const MotionOptions& motion, AxisSink& out);
+
+  // Throws InputError at the first block outside travel or B limits (and, with
+  // enforce_dynamics, the first beyond a dynamic limit), naming the axis, the value, the
+  // limit and where.
+  void write(std::span<const CutterLocation> chunk) override;
+
+  const DynamicsReport& report() const { return report_; }
+
+  // The machine value of one axis for a cutter location (before wrapping C).
+  double axis_value(Axis axis, const CutterLocation& cl) const;
+
+ private:
+  void check_block(const AxisRecord& r, const CutterLocation& cl);
+
+  const MachineDescription& machine_;
+  MotionOptions motion_;
+  AxisSink& out_;
+  DynamicsReport report_;
+  std::vector<AxisRecord> buffer_;
+  bool has_previous_ = false;
+  AxisRecord previous_;
+  double previous_theta_ = 0, previous_velocity_[4] = {0, 0, 0, 0};
+  double previous_c_unwrapped_ = 0;
+  Eigen::Vector3d previous_point_ = Eigen::Vector3d::Zero();
+};
+
+}  // namespace freeturn

@@ -1,0 +1,45 @@
+#pragma once
+// A lathe as the kernel sees it (shared/ARCHITECTURE.md, "Machine axes"): the axis layout
+// and, per axis, sign, offset, travel, output decimals and dynamic limits; how C is
+// written; the B axis's limits and pivot; how the controller interpolates; how fast it
+// takes blocks. Parsed from the machine YAML by the job module; the dialect's own
+// settings are passed through to the post-processor untouched.
+
+#include <limits>
+#include <string>
+#include <vector>
+
+#include "freeturn/path/cutter_points.hpp"
+
+namespace freeturn {
+
+enum class Axis { kX, kZ, kC, kB };
+const char* axis_letter(Axis axis);
+
+struct AxisSpec {
+  Axis axis = Axis::kX;
+  double sign = 1;    // +1 or −1: machine value = sign · kernel value + offset
+  double offset = 0;  // mm, or degrees for C and B
+  double min = -std::numeric_limits<double>::infinity();
+  double max = std::numeric_limits<double>::infinity();
+  int decimals = 6;
+  double max_velocity = std::numeric_limits<double>::infinity();      // mm/s or °/s
+  double max_acceleration = std::numeric_limits<double>::infinity();  // mm/s² or °/s²
+};
+
+struct MachineDescription {
+  std::string name;
+  std::string plugin;
+  std::vector<AxisSpec> axes;  // in program order, e.g. X, Z, C (, B)
+  bool c_wrapped = true;       // C written in [0, 360) (else accumulating)
+  double b_min_deg = -90, b_max_deg = 90;
+  double pivot_distance = 0;   // mm, B pivot to nose centre
+  Interpolation interpolation = Interpolation::kLinear;
+  double max_block_rate = std::numeric_limits<double>::infinity();  // blocks per second
+  std::string dialect_settings;  // the YAML text under the dialect's key, for the plugin
+
+  bool has(Axis axis) const;
+  const AxisSpec& spec(Axis axis) const;  // throws std::out_of_range when absent
+};
+
+}  // namespace freeturn

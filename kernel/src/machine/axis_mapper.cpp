@@ -1,0 +1,149 @@
+#include "freeturn/machine/axis_mapper.hpp"
+
+#include <cmath>
+#include <cstdio>
+#include <limits>
+#include <numbers>
+
+#include "freeturn/core/error.hpp"
+
+namespace freeturn {
+namespace {
+
+constexpr double kDegrees = 180 / std::numbers::pi;
+
+std::string where(const CutterLocation& cl) {
+  char buf[128];
+  std::snprintf(buf, sizeof buf, "θ = %.6f rad (%.4f°), r = %.6f mm", cl.contact.theta,
+                cl.contact.theta * kDegrees, cl.contact.r);
+  return buf;
+}
+
+std::string number(double v) {
+  char buf[32];
+  std::snprintf(buf, sizeof buf, "%.6g", v);
+  return buf;
+}
+
+}  // namespace
+
+AxisMapper::AxisMapper(const MachineDescription& machine, const MotionOptions& motion, AxisSink& out)
+    : machine_(machine), motion_(motion), out_(out) {
+  report_.max_rpm = motion.spindle_rpm > 0 ? std::numeric_limits<double>::infinity() : 0.0;
+  if (machine.has(Axis::kC) && !(motion.spindle_rpm > 0))
+    throw InputError("cutting.spindle_rpm", "machine '" + machine.name +
+                                                "' programs the C axis: give the spindle speed (> 0 rpm)");
+  if (!machine.has(Axis::kC) && !(motion.feed > 0))
+    throw InputError("cutting.feed", "machine '" + machine.name +
+                                         "' turns in X-Z only: give the feed (> 0 mm/min)");
+}
+
+double AxisMapper::axis_value(Axis axis, const CutterLocation& cl) const {
+  const AxisSpec& s = machine_.spec(axis);
+  switch (axis) {
+    case Axis::kX: return s.sign * cl.x + s.offset;
+    case Axis::kZ: return s.sign * cl.z + s.offset;
+    case Axis::kC: return s.sign * cl.c * kDegrees + s.offset;
+    case Axis::kB: return s.sign * cl.b * kDegrees + s.offset;
+  }
+  return 0;
+}
+
+void AxisMapper::check_block(const AxisRecord& r, const CutterLocation& cl) {
+  const double values[4] = {r.x, r.z, previous_c_unwrapped_, r.b};
+  for (const AxisSpec& s : machine_.axes) {
+    const double v = values[static_cast<int>(s.axis)];
+    if (!std::isfinite(v))
+      throw InputError(where(cl), std::string(axis_letter(s.axis)) + " is not a finite number");
+    if (v < s.min || v > s.max)
+      throw InputError(where(cl), std::string(axis_letter(s.axis)) + " = " + number(v) +
+                                      " is outside its travel [" + number(s.min) + ", " +
+                                      number(s.max) + "] on machine '" + machine_.name + "'");
+  }
+  if (machine_.has(Axis::kB) && (r.b < machine_.b_min_deg || r.b > machine_.b_max_deg))
+    throw InputError(where(cl), "B = " + number(r.b) + "° is outside the tool-rotation limits [" +
+                                    number(machine_.b_min_deg) + "°, " +
+                                    number(machine_.b_max_deg) + "°]");
+}
+
+void AxisMapper::write(std::span<const CutterLocation> chunk) {
+  buffer_.clear();
+  const bool spiral = motion_.spindle_rpm > 0;
+  for (const CutterLocation& cl : chunk) {
+    AxisRecord r;
+    r.x = axis_value(Axis::kX, cl);
+    r.z = axis_value(Axis::kZ, cl);
+    double c = 0;
+    if (machine_.has(Axis::kC)) {
+      c = axis_value(Axis::kC, cl);
+      r.c = machine_.c_wrapped ? c - 360 * std::floor(c / 360) : c;
+    }
+    if (machine_.has(Axis::kB)) {
+      r.b = axis_value(Axis::kB, cl);
+    } else if (cl.b != 0) {
+      throw InputError(where(cl), "machine '" + machine_.name +
+                                      "' has no B axis, but the tool is to rotate (B " +
+                                      number(cl.b * kDegrees) + "°)");
+    }
+    previous_c_unwrapped_ = c;
+    if (has_previous_) {
+      if (spiral) {
+        r.time = (cl.contact.theta - previous_theta_) / (2 * std::numbers::pi * motion_.spindle_rpm / 60);
+      } else {
+        r.time = std::hypot(r.x - previous_.x, r.z - previous_.z) / (motion_.feed / 60);
+      }
+      if (!(r.time > 0))
+        throw InputError(where(cl), "two consecutive blocks at the same place (zero block time)");
+    }
+    check_block(r, cl);
+    if (has_previous_) {
+      // Dynamics per axis from the unwrapped values.
+      const double now[4] = {r.x, r.z, c, r.b};
+      const double before[4] = {previous_.x, previous_.z, previous_.c, previous_.b};
+      const double rate = 1 / r.time;
+      report_.peak_block_rate = std::max(report_.peak_block_rate, rate);
+      double rpm_limit = std::numeric_limits<double>::infinity();
+      std::string limiting;
+      const auto limit_by = [&](double candidate, const std::string& what) {
+        if (candidate < rpm_limit) {
+          rpm_limit = candidate;
+          limiting = what;
+        }
+      };
+      if (std::isfinite(machine_.max_block_rate))
+        limit_by(motion_.spindle_rpm * machine_.max_block_rate / rate, "block rate");
+      for (const AxisSpec& s : machine_.axes) {
+        const int i = static_cast<int>(s.axis);
+        const double velocity = (now[i] - before[i]) * rate;
+        const double acceleration = report_.blocks > 1 ? (velocity - previous_velocity_[i]) * rate : 0.0;
+        previous_velocity_[i] = velocity;
+        report_.peak_velocity[i] = std::max(report_.peak_velocity[i], std::abs(velocity));
+        report_.peak_acceleration[i] = std::max(report_.peak_acceleration[i], std::abs(acceleration));
+        if (std::abs(velocity) > 0 && std::isfinite(s.max_velocity))
+          limit_by(motion_.spindle_rpm * s.max_velocity / std::abs(velocity),
+                   std::string(axis_letter(s.axis)) + " velocity");
+        if (std::abs(acceleration) > 0 && std::isfinite(s.max_acceleration))
+          limit_by(motion_.spindle_rpm * std::sqrt(s.max_acceleration / std::abs(acceleration)),
+                   std::string(axis_letter(s.axis)) + " acceleration");
+      }
+      if (spiral && rpm_limit < report_.max_rpm) {
+        report_.max_rpm = rpm_limit;
+        report_.limiting = limiting + " at " + where(cl);
+      }
+      if (motion_.enforce_dynamics && spiral && rpm_limit < motion_.spindle_rpm)
+        throw InputError(where(cl), limiting + " exceeds the machine's limit at " +
+                                        number(motion_.spindle_rpm) + " rpm; this block allows at most " +
+                                        number(rpm_limit) + " rpm");
+      report_.cycle_time += r.time;
+    }
+    report_.blocks++;
+    previous_ = r;
+    previous_.c = c;  // unwrapped, for the next velocity
+    previous_theta_ = cl.contact.theta;
+    has_previous_ = true;
+    buffer_.push_back(r);
+  }
+  out_.write(buffer_);
+}
+
+}  // namespace freeturn

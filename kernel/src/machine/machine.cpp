@@ -1,0 +1,24 @@
+#include "freeturn/machine/machine.hpp"
+
+#include <stdexcept>
+
+namespace freeturn {
+
+const char* axis_letter(Axis axis) {
+  static const char* const kLetters[] = {"X", "Z", "C", "B"};
+  return kLetters[static_cast<int>(axis)];
+}
+
+bool MachineDescription::has(Axis axis) const {
+  for (const AxisSpec& a : axes)
+    if (a.axis == axis) return true;
+  return false;
+}
+
+const AxisSpec& MachineDescription::spec(Axis axis) const {
+  for (const AxisSpec& a : axes)
+    if (a.axis == axis) return a;
+  throw std::out_of_range(std::string("machine has no ") + axis_letter(axis) + " axis");
+}
+
+}  // namespace freeturn

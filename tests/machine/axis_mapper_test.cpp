@@ -1,0 +1,114 @@
+#include <doctest/doctest.h>
+
+#include <cmath>
+#include <numbers>
+
+#include "freeturn/core/error.hpp"
+#include "freeturn/machine/axis_mapper.hpp"
+#include "freeturn/path/spiral.hpp"
+#include "freeturn/surface/even_asphere.hpp"
+#include "freeturn/surface/sinusoidal.hpp"
+#include "freeturn/tool/tool_compensator.hpp"
+
+using namespace freeturn;
+
+namespace {
+
+MachineDescription xzc() {
+  MachineDescription m;
+  m.name = "test-xzc";
+  m.axes = {{Axis::kX}, {Axis::kZ}, {Axis::kC}};
+  return m;
+}
+
+// A spiral with equal angles through compensation (R = 0: the contact is the programmed
+// point) into the mapper.
+DynamicsReport run(const Surface& s, const MachineDescription& m, const MotionOptions& motion,
+                   std::vector<AxisRecord>* records = nullptr, int per_revolution = 100,
+                   double pitch = 0.1, double outer = 4) {
+  SpiralOptions o;
+  o.outer_radius = outer;
+  o.pitch = pitch;
+  o.points.rule = CutterPointRule::kEqualAngle;
+  o.points.points_per_revolution = per_revolution;
+  CompensationOptions c;
+  c.tool.nose_radius = 0;
+  ToolCheckOptions checks;
+  checks.policy.fill(CheckPolicy::kOff);
+  AxisCollector axes;
+  AxisMapper mapper(m, motion, axes);
+  ToolCompensator compensator(s, c, checks, mapper);
+  plan_spiral(s, BaseSurface::plane(outer), o, compensator);
+  if (records) *records = axes.records;
+  return mapper.report();
+}
+
+}  // namespace
+
+TEST_SUITE("machine") {
+  TEST_CASE("axis values: signs, offsets, C wrapped or accumulating, block times from the rpm") {
+    const EvenAsphere flat(0, 0);
+    MachineDescription m = xzc();
+    m.axes[0].sign = -1;
+    m.axes[1].offset = 2.5;
+    MotionOptions motion;
+    motion.spindle_rpm = 30;  // 2 s per revolution
+    std::vector<AxisRecord> r;
+    const DynamicsReport report = run(flat, m, motion, &r);
+    REQUIRE(r.size() == 4001);  // 40 revolutions × 100 + 1
+    for (std::size_t k = 0; k < r.size(); ++k) {
+      const double deg = 3.6 * static_cast<double>(k);
+      CHECK(r[k].x == doctest::Approx(-(4 - 0.1 * static_cast<double>(k) / 100)).epsilon(1e-12).scale(1));
+      CHECK(r[k].z == doctest::Approx(2.5).epsilon(1e-15));
+      // Wrapped into [0, 360): the same angle modulo 360 (just below 360 counts).
+      CHECK(std::abs(std::remainder(r[k].c - deg, 360.0)) < 1e-9);
+      CHECK(r[k].c >= 0);
+      CHECK(r[k].c < 360);
+      if (k > 0) CHECK(r[k].time == doctest::Approx(0.02).epsilon(1e-10));
+    }
+    CHECK(report.cycle_time == doctest::Approx(80.0).epsilon(1e-12));
+    m.c_wrapped = false;
+    run(flat, m, motion, &r);
+    CHECK(r.back().c == doctest::Approx(360.0 * 40).epsilon(1e-12));
+  }
+
+  TEST_CASE("dynamics: the highest rpm is set by X velocity (p·rpm/60) or Z acceleration") {
+    MachineDescription m = xzc();
+    m.axes[0].max_velocity = 0.01;  // mm/s; X moves pitch per revolution
+    MotionOptions motion;
+    motion.spindle_rpm = 1;
+    motion.enforce_dynamics = false;
+    const DynamicsReport a = run(EvenAsphere(0, 0), m, motion);
+    CHECK(a.max_rpm == doctest::Approx(60 * 0.01 / 0.1).epsilon(1e-9));
+    CHECK(a.limiting.find("X velocity") == 0);
+    // A tilted flat z = 0.05x: Z = 0.05 r cos θ, acceleration ≈ 0.05 r ω² at the edge.
+    MachineDescription tilt = xzc();
+    tilt.axes[1].max_acceleration = 2.0;  // mm/s²
+    const DynamicsReport b = run(Alvarez(0, 0.05), tilt, motion, nullptr, 400);
+    const double omega = std::sqrt(2.0 / (0.05 * 4));
+    CHECK(b.max_rpm == doctest::Approx(omega * 60 / (2 * std::numbers::pi)).epsilon(2e-3));
+    CHECK(b.limiting.find("Z acceleration") == 0);
+    // Enforced, a faster spindle is refused with the rpm this block allows.
+    motion.spindle_rpm = 200;
+    motion.enforce_dynamics = true;
+    CHECK_THROWS_WITH_AS(run(Alvarez(0, 0.05), tilt, motion, nullptr, 400),
+                         doctest::Contains("Z acceleration exceeds the machine's limit at 200 rpm"),
+                         InputError);
+  }
+
+  TEST_CASE("travel limits and a B the machine does not have are errors with their place") {
+    MachineDescription m = xzc();
+    m.axes[1].max = 0.2;  // Z travel
+    MotionOptions motion;
+    motion.spindle_rpm = 10;
+    CHECK_THROWS_WITH_AS(run(EvenAsphere(1 / 10.0, 0), m, motion),
+                         doctest::Contains("Z = 0.8") , InputError);
+    CHECK_THROWS_WITH_AS(run(EvenAsphere(1 / 10.0, 0), m, motion),
+                         doctest::Contains("is outside its travel [-inf, 0.2] on machine 'test-xzc'"),
+                         InputError);
+    // A mapper without rpm on a C machine is refused at once.
+    AxisCollector sink;
+    CHECK_THROWS_WITH_AS(AxisMapper(xzc(), MotionOptions{}, sink),
+                         doctest::Contains("give the spindle speed"), InputError);
+  }
+}
