@@ -1,0 +1,48 @@
+#pragma once
+// NC programs read back as words (ISO 6983 style: a letter and a number), for ncdiff and
+// for checking what the post-processors write. Comments — `( … )` and from `;` to the
+// end of the line — and `%` lines are dropped; macro syntax (`#`, `[`, WHILE, IF) and
+// Hollerith-like strings inside M98( … ) are kept as text words, compared literally.
+
+#include <string>
+#include <vector>
+
+namespace freeturn {
+
+struct NcWord {
+  char letter = 0;      // upper case
+  double value = 0;     // for a numeric word
+  std::string text;     // the word as written (for non-numeric words and codes)
+  bool numeric = true;
+};
+
+struct NcBlock {
+  int line = 0;  // 1-based line in its file
+  std::vector<NcWord> words;
+};
+
+// Throws InputError (file:line:col) for text that is not NC: a character that starts no
+// word, or a letter without a value.
+std::vector<NcBlock> parse_nc(const std::string& text, const std::string& file);
+
+struct NcDiffOptions {
+  double axis_tolerance = 1e-9;    // mm or degrees, for X Y Z A B C U V W I J K
+  double other_tolerance = 1e-9;   // relative, for F, S, P and other numeric words
+};
+
+struct NcDiffResult {
+  bool same = true;
+  std::string first_difference;  // "a.nc:12 vs b.nc:12: X 1.000000 ≠ 1.000100 (Δ 1e-04)"
+  double largest[26] = {0};      // per letter A…Z, the largest |Δ| seen in matched words
+  long blocks_a = 0, blocks_b = 0;
+};
+
+// Compares two programs block by block after the modal state each block leaves: axis
+// words by value within their tolerance, G and M codes as sets, other words by value.
+// Formatting (digits, spaces, word order within a block, line numbers N…) and comments
+// do not count.
+NcDiffResult nc_diff(const std::vector<NcBlock>& a, const std::string& name_a,
+                     const std::vector<NcBlock>& b, const std::string& name_b,
+                     const NcDiffOptions& options = {});
+
+}  // namespace freeturn

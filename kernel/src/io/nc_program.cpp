@@ -1,0 +1,200 @@
+#include "freeturn/io/nc_program.hpp"
+
+#include <algorithm>
+#include <cctype>
+#include <cmath>
+#include <cstdio>
+#include <cstdlib>
+#include <map>
+#include <set>
+
+#include "freeturn/core/error.hpp"
+
+namespace freeturn {
+
+std::vector<NcBlock> parse_nc(const std::string& text, const std::string& file) {
+  std::vector<NcBlock> blocks;
+  int line = 0;
+  std::size_t start = 0;
+  while (start < text.size()) {
+    std::size_t end = text.find('\n', start);
+    if (end == std::string::npos) end = text.size();
+    const std::string l = text.substr(start, end - start);
+    start = end + 1;
+    ++line;
+    NcBlock block;
+    block.line = line;
+    std::size_t i = 0;
+    const auto fail = [&](const std::string& what) {
+      throw InputError(SourceLocation{file, line, static_cast<int>(i) + 1}, what);
+    };
+    while (i < l.size()) {
+      const char ch = l[i];
+      if (ch == ' ' || ch == '\t' || ch == '\r') {
+        ++i;
+      } else if (ch == '(') {
+        const std::size_t close = l.find(')', i);
+        if (close == std::string::npos) fail("a comment '(' without ')'");
+        i = close + 1;
+      } else if (ch == ';') {
+        break;
+      } else if (ch == '%' || ch == '/') {
+        ++i;
+      } else if (std::isalpha(static_cast<unsigned char>(ch)) || ch == '#' || ch == '[') {
+        NcWord w;
+        w.letter = static_cast<char>(std::toupper(static_cast<unsigned char>(ch)));
+        std::size_t j = i + 1;
+        // A number: sign, digits, point.
+        const std::size_t number_start = j;
+        if (j < l.size() && (l[j] == '-' || l[j] == '+')) ++j;
+        while (j < l.size() && (std::isdigit(static_cast<unsigned char>(l[j])) || l[j] == '.')) ++j;
+        const std::string number = l.substr(number_start, j - number_start);
+        if (ch != '#' && ch != '[' && !number.empty() && number != "-" && number != "+" &&
+            number != ".") {
+          w.value = std::strtod(number.c_str(), nullptr);
+          w.text = std::string(1, w.letter) + number;
+          // M98(child.nc): the parentheses are the call's argument, not a comment.
+          if (w.letter == 'M' && w.value == 98 && j < l.size() && l[j] == '(') {
+            const std::size_t close = l.find(')', j);
+            if (close == std::string::npos) fail("M98( without ')'");
+            w.numeric = false;
+            w.text = "M98" + l.substr(j, close + 1 - j);
+            j = close + 1;
+          }
+          block.words.push_back(w);
+          i = j;
+          continue;
+        }
+        // Macro keywords (Moore/Fanuc style: WHILE[…]DO1, IF[…]GOTO31, END1).
+        if (std::isalpha(static_cast<unsigned char>(ch))) {
+          std::size_t e = i;
+          while (e < l.size() && std::isalpha(static_cast<unsigned char>(l[e]))) ++e;
+          std::string keyword = l.substr(i, e - i);
+          for (char& c : keyword) c = static_cast<char>(std::toupper(static_cast<unsigned char>(c)));
+          static const std::set<std::string> kKeywords = {"WHILE", "DO", "END", "IF", "GOTO", "THEN"};
+          if (!kKeywords.count(keyword))
+            fail("'" + l.substr(i, e - i) + "' is not an NC word (a letter and a number)");
+        }
+        // Not a plain word: macro syntax or a keyword; keep the rest of the token.
+        std::size_t k = i;
+        int depth = 0;
+        while (k < l.size() && (depth > 0 || (l[k] != ' ' && l[k] != '\t' && l[k] != '\r'))) {
+          if (l[k] == '(' || l[k] == '[') ++depth;
+          if (l[k] == ')' || l[k] == ']') --depth;
+          ++k;
+        }
+        if (std::isalpha(static_cast<unsigned char>(ch)) && k == i + 1)
+          fail(std::string("the letter ") + ch + " has no value");
+        w.numeric = false;
+        w.text = l.substr(i, k - i);
+        block.words.push_back(w);
+        i = k;
+      } else {
+        fail(std::string("'") + ch + "' is not NC: expected a letter and a number");
+      }
+    }
+    if (!block.words.empty()) blocks.push_back(std::move(block));
+  }
+  return blocks;
+}
+
+namespace {
+
+bool is_axis(char letter) { return std::string("XYZABCUVWIJK").find(letter) != std::string::npos; }
+
+// What a block leaves: the axis positions (modal), the codes it states, its other words.
+struct State {
+  std::map<char, double> axes;
+  std::set<std::string> codes;          // G and M words, normalised ("G1" == "G01")
+  std::map<char, double> values;        // F, S, P, …
+  std::vector<std::string> text;        // non-numeric words, literally
+};
+
+std::string code(const NcWord& w) {
+  char buf[32];
+  std::snprintf(buf, sizeof buf, "%c%g", w.letter, w.value);
+  return buf;
+}
+
+}  // namespace
+
+NcDiffResult nc_diff(const std::vector<NcBlock>& a, const std::string& name_a,
+                     const std::vector<NcBlock>& b, const std::string& name_b,
+                     const NcDiffOptions& o) {
+  NcDiffResult r;
+  r.blocks_a = static_cast<long>(a.size());
+  r.blocks_b = static_cast<long>(b.size());
+  std::map<char, double> axes_a, axes_b;
+  const auto apply = [](const NcBlock& block, std::map<char, double>& axes) {
+    State s;
+    for (const NcWord& w : block.words) {
+      if (!w.numeric) {
+        s.text.push_back(w.text);
+      } else if (w.letter == 'N') {
+        continue;
+      } else if (w.letter == 'G' || w.letter == 'M' || w.letter == 'T') {
+        s.codes.insert(code(w));
+      } else if (is_axis(w.letter)) {
+        axes[w.letter] = w.value;
+      } else {
+        s.values[w.letter] = w.value;
+      }
+    }
+    s.axes = axes;
+    return s;
+  };
+  const auto differ = [&](const NcBlock& x, const NcBlock& y, const std::string& what) {
+    if (r.same) {
+      r.same = false;
+      r.first_difference = name_a + ":" + std::to_string(x.line) + " vs " + name_b + ":" +
+                           std::to_string(y.line) + ": " + what;
+    }
+  };
+  const std::size_t n = std::min(a.size(), b.size());
+  for (std::size_t k = 0; k < n; ++k) {
+    const State sa = apply(a[k], axes_a), sb = apply(b[k], axes_b);
+    if (sa.codes != sb.codes || sa.text != sb.text) differ(a[k], b[k], "different codes");
+    std::set<char> letters;
+    for (const auto& [l, v] : sa.axes) letters.insert(l);
+    for (const auto& [l, v] : sb.axes) letters.insert(l);
+    for (char l : letters) {
+      const auto ia = sa.axes.find(l), ib = sb.axes.find(l);
+      if (ia == sa.axes.end() || ib == sb.axes.end()) {
+        differ(a[k], b[k], std::string("axis ") + l + " only in one program");
+        continue;
+      }
+      const double d = std::abs(ia->second - ib->second);
+      r.largest[l - 'A'] = std::max(r.largest[l - 'A'], d);
+      if (d > o.axis_tolerance) {
+        char buf[128];
+        std::snprintf(buf, sizeof buf, "%c %.12g ≠ %.12g (Δ %.3g)", l, ia->second, ib->second, d);
+        differ(a[k], b[k], buf);
+      }
+    }
+    letters.clear();
+    for (const auto& [l, v] : sa.values) letters.insert(l);
+    for (const auto& [l, v] : sb.values) letters.insert(l);
+    for (char l : letters) {
+      const auto ia = sa.values.find(l), ib = sb.values.find(l);
+      if (ia == sa.values.end() || ib == sb.values.end()) {
+        differ(a[k], b[k], std::string(1, l) + " only in one program");
+        continue;
+      }
+      const double d = std::abs(ia->second - ib->second);
+      r.largest[l - 'A'] = std::max(r.largest[l - 'A'], d);
+      if (d > o.other_tolerance * std::max(1.0, std::abs(ia->second))) {
+        char buf[128];
+        std::snprintf(buf, sizeof buf, "%c %.12g ≠ %.12g", l, ia->second, ib->second);
+        differ(a[k], b[k], buf);
+      }
+    }
+  }
+  if (a.size() != b.size() && r.same) {
+    r.same = false;
+    r.first_difference = name_a + " has " + std::to_string(a.size()) + " blocks, " + name_b +
+                         " has " + std::to_string(b.size());
+  }
+  return r;
+}
+
+}  // namespace freeturn

@@ -1,0 +1,91 @@
+#include "freeturn/job/machine_yaml.hpp"
+
+#include <cmath>
+#include <numbers>
+
+#include "freeturn/job/yaml_reader.hpp"
+
+namespace freeturn {
+namespace {
+
+Axis axis_from(const std::string& name, MapReader& map) {
+  if (name == "X") return Axis::kX;
+  if (name == "Z") return Axis::kZ;
+  if (name == "C") return Axis::kC;
+  if (name == "B") return Axis::kB;
+  map.fail("name", "axis name must be X, Z, C or B, not '" + name + "'");
+}
+
+}  // namespace
+
+MachineDescription load_machine(const std::string& path) {
+  const YAML::Node root = load_yaml_file(path);
+  MapReader map(root, path, "machine");
+  MachineDescription m;
+  m.name = map.text("name");
+  m.plugin = map.text("plugin");
+  const YAML::Node axes = map.child("axes");
+  if (!axes.IsSequence() || axes.size() < 2 || axes.size() > 4)
+    throw InputError(location_of(axes, path), "machine.axes must list 2 to 4 axes");
+  for (std::size_t i = 0; i < axes.size(); ++i) {
+    MapReader a(axes[i], path, "machine.axes[" + std::to_string(i) + "]");
+    AxisSpec s;
+    s.axis = axis_from(a.text("name"), a);
+    s.sign = a.number("sign", 1.0);
+    if (s.sign != 1 && s.sign != -1) a.fail("sign", "sign must be 1 or -1");
+    s.offset = a.number("offset", 0.0);
+    s.min = a.number("min", -std::numeric_limits<double>::infinity());
+    s.max = a.number("max", std::numeric_limits<double>::infinity());
+    if (a.has("min") && a.has("max") && !(s.min < s.max)) a.fail("max", "max must exceed min");
+    const double decimals = a.number("decimals", 6.0);
+    if (decimals != std::floor(decimals) || decimals < 0 || decimals > 12)
+      a.fail("decimals", "decimals must be an integer from 0 to 12");
+    s.decimals = static_cast<int>(decimals);
+    s.max_velocity = a.positive("max_velocity", std::numeric_limits<double>::infinity());
+    s.max_acceleration = a.positive("max_acceleration", std::numeric_limits<double>::infinity());
+    a.finish();
+    for (const AxisSpec& other : m.axes)
+      if (other.axis == s.axis) a.fail("name", std::string("axis ") + axis_letter(s.axis) + " is listed twice");
+    m.axes.push_back(s);
+  }
+  if (!m.has(Axis::kX) || !m.has(Axis::kZ))
+    throw InputError(location_of(axes, path), "machine.axes must include X and Z");
+  if (m.has(Axis::kB) && !m.has(Axis::kC))
+    throw InputError(location_of(axes, path), "a machine with B needs C");
+  if (map.has("c_axis")) {
+    const std::string c = map.text("c_axis");
+    if (c != "wrapped" && c != "accumulating")
+      map.fail("c_axis", "c_axis must be wrapped or accumulating, not '" + c + "'");
+    m.c_wrapped = c == "wrapped";
+  }
+  if (const auto b = map.optional_child("b_axis")) {
+    if (!m.has(Axis::kB)) map.fail("b_axis", "b_axis settings need a B axis in machine.axes");
+    MapReader br(*b, path, "machine.b_axis");
+    m.b_min_deg = br.number("min_deg");
+    m.b_max_deg = br.number("max_deg");
+    if (!(m.b_min_deg < m.b_max_deg)) br.fail("max_deg", "max_deg must exceed min_deg");
+    m.pivot_distance = br.non_negative("pivot_distance", 0.0);
+    br.finish();
+  } else if (m.has(Axis::kB)) {
+    map.fail("axes", "a B axis needs b_axis: {min_deg, max_deg, pivot_distance}");
+  }
+  if (map.has("interpolation")) {
+    const std::string i = map.text("interpolation");
+    if (i != "linear" && i != "pvt")
+      map.fail("interpolation", "interpolation must be linear or pvt, not '" + i + "'");
+    m.interpolation = i == "pvt" ? Interpolation::kCubic : Interpolation::kLinear;
+  }
+  m.max_block_rate = map.positive("max_block_rate", std::numeric_limits<double>::infinity());
+  if (const auto dialect = map.optional_child(m.plugin)) {
+    // Block style, whatever the file used: plugins read flat `key: value` lines.
+    YAML::Node settings = YAML::Clone(*dialect);
+    settings.SetStyle(YAML::EmitterStyle::Block);
+    YAML::Emitter out;
+    out << settings;
+    m.dialect_settings = out.c_str();
+  }
+  map.finish();
+  return m;
+}
+
+}  // namespace freeturn

@@ -1,0 +1,59 @@
+#pragma once
+// One NC program being written by a post-processor plugin: axis records in, the plugin's
+// text out through AtomicFiles (the main program and any child files it opens), all
+// committed together by finish(). Destroyed without finish() — an error anywhere in the
+// pipeline — it leaves no file behind.
+
+#include <map>
+#include <memory>
+#include <string>
+#include <vector>
+
+#include "freeturn/io/atomic_file.hpp"
+#include "freeturn/machine/axis_record.hpp"
+#include "freeturn/machine/machine.hpp"
+#include "freeturn/post_loader.hpp"
+
+namespace freeturn {
+
+struct ProgramSettings {
+  std::string name;  // the job's name
+  double spindle_rpm = 0, feed = 0;
+  long long block_count = -1;  // −1 when not known in advance
+};
+
+class PostProgram final : public AxisSink {
+ public:
+  // Throws InputError with the plugin's message when it refuses the program.
+  PostProgram(const PostPlugin& plugin, const MachineDescription& machine,
+              const ProgramSettings& settings, const std::string& path);
+  ~PostProgram() override;
+
+  void write(std::span<const AxisRecord> chunk) override;
+  // Ends the program and renames every file into place. Returns the paths written.
+  std::vector<std::string> finish();
+
+ private:
+  static int write_bytes(void* context, const char* data, size_t size);
+  static int open_file(void* context, const char* name);
+  static int select_main(void* context);
+  [[noreturn]] void fail(const char* stage) const;
+
+  const PostPlugin& plugin_;
+  MachineDescription machine_;
+  ProgramSettings settings_;
+  ft_program_info info_{};
+  ft_writer writer_{};
+  void* handle_ = nullptr;
+  std::string folder_;
+  std::vector<std::unique_ptr<AtomicFile>> files_;  // [0] is the main program
+  AtomicFile* current_ = nullptr;
+  std::vector<ft_block> blocks_;
+  char error_[512] = {0};
+};
+
+// The machine file for a name (on the machine search path) or a path (absolute, or with
+// a '/' or ".yaml": used as it is). Throws InputError listing where it looked.
+std::string find_machine_file(const std::string& name_or_path);
+
+}  // namespace freeturn

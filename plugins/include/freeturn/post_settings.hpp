@@ -1,0 +1,78 @@
+#pragma once
+// The dialect settings a plugin receives are the YAML text under its key in the machine
+// file. Plugins here keep them flat (`key: value` lines, `#` comments, optional quotes);
+// this header-only reader is for them. A key the plugin does not know is an error, as in
+// every other YAML freeturn reads.
+
+#include <map>
+#include <string>
+
+namespace freeturn::post {
+
+class FlatSettings {
+ public:
+  // Returns false with a message on a line that is not `key: value`.
+  bool parse(const char* text, std::string& error) {
+    std::string s(text ? text : "");
+    std::size_t start = 0;
+    int line = 0;
+    while (start < s.size()) {
+      std::size_t end = s.find('\n', start);
+      if (end == std::string::npos) end = s.size();
+      std::string l = s.substr(start, end - start);
+      start = end + 1;
+      ++line;
+      if (const std::size_t hash = l.find('#'); hash != std::string::npos) l.resize(hash);
+      const std::size_t first = l.find_first_not_of(" \t\r");
+      if (first == std::string::npos) continue;
+      const std::size_t colon = l.find(':');
+      if (colon == std::string::npos) {
+        error = "dialect settings line " + std::to_string(line) + " is not 'key: value'";
+        return false;
+      }
+      std::string key = trim(l.substr(0, colon)), value = trim(l.substr(colon + 1));
+      if (value.size() >= 2 && (value.front() == '"' || value.front() == '\'') && value.back() == value.front())
+        value = value.substr(1, value.size() - 2);
+      values_[key] = value;
+    }
+    return true;
+  }
+
+  std::string text(const std::string& key, const std::string& fallback) {
+    used_[key] = true;
+    const auto it = values_.find(key);
+    return it == values_.end() ? fallback : it->second;
+  }
+  // False (with a message) when the value is not a number.
+  bool number(const std::string& key, double fallback, double& out, std::string& error) {
+    const std::string v = text(key, "");
+    if (v.empty()) {
+      out = fallback;
+      return true;
+    }
+    char* end = nullptr;
+    out = std::strtod(v.c_str(), &end);
+    if (end == v.c_str() || *end != '\0') {
+      error = "dialect setting '" + key + "' must be a number, not '" + v + "'";
+      return false;
+    }
+    return true;
+  }
+  // The first key that was never asked for, or "".
+  std::string unknown_key() const {
+    for (const auto& [key, value] : values_)
+      if (!used_.count(key)) return key;
+    return {};
+  }
+
+ private:
+  static std::string trim(const std::string& s) {
+    const std::size_t a = s.find_first_not_of(" \t\r");
+    if (a == std::string::npos) return {};
+    return s.substr(a, s.find_last_not_of(" \t\r") - a + 1);
+  }
+  std::map<std::string, std::string> values_;
+  std::map<std::string, bool> used_;
+};
+
+}  // namespace freeturn::post

@@ -1,0 +1,109 @@
+#include "freeturn/post_program.hpp"
+
+#include <filesystem>
+
+#include "freeturn/core/error.hpp"
+
+namespace freeturn {
+
+PostProgram::PostProgram(const PostPlugin& plugin, const MachineDescription& machine,
+                         const ProgramSettings& settings, const std::string& path)
+    : plugin_(plugin), machine_(machine), settings_(settings) {
+  folder_ = std::filesystem::path(path).parent_path().string();
+  files_.push_back(std::make_unique<AtomicFile>(path));
+  current_ = files_.front().get();
+  info_.program_name = settings_.name.c_str();
+  info_.machine_name = machine_.name.c_str();
+  info_.dialect_settings = machine_.dialect_settings.c_str();
+  info_.layout.count = static_cast<int>(machine_.axes.size());
+  for (std::size_t i = 0; i < machine_.axes.size() && i < 4; ++i) {
+    info_.layout.letters[i] = axis_letter(machine_.axes[i].axis)[0];
+    info_.layout.decimals[i] = machine_.axes[i].decimals;
+  }
+  info_.c_wrapped = machine_.c_wrapped ? 1 : 0;
+  info_.interpolation = machine_.interpolation == Interpolation::kCubic ? 1 : 0;
+  info_.spindle_rpm = settings_.spindle_rpm;
+  info_.feed = settings_.feed;
+  info_.block_count = settings_.block_count;
+  writer_ = {this, &PostProgram::write_bytes, &PostProgram::open_file, &PostProgram::select_main};
+  handle_ = plugin_.post().create(&info_, &writer_, error_, sizeof error_);
+  if (handle_ == nullptr) fail("create");
+  if (plugin_.post().begin(handle_, error_, sizeof error_) != 0) fail("begin");
+}
+
+PostProgram::~PostProgram() {
+  if (handle_) plugin_.post().destroy(handle_);
+}
+
+void PostProgram::fail(const char* stage) const {
+  throw InputError("post-processor '" + std::string(plugin_.post().name) + "' (" + plugin_.path() +
+                       ")",
+                   std::string(stage) + ": " + (error_[0] ? error_ : "failed without a message"));
+}
+
+void PostProgram::write(std::span<const AxisRecord> chunk) {
+  blocks_.resize(chunk.size());
+  for (std::size_t k = 0; k < chunk.size(); ++k)
+    blocks_[k] = {chunk[k].x, chunk[k].z, chunk[k].c, chunk[k].b, chunk[k].time};
+  if (plugin_.post().blocks(handle_, blocks_.data(), blocks_.size(), error_, sizeof error_) != 0)
+    fail("blocks");
+}
+
+std::vector<std::string> PostProgram::finish() {
+  if (plugin_.post().end(handle_, error_, sizeof error_) != 0) fail("end");
+  std::vector<std::string> paths;
+  for (auto& f : files_) {
+    f->commit();
+    paths.push_back(f->path());
+  }
+  return paths;
+}
+
+int PostProgram::write_bytes(void* context, const char* data, size_t size) {
+  auto* self = static_cast<PostProgram*>(context);
+  try {
+    self->current_->write(std::string_view(data, size));
+    return 0;
+  } catch (const std::exception&) {
+    return 1;
+  }
+}
+
+int PostProgram::open_file(void* context, const char* name) {
+  auto* self = static_cast<PostProgram*>(context);
+  const std::filesystem::path file(name);
+  if (file.empty() || file.has_parent_path() || file.is_absolute()) return 1;
+  try {
+    self->files_.push_back(
+        std::make_unique<AtomicFile>((std::filesystem::path(self->folder_) / file).string()));
+    self->current_ = self->files_.back().get();
+    return 0;
+  } catch (const std::exception&) {
+    return 1;
+  }
+}
+
+int PostProgram::select_main(void* context) {
+  auto* self = static_cast<PostProgram*>(context);
+  self->current_ = self->files_.front().get();
+  return 0;
+}
+
+std::string find_machine_file(const std::string& name) {
+  if (name.find('/') != std::string::npos ||
+      (name.size() > 5 && name.compare(name.size() - 5, 5, ".yaml") == 0)) {
+    if (!std::filesystem::exists(name))
+      throw InputError(name, "the machine file does not exist");
+    return name;
+  }
+  std::string looked;
+  for (const std::string& folder : machine_search_path()) {
+    const std::filesystem::path p = std::filesystem::path(folder) / (name + ".yaml");
+    if (std::filesystem::exists(p)) return p.lexically_normal().string();
+    looked += "\n  " + std::filesystem::path(folder).lexically_normal().string();
+  }
+  throw InputError("machine '" + name + "'", "no " + name + ".yaml in" + looked +
+                                                 "\n(set FREETURN_MACHINE_PATH, or give a path)");
+}
+
+}  // namespace freeturn
