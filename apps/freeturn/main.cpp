@@ -17,6 +17,10 @@ using freeturn::cli::Command;
 const Command kCommands[] = {
     {"sample", "evaluate a job's design surface over its aperture and write it as CSV",
      "freeturn sample JOB.yaml [-o DIR] [--grid N]", freeturn::cli::run_sample},
+    {"ncdiff", "compare two NC programs by value (axis words, codes), ignoring formatting",
+     "freeturn ncdiff A.nc B.nc [--tolerance T]", freeturn::cli::run_ncdiff},
+    {"plugins", "list the post-processors found and the machines that use them",
+     "freeturn plugins", freeturn::cli::run_plugins},
 };
 
 void print_help(std::FILE* out) {

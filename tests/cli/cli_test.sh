@@ -47,4 +47,20 @@ contains "bad job message" "$tmp/err" "$tmp/bad.yaml:7:3: unknown key 'colour' i
 [[ ! -s "$tmp/out.txt" ]] || { echo "FAIL: bad job printed to stdout"; fail=1; }
 [[ ! -e "$tmp/bad/bad.surface.csv" ]] || { echo "FAIL: bad job left an output"; fail=1; }
 
+# ncdiff: the same program reformatted and re-commented is the same (0); an axis word
+# moved beyond the tolerance differs (1, naming the lines); not NC is bad input (2).
+printf '%%\nG21 G18\nG1 X1.000000 Z-0.500000 C10.0 F100\nG1 X0.9 Z-0.4\nM2\n' > "$tmp/a.nc"
+printf 'G18 G21 (units)\nG01 Z-0.5 X1 C10 F100.0\nN20 G1 X0.900000 Z-0.400000 ; move\nM02\n' > "$tmp/b.nc"
+printf '%%\nG21 G18\nG1 X1.000000 Z-0.500000 C10.0 F100\nG1 X0.9001 Z-0.4\nM2\n' > "$tmp/c.nc"
+"$freeturn" ncdiff "$tmp/a.nc" "$tmp/b.nc" > "$tmp/stdout"; expect "ncdiff same" 0 $?
+"$freeturn" ncdiff "$tmp/a.nc" "$tmp/c.nc" > "$tmp/stdout"; expect "ncdiff moved" 1 $?
+contains "ncdiff names the line" "$tmp/stdout" "a.nc:4 vs $tmp/c.nc:4: X 0.9"
+echo "hello, world" > "$tmp/d.txt"
+"$freeturn" ncdiff "$tmp/a.nc" "$tmp/d.txt" > /dev/null 2> "$tmp/err"; expect "ncdiff not NC" 2 $?
+
+# plugins: the iso post and its three machines are found in the build tree.
+"$freeturn" plugins > "$tmp/stdout"; expect "plugins" 0 $?
+contains "iso post listed" "$tmp/stdout" "libfreeturn_post_iso.so)  ok"
+contains "iso machine listed" "$tmp/stdout" "iso-lathe-xzcb           axes XZCB  C accumulating, B -60…60°"
+
 exit $fail

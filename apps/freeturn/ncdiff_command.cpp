@@ -1,0 +1,55 @@
+// freeturn ncdiff A B: semantic comparison of two NC programs (for CI's golden files).
+#include <cstdio>
+#include <cstdlib>
+#include <fstream>
+#include <sstream>
+
+#include "commands.hpp"
+#include "freeturn/core/error.hpp"
+#include "freeturn/io/nc_program.hpp"
+
+namespace freeturn::cli {
+namespace {
+
+std::string read_whole(const std::string& path) {
+  std::ifstream in(path, std::ios::binary);
+  if (!in) throw InputError(path, "cannot open the file for reading");
+  std::ostringstream s;
+  s << in.rdbuf();
+  return s.str();
+}
+
+}  // namespace
+
+int run_ncdiff(const std::vector<std::string>& args) {
+  std::vector<std::string> files;
+  NcDiffOptions o;
+  for (std::size_t i = 0; i < args.size(); ++i) {
+    if (args[i] == "--tolerance" && i + 1 < args.size()) {
+      char* end = nullptr;
+      o.axis_tolerance = std::strtod(args[++i].c_str(), &end);
+      if (*end != '\0' || !(o.axis_tolerance >= 0))
+        throw InputError("--tolerance", "must be a number ≥ 0 (mm or degrees)");
+    } else {
+      files.push_back(args[i]);
+    }
+  }
+  if (files.size() != 2) {
+    std::fprintf(stderr, "usage: freeturn ncdiff A.nc B.nc [--tolerance T]\n");
+    return kExitBadInput;
+  }
+  const auto a = parse_nc(read_whole(files[0]), files[0]);
+  const auto b = parse_nc(read_whole(files[1]), files[1]);
+  const NcDiffResult r = nc_diff(a, files[0], b, files[1], o);
+  std::printf("%ld blocks vs %ld blocks\n", r.blocks_a, r.blocks_b);
+  for (char l : std::string("XZCBF"))
+    if (r.largest[l - 'A'] > 0) std::printf("largest |Δ%c| %.3g\n", l, r.largest[l - 'A']);
+  if (r.same) {
+    std::printf("same within %.3g\n", o.axis_tolerance);
+    return kExitOk;
+  }
+  std::printf("first difference: %s\n", r.first_difference.c_str());
+  return kExitCheckFailed;
+}
+
+}  // namespace freeturn::cli
