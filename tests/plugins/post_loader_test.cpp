@@ -110,7 +110,7 @@ TEST_SUITE("plugins") {
     }
   }
 
-  TEST_CASE("ncdiff: reformatted and re-commented is the same; a moved axis word is not") {
+  TEST_CASE("ncdiff: reformatted and re-commented is the same, a moved axis word is not") {
     const std::string a = "%\n(program)\nG21 G18\nG1 X1.000000 Z-0.500000 C10.0 F100\nG1 X0.9 Z-0.4\nM2\n";
     const std::string b = "%\nG18 G21 ; units\nG01 Z-0.5 X1 C10 F100.0 (same)\n\nN20 G1 X0.900000 Z-0.400000\nM02\n";
     const auto r = nc_diff(parse_nc(a, "a.nc"), "a.nc", parse_nc(b, "b.nc"), "b.nc");
