@@ -51,63 +51,105 @@ TEST_SUITE("plugins") {
     unsetenv("FREETURN_PLUGIN_PATH");
   }
 
-  TEST_CASE("iso: the program parses back to the axis values at the declared decimals") {
-    const MachineDescription m = load_machine(kMachines + "/iso-lathe-xzc.yaml");
-    CHECK(m.plugin == "iso");
-    CHECK(!m.c_wrapped);
-    const auto iso = PostPlugin::load_file(kPlugins + "/libfreeturn_post_iso.so");
+  TEST_CASE("every post: its program parses back to the axis values at the declared decimals") {
+    struct Case {
+      const char* machine;
+      bool chord;  // chord-controlled points (varying block times) or equal angles
+    };
+    for (const Case& c : {Case{"iso-lathe-xzc", true}, Case{"iso-lathe-xzcb", true},
+                          Case{"moore-nanotech-250upl", true}, Case{"moore-nanotech-350fg-b", true},
+                          Case{"precitech-nanoform-250", false}}) {
+      CAPTURE(c.machine);
+      MachineDescription m = load_machine(kMachines + "/" + c.machine + ".yaml");
+      // Small child files, so that the Moore main program calls several.
+      const std::size_t child = m.dialect_settings.find("child_blocks: 500000");
+      if (child != std::string::npos) m.dialect_settings.replace(child, 20, "child_blocks: 300");
+      const auto plugin = PostPlugin::load_file(kPlugins + "/libfreeturn_post_" + m.plugin + ".so");
+      test::TempDir dir;
+      const EvenAsphere asphere(1 / 30.0, -0.5);
+      SpiralOptions o;
+      o.outer_radius = 3;
+      o.pitch = 0.2;
+      o.points.rule = c.chord ? CutterPointRule::kChordError : CutterPointRule::kEqualAngle;
+      o.points.tolerance = 1e-4;
+      o.points.points_per_revolution = 50;
+      CompensationOptions comp;
+      comp.tool.nose_radius = 0.5;
+      if (m.has(Axis::kB)) {
+        comp.b_mode = BMode::kFollow;
+        comp.pivot_distance = m.pivot_distance;
+      }
+      ToolCheckOptions checks;
+      checks.outer_radius = 3;
+      MotionOptions motion;
+      motion.spindle_rpm = 20;
+      const std::string path = dir.file(std::string("job.") + c.machine + ".nc");
+      AxisCollector expected;
+      std::vector<std::string> written;
+      {
+        PostProgram program(*plugin, m, {"job", 20, 0}, path);
+        struct Tee final : AxisSink {
+          AxisSink *a = nullptr, *b = nullptr;
+          void write(std::span<const AxisRecord> chunk) override {
+            a->write(chunk);
+            b->write(chunk);
+          }
+        } tee;
+        tee.a = &program;
+        tee.b = &expected;
+        AxisMapper mapper(m, motion, tee);
+        ToolCompensator compensator(asphere, comp, checks, mapper);
+        plan_spiral(asphere, BaseSurface::plane(3), o, compensator);
+        written = program.finish();
+      }
+      // The main program with its child files spliced in where it calls them.
+      std::vector<NcBlock> blocks;
+      for (const NcBlock& b : parse_nc(test::read_file(path), path)) {
+        bool call = false;
+        for (const NcWord& w : b.words)
+          if (!w.numeric && w.text.rfind("M98(", 0) == 0) {
+            const std::string child_path = dir.file(w.text.substr(4, w.text.size() - 5));
+            for (const NcBlock& cb : parse_nc(test::read_file(child_path), child_path))
+              blocks.push_back(cb);
+            call = true;
+          }
+        if (!call) blocks.push_back(b);
+      }
+      if (m.plugin == "moore") CHECK(written.size() > 2);
+      // The last blocks with an X word are the records after the first, in order.
+      std::vector<std::map<char, double>> moves;
+      for (const NcBlock& b : blocks) {
+        std::map<char, double> v;
+        for (const NcWord& w : b.words)
+          if (w.numeric) v[w.letter] = w.value;
+        if (v.count('X')) moves.push_back(v);
+      }
+      const std::size_t n = expected.records.size() - 1;
+      REQUIRE(moves.size() >= n);
+      double worst[4] = {0, 0, 0, 0};
+      for (std::size_t k = 0; k < n; ++k) {
+        const AxisRecord& r = expected.records[k + 1];
+        const auto& v = moves[moves.size() - n + k];
+        worst[0] = std::max(worst[0], std::abs(v.at('X') - r.x));
+        worst[1] = std::max(worst[1], std::abs(v.at('Z') - r.z));
+        // C wrapped: a value just below 360 may be written as 0.
+        worst[2] = std::max(worst[2], std::abs(std::remainder(v.at('C') - r.c, 360.0)));
+        if (m.has(Axis::kB)) worst[3] = std::max(worst[3], std::abs(v.at('B') - r.b));
+      }
+      CHECK(worst[0] <= 0.5e-6 * (1 + 1e-9));
+      CHECK(worst[1] <= 0.5e-6 * (1 + 1e-9));
+      CHECK(worst[2] <= 0.5e-5 * (1 + 1e-9));
+      CHECK(worst[3] <= 0.5e-5 * (1 + 1e-9));
+    }
+  }
+
+  TEST_CASE("precitech refuses varying block times it cannot write") {
+    const MachineDescription m = load_machine(kMachines + "/precitech-nanoform-250.yaml");
+    const auto plugin = PostPlugin::load_file(kPlugins + "/libfreeturn_post_precitech.so");
     test::TempDir dir;
-    const EvenAsphere asphere(1 / 30.0, -0.5);
-    SpiralOptions o;
-    o.outer_radius = 3;
-    o.pitch = 0.2;
-    o.points.rule = CutterPointRule::kEqualAngle;
-    o.points.points_per_revolution = 50;
-    CompensationOptions c;
-    c.tool.nose_radius = 0.5;
-    ToolCheckOptions checks;
-    checks.outer_radius = 3;
-    MotionOptions motion;
-    motion.spindle_rpm = 20;
-    const std::string path = dir.file("job.iso-lathe-xzc.nc");
-    AxisCollector expected;
-    {
-      PostProgram program(*iso, m, {"job", 20, 0}, path);
-      struct Tee final : AxisSink {
-        AxisSink *a, *b;
-        void write(std::span<const AxisRecord> chunk) override {
-          a->write(chunk);
-          b->write(chunk);
-        }
-      } tee;
-      tee.a = &program;
-      tee.b = &expected;
-      AxisMapper mapper(m, motion, tee);
-      ToolCompensator compensator(asphere, c, checks, mapper);
-      plan_spiral(asphere, BaseSurface::plane(3), o, compensator);
-      program.finish();
-    }
-    const auto blocks = parse_nc(test::read_file(path), path);
-    // The motion blocks are the G1 lines after G93, one per record after the first.
-    std::vector<const NcBlock*> moves;
-    bool inverse_time = false;
-    for (const NcBlock& b : blocks) {
-      for (const NcWord& w : b.words)
-        if (w.letter == 'G' && w.value == 93) inverse_time = true;
-      if (inverse_time && !b.words.empty() && b.words[0].letter == 'G' && b.words[0].value == 1)
-        moves.push_back(&b);
-    }
-    REQUIRE(moves.size() == expected.records.size() - 1);
-    for (std::size_t k = 0; k < moves.size(); ++k) {
-      const AxisRecord& r = expected.records[k + 1];
-      std::map<char, double> v;
-      for (const NcWord& w : moves[k]->words) v[w.letter] = w.value;
-      CHECK(std::abs(v['X'] - r.x) <= 0.5e-6 + 1e-12);
-      CHECK(std::abs(v['Z'] - r.z) <= 0.5e-6 + 1e-12);
-      CHECK(std::abs(v['C'] - r.c) <= 0.5e-5 + 1e-12);
-      // F is 1 / (block time in minutes): 50 blocks per revolution at 20 rpm.
-      CHECK(v['F'] == doctest::Approx(20 * 50).epsilon(1e-9));
-    }
+    PostProgram program(*plugin, m, {"job", 20, 0}, dir.file("p.nc"));
+    std::vector<AxisRecord> r = {{1, 0, 0, 0, 0}, {0.9, 0, 10, 0, 0.1}, {0.8, 0, 20, 0, 0.2}};
+    CHECK_THROWS_WITH_AS(program.write(r), doctest::Contains("block times vary"), InputError);
   }
 
   TEST_CASE("ncdiff: reformatted and re-commented is the same, a moved axis word is not") {

@@ -77,12 +77,23 @@ MachineDescription load_machine(const std::string& path) {
   }
   m.max_block_rate = map.positive("max_block_rate", std::numeric_limits<double>::infinity());
   if (const auto dialect = map.optional_child(m.plugin)) {
-    // Block style, whatever the file used: plugins read flat `key: value` lines.
-    YAML::Node settings = YAML::Clone(*dialect);
-    settings.SetStyle(YAML::EmitterStyle::Block);
-    YAML::Emitter out;
-    out << settings;
-    m.dialect_settings = out.c_str();
+    // Plugins take a flat map of scalars, handed over as "key: value" lines with line
+    // breaks and backslashes escaped (\n, \\), so a template can span lines.
+    if (!dialect->IsMap())
+      throw InputError(location_of(*dialect, path), "machine." + m.plugin + " must be a map");
+    for (auto it = dialect->begin(); it != dialect->end(); ++it) {
+      if (!it->second.IsScalar())
+        throw InputError(location_of(it->second, path),
+                         "machine." + m.plugin + "." + it->first.Scalar() +
+                             " must be a single value (a number or a string)");
+      std::string value;
+      for (char ch : it->second.Scalar()) {
+        if (ch == '\\') value += "\\\\";
+        else if (ch == '\n') value += "\\n";
+        else value += ch;
+      }
+      m.dialect_settings += it->first.Scalar() + ": " + value + "\n";
+    }
   }
   map.finish();
   return m;

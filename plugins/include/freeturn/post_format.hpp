@@ -5,6 +5,7 @@
 #include <charconv>
 #include <cmath>
 #include <cstring>
+#include <string>
 
 namespace freeturn::post {
 
@@ -33,6 +34,42 @@ inline int format_wrapped_degrees(double value, int decimals, char* out) {
   double rounded = std::nearbyint(value * scale) / scale;
   if (rounded >= 360.0) rounded -= 360.0;
   return format_fixed(rounded, decimals, out);
+}
+
+// Appends `letter` and the value (fixed decimals; C wrapped when `wrapped`) to `line`.
+// Returns false for NaN or infinity.
+inline bool append_word(std::string& line, char letter, double value, int decimals,
+                        bool wrapped = false) {
+  char buf[48];
+  const int n = wrapped ? format_wrapped_degrees(value, decimals, buf) : format_fixed(value, decimals, buf);
+  if (n == 0) return false;
+  line.push_back(letter);
+  line.append(buf, static_cast<std::size_t>(n));
+  return true;
+}
+
+// Appends the value alone (fixed decimals). Returns false for NaN or infinity.
+inline bool append_number(std::string& line, double value, int decimals) {
+  char buf[48];
+  const int n = format_fixed(value, decimals, buf);
+  if (n == 0) return false;
+  line.append(buf, static_cast<std::size_t>(n));
+  return true;
+}
+
+// A setting's value as written in the machine YAML: "\n" is a line break, "\\" a
+// backslash (the host escapes both so that each setting stays on one line).
+inline std::string unescape_lines(const std::string& s) {
+  std::string out;
+  for (std::size_t i = 0; i < s.size(); ++i) {
+    if (s[i] == '\\' && i + 1 < s.size() && (s[i + 1] == 'n' || s[i + 1] == '\\')) {
+      out.push_back(s[i + 1] == 'n' ? '\n' : '\\');
+      ++i;
+    } else {
+      out.push_back(s[i]);
+    }
+  }
+  return out;
 }
 
 }  // namespace freeturn::post

@@ -1,8 +1,9 @@
 #pragma once
-// The dialect settings a plugin receives are the YAML text under its key in the machine
-// file. Plugins here keep them flat (`key: value` lines, `#` comments, optional quotes);
-// this header-only reader is for them. A key the plugin does not know is an error, as in
-// every other YAML freeturn reads.
+// The dialect settings a plugin receives: the flat map under its key in the machine file,
+// as "key: value" lines, one per key, with line breaks and backslashes in a value escaped
+// as \n and \\ (unescape_lines in post_format.hpp restores them). This header-only reader
+// is for them. A key the plugin does not know is an error, as in every other YAML
+// freeturn reads.
 
 #include <map>
 #include <string>
@@ -22,7 +23,6 @@ class FlatSettings {
       std::string l = s.substr(start, end - start);
       start = end + 1;
       ++line;
-      if (const std::size_t hash = l.find('#'); hash != std::string::npos) l.resize(hash);
       const std::size_t first = l.find_first_not_of(" \t\r");
       if (first == std::string::npos) continue;
       const std::size_t colon = l.find(':');
@@ -31,8 +31,6 @@ class FlatSettings {
         return false;
       }
       std::string key = trim(l.substr(0, colon)), value = trim(l.substr(colon + 1));
-      if (value.size() >= 2 && (value.front() == '"' || value.front() == '\'') && value.back() == value.front())
-        value = value.substr(1, value.size() - 2);
       values_[key] = value;
     }
     return true;
