@@ -106,7 +106,7 @@ int blocks(void* handle, const ft_block* b, size_t count, char* error, size_t si
       p->first_z = b[k].z;
       ft_block above = b[k];
       above.z += p->retract;
-      p->line = "G94 G01 ";
+      p->line = "G94 G01";
       if (!append_block(p, above)) goto bad;
       p->line += " F";
       freeturn::post::append_number(p->line, p->approach_feed, 3);

@@ -72,8 +72,12 @@ std::vector<NcBlock> parse_nc(const std::string& text, const std::string& file) 
           std::string keyword = l.substr(i, e - i);
           for (char& c : keyword) c = static_cast<char>(std::toupper(static_cast<unsigned char>(c)));
           static const std::set<std::string> kKeywords = {"WHILE", "DO", "END", "IF", "GOTO", "THEN"};
-          if (!kKeywords.count(keyword))
-            fail("'" + l.substr(i, e - i) + "' is not an NC word (a letter and a number)");
+          if (!kKeywords.count(keyword)) {
+            std::string what = "'";
+            what += l.substr(i, e - i);
+            what += "' is not an NC word (a letter and a number)";
+            fail(what);
+          }
         }
         // Not a plain word: macro syntax or a keyword; keep the rest of the token.
         std::size_t k = i;
