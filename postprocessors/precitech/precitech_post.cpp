@@ -4,7 +4,8 @@
 // template in the machine YAML. The data lines carry no time: the controller runs them
 // at one block time (PVT, paper 001), given in the header from the program's constant
 // block time; a program whose block times vary is refused unless `time_word` names a
-// word to carry each block's time.
+// word to carry each block's time. Profile programs (X and Z only) run at the job's feed,
+// stated once as a feed line.
 #include <cmath>
 #include <cstdio>
 #include <string>
@@ -18,7 +19,8 @@ namespace {
 struct PrecitechPost {
   const ft_program_info* info = nullptr;
   const ft_writer* writer = nullptr;
-  std::string header, footer, time_word;
+  std::string header, footer, time_word, feed_line;
+  bool profile = false;
   bool first = true;
   double block_time = -1;
   std::string line;
@@ -36,8 +38,12 @@ void* create(const ft_program_info* info, const ft_writer* writer, char* error, 
   p->header = freeturn::post::unescape_lines(s.text("header", "; PVT mode\\n; G08"));
   p->footer = freeturn::post::unescape_lines(s.text("footer", "; end\\nM30"));
   p->time_word = s.text("time_word", "");
+  p->feed_line = s.text("feed_line", "G01 F");
+  p->profile = true;
+  for (int i = 0; i < info->layout.count; ++i)
+    if (info->layout.letters[i] == 'C') p->profile = false;
   if (ok && !s.unknown_key().empty()) {
-    message = "unknown precitech setting '" + s.unknown_key() + "' (known: header, footer, time_word)";
+    message = "unknown precitech setting '" + s.unknown_key() + "' (known: header, footer, time_word, feed_line)";
     ok = false;
   }
   if (ok && p->time_word.size() > 1) {
@@ -57,6 +63,11 @@ int begin(void* handle, char* error, size_t size) {
   std::string head = "; " + std::string(p->info->program_name) + " for " + p->info->machine_name +
                      ", written by freeturn\n; interpolation " +
                      (p->info->interpolation == 1 ? "PVT" : "linear") + "\n" + p->header + "\n";
+  if (p->profile) {
+    head += p->feed_line;
+    freeturn::post::append_number(head, p->info->feed, 3);
+    head += "\n";
+  }
   if (!p->put(head)) {
     std::snprintf(error, size, "cannot write the header");
     return 1;
@@ -69,7 +80,7 @@ int blocks(void* handle, const ft_block* b, size_t count, char* error, size_t si
   const ft_axis_layout& l = p->info->layout;
   for (size_t k = 0; k < count; ++k) {
     p->line.clear();
-    if (!p->first && p->time_word.empty()) {
+    if (!p->first && p->time_word.empty() && !p->profile) {
       if (p->block_time < 0) {
         p->block_time = b[k].time;
         p->line = "; block time ";

@@ -2,6 +2,7 @@
 
 #include "freeturn/job/surface_yaml.hpp"
 #include "freeturn/job/yaml_reader.hpp"
+#include "job_plan_yaml.hpp"
 
 namespace freeturn {
 namespace {
@@ -41,6 +42,7 @@ Job load_job(const std::string& path) {
                          "' must use only letters, digits, '-', '_' and '.' (it names files)");
   job.aperture = read_aperture(map.child("aperture"), path);
   job.surface = surface_from_yaml(map.child("surface"), path, job.aperture.outer_radius);
+  job.plan = detail::read_job_plan(map, job.aperture);
   map.finish();
   return job;
 }

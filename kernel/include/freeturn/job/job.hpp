@@ -3,9 +3,14 @@
 // The schema grows with the planner, tools and machines; unknown keys are errors.
 
 #include <memory>
+#include <optional>
 #include <string>
+#include <vector>
 
+#include "freeturn/path/base_plan.hpp"
+#include "freeturn/path/cutter_points.hpp"
 #include "freeturn/surface/surface.hpp"
+#include "freeturn/tool/tool_checks.hpp"
 
 namespace freeturn {
 
@@ -14,11 +19,43 @@ struct Aperture {
   double inner_radius = 0;  // mm, 0 <= inner < outer
 };
 
+struct Strategy {
+  enum class Mode { kSpiral, kProfile } mode = Mode::kSpiral;
+  bool space = false;  // spiral: on a fitted base surface (space) or a plane (planar)
+  BasePlanOptions base;
+  bool centre_to_edge = false;
+  double pitch = 0;  // mm per revolution (spiral)
+  CutterPointOptions points;
+  BMode b_mode = BMode::kFixed;  // 4-axis: B follows the contact angle
+};
+
+struct Cutting {
+  double spindle_rpm = 0;  // spiral
+  double feed = 0;         // mm/min, profile
+  std::vector<double> roughing_depths;  // mm of stock left by each roughing pass, descending
+  bool enforce_dynamics = true;
+};
+
+struct Outputs {
+  bool nc = true, cl_csv = false, report = true;
+};
+
+// The sections a run needs; a job with only name, aperture and surface can be sampled.
+struct JobPlan {
+  CompensationOptions tool;
+  ToolCheckOptions checks;
+  Strategy strategy;
+  Cutting cutting;
+  std::string machine;  // a machine name or a path to its YAML
+  Outputs outputs;
+};
+
 struct Job {
   std::string file;  // where it was read from
   std::string name;  // used in output file names: letters, digits, '-', '_', '.'
   Aperture aperture;
   std::unique_ptr<Surface> surface;
+  std::optional<JobPlan> plan;  // present when the job has tool, strategy, cutting, machine
 };
 
 // Reads and validates a job file. Throws InputError ("file:line:col: what") on bad input.

@@ -1,0 +1,264 @@
+// freeturn run: a job from YAML to NC programs, cutter-location data and a report.
+//
+// The pipeline streams: planner → tool compensation and checks → machine axes and limits
+// → post-processor plugin, chunk by chunk. Each pass (roughing passes, then the finish)
+// is its own program; every output is written under a temporary name and only renamed
+// into place once the whole job has succeeded, so a job that fails midway leaves nothing.
+#include <unistd.h>
+
+#include <cmath>
+#include <cstdio>
+#include <filesystem>
+#include <memory>
+#include <numbers>
+#include <string>
+#include <vector>
+
+#include "commands.hpp"
+#include "freeturn/core/error.hpp"
+#include "freeturn/io/atomic_file.hpp"
+#include "freeturn/job/job.hpp"
+#include "freeturn/job/machine_yaml.hpp"
+#include "freeturn/machine/axis_mapper.hpp"
+#include "freeturn/path/profile.hpp"
+#include "freeturn/path/spiral.hpp"
+#include "freeturn/post_format.hpp"
+#include "freeturn/post_program.hpp"
+#include "freeturn/tool/tool_compensator.hpp"
+#include "run_report.hpp"
+
+namespace freeturn::cli {
+namespace {
+
+// The design raised by the stock a roughing pass leaves.
+class RaisedSurface final : public Surface {
+ public:
+  RaisedSurface(const Surface& s, double dz) : s_(s), dz_(dz) {}
+  const char* type() const override { return s_.type(); }
+  void sag_gradient(double x, double y, double& z, double& zx, double& zy) const override {
+    s_.sag_gradient(x, y, z, zx, zy);
+    z += dz_;
+  }
+  HeightDerivatives height_derivatives(double x, double y) const override {
+    HeightDerivatives h = s_.height_derivatives(x, y);
+    h.z += dz_;
+    return h;
+  }
+  double defined_radius() const override { return s_.defined_radius(); }
+  bool has_creases() const override { return s_.has_creases(); }
+
+ private:
+  const Surface& s_;
+  double dz_;
+};
+
+// Between compensation and the machine: statistics for the report, the CL CSV rows (each
+// cutter location with the axis record the mapper made of it), progress.
+class PassStage final : public CutterSink, public AxisSink {
+ public:
+  PassStage(AxisMapper* mapper_in, AxisSink& post, AtomicFile* csv, PassFigures& figures,
+            Progress& progress)
+      : post_(post), csv_(csv), figures_(figures), progress_(progress) {
+    (void)mapper_in;
+  }
+  void set_mapper(AxisMapper& m) { mapper_ = &m; }
+
+  void write(std::span<const CutterLocation> chunk) override {
+    cls_ = chunk;
+    mapper_->write(chunk);  // calls back write(std::span<const AxisRecord>) below
+  }
+
+  void write(std::span<const AxisRecord> records) override {
+    post_.write(records);
+    for (std::size_t k = 0; k < records.size(); ++k) {
+      const CutterLocation& cl = cls_[k];
+      figures_.add(cl);
+      if (csv_) row(cl, records[k]);
+    }
+    progress_.update(cls_.back().contact.theta, cls_.back().contact.r, figures_.points);
+  }
+
+  static void header(AtomicFile& csv) {
+    csv.write("theta,x,y,z,nx,ny,nz,tx,ty,tz,b_deg,X,Z,C,B,chord\n");
+  }
+
+ private:
+  void row(const CutterLocation& cl, const AxisRecord& r) {
+    line_.clear();
+    const double values[16] = {cl.contact.theta, cl.contact.point.x(), cl.contact.point.y(),
+                               cl.contact.point.z(), cl.contact.normal.x(), cl.contact.normal.y(),
+                               cl.contact.normal.z(), cl.nose_centre.x(), cl.nose_centre.y(),
+                               cl.nose_centre.z(), cl.b * 180 / std::numbers::pi, r.x, r.z, r.c, r.b,
+                               cl.contact.chord_error};
+    for (int i = 0; i < 16; ++i) {
+      if (i) line_ += ',';
+      post::append_number(line_, values[i], i == 15 ? 12 : 9);
+    }
+    line_ += '\n';
+    csv_->write(line_);
+  }
+
+  AxisMapper* mapper_ = nullptr;
+  AxisSink& post_;
+  AtomicFile* csv_;
+  PassFigures& figures_;
+  Progress& progress_;
+  std::span<const CutterLocation> cls_;
+  std::string line_;
+};
+
+MachineDescription machine_for(const Job& job, const std::string& machine_file) {
+  MachineDescription m = load_machine(machine_file);
+  const JobPlan& plan = *job.plan;
+  const bool spiral = plan.strategy.mode == Strategy::Mode::kSpiral;
+  if (spiral && !m.has(Axis::kC))
+    throw InputError(job.file, "strategy.mode spiral needs a C axis; machine '" + m.name +
+                                   "' has none (use mode: profile, or another machine)");
+  if (plan.strategy.b_mode == BMode::kFollow && !m.has(Axis::kB))
+    throw InputError(job.file, "strategy.b_axis: follow needs a B axis; machine '" + m.name +
+                                   "' has none");
+  if (!spiral) {
+    // Profile turning programs X and Z only; the spindle runs at speed.
+    std::vector<AxisSpec> xz;
+    for (const AxisSpec& a : m.axes)
+      if (a.axis == Axis::kX || a.axis == Axis::kZ) xz.push_back(a);
+    m.axes = xz;
+  }
+  return m;
+}
+
+}  // namespace
+
+int run_run(const std::vector<std::string>& args) {
+  std::string job_path, out_dir = ".";
+  bool quiet = false;
+  for (std::size_t i = 0; i < args.size(); ++i) {
+    if ((args[i] == "-o" || args[i] == "--output") && i + 1 < args.size()) out_dir = args[++i];
+    else if (args[i] == "--quiet" || args[i] == "-q") quiet = true;
+    else if (!args[i].empty() && args[i][0] != '-' && job_path.empty()) job_path = args[i];
+    else throw InputError("usage", "unexpected argument '" + args[i] + "'; usage: freeturn run JOB.yaml [-o DIR] [--quiet]");
+  }
+  if (job_path.empty()) throw InputError("usage", "freeturn run JOB.yaml [-o DIR] [--quiet]");
+  const Job job = load_job(job_path);
+  if (!job.plan)
+    throw InputError(job_path, "the job has no tool, strategy, cutting and machine sections to run");
+  const JobPlan& plan = *job.plan;
+  std::string machine_ref = plan.machine;
+  if (machine_ref.find('/') != std::string::npos && !std::filesystem::path(machine_ref).is_absolute())
+    machine_ref = (std::filesystem::path(job_path).parent_path() / machine_ref).string();
+  const std::string machine_file = find_machine_file(machine_ref);
+  const MachineDescription machine = machine_for(job, machine_file);
+  const auto plugin = PostPlugin::load(machine.plugin);
+
+  std::error_code ec;
+  std::filesystem::create_directories(out_dir, ec);
+  if (ec) throw InputError(out_dir, "cannot create the output folder: " + ec.message());
+  const auto out = [&](const std::string& name) { return (std::filesystem::path(out_dir) / name).string(); };
+
+  RunReport report;
+  report.job = job.name;
+  report.job_file = job_path;
+  report.machine = machine.name;
+  report.plugin = plugin->path();
+
+  // The base surface and the frame the part is cut in.
+  const bool spiral = plan.strategy.mode == Strategy::Mode::kSpiral;
+  BasePlan base;
+  if (spiral) {
+    base = plan_base_surface(*job.surface, job.aperture.inner_radius, job.aperture.outer_radius,
+                             plan.strategy.base);
+    for (const std::string& w : base.warnings) {
+      report.warnings.push_back(w);
+      if (!quiet) std::fprintf(stderr, "warning: %s\n", w.c_str());
+    }
+    report.alpha_max_deg = base.quasi_revolution.max_angle * 180 / std::numbers::pi;
+    report.axis_moved = base.design_about_axis != nullptr;
+  }
+  const Surface& design = spiral ? base.design_to_cut(*job.surface) : *job.surface;
+
+  CompensationOptions compensation = plan.tool;
+  compensation.pivot_distance = machine.has(Axis::kB) ? machine.pivot_distance : 0.0;
+  ToolCheckOptions checks = plan.checks;
+  checks.b_min = machine.b_min_deg * std::numbers::pi / 180;
+  checks.b_max = machine.b_max_deg * std::numbers::pi / 180;
+  MotionOptions motion;
+  motion.spindle_rpm = spiral ? plan.cutting.spindle_rpm : 0.0;
+  motion.feed = plan.cutting.feed;
+  motion.enforce_dynamics = plan.cutting.enforce_dynamics;
+
+  std::vector<double> stock = plan.cutting.roughing_depths;
+  stock.push_back(0.0);  // the finishing pass
+  std::vector<std::unique_ptr<PostProgram>> programs;
+  std::unique_ptr<AtomicFile> csv;
+  const bool progress_on = !quiet && isatty(STDERR_FILENO);
+  for (std::size_t pass = 0; pass < stock.size(); ++pass) {
+    const bool finishing = pass + 1 == stock.size();
+    const std::string suffix = finishing ? "" : ".rough-" + std::to_string(pass + 1);
+    const RaisedSurface surface(design, stock[pass]);
+    PassFigures& figures = report.add_pass(finishing ? "finish" : "rough-" + std::to_string(pass + 1), stock[pass]);
+    AxisCollector discard;
+    AxisSink* post = &discard;
+    if (plan.outputs.nc) {
+      programs.push_back(std::make_unique<PostProgram>(
+          *plugin, machine, ProgramSettings{job.name + suffix, motion.spindle_rpm, motion.feed},
+          out(job.name + "." + machine.name + suffix + ".nc")));
+      post = programs.back().get();
+    }
+    if (finishing && plan.outputs.cl_csv) {
+      csv = std::make_unique<AtomicFile>(out(job.name + ".cl.csv"));
+      PassStage::header(*csv);
+    }
+    Progress progress(progress_on, figures.name);
+    PassStage stage(nullptr, *post, finishing ? csv.get() : nullptr, figures, progress);
+    AxisMapper mapper(machine, motion, stage);
+    stage.set_mapper(mapper);
+    ToolCompensator compensator(surface, compensation, checks, stage);
+    PathSummary summary;
+    if (spiral) {
+      SpiralOptions o;
+      o.pitch = plan.strategy.pitch;
+      o.outer_radius = job.aperture.outer_radius;
+      o.inner_radius = job.aperture.inner_radius;
+      o.centre_to_edge = plan.strategy.centre_to_edge;
+      o.nose_radius = plan.tool.tool.nose_radius;
+      o.points = plan.strategy.points;
+      o.points.interpolation = machine.interpolation;
+      summary = plan_spiral(surface, base.base, o, compensator);
+    } else {
+      ProfileOptions o;
+      o.outer_radius = job.aperture.outer_radius;
+      o.inner_radius = job.aperture.inner_radius;
+      o.points = plan.strategy.points;
+      o.points.interpolation = machine.interpolation;
+      summary = plan_profile(surface, o, compensator);
+    }
+    progress.done();
+    figures.finish(summary, mapper.report(), compensator.report());
+    for (const std::string& w : figures.check_warnings) {
+      report.warnings.push_back(figures.name + ": " + w);
+      if (!quiet) std::fprintf(stderr, "warning: %s: %s\n", figures.name.c_str(), w.c_str());
+    }
+  }
+  // Everything succeeded: write the report, then put every file in place.
+  std::vector<std::string> written;
+  for (auto& p : programs)
+    for (const std::string& f : p->finish()) written.push_back(f);
+  if (csv) {
+    csv->commit();
+    written.push_back(csv->path());
+  }
+  if (plan.outputs.report) {
+    for (const std::string& f : write_report(report, out("report.json"), out("report.html")))
+      written.push_back(f);
+  }
+  if (!quiet) {
+    const PassFigures& f = report.passes.back();
+    std::printf("%s on %s: %ld points, %.1f revolutions, chord error max %.3f nm, cycle %.1f s\n",
+                job.name.c_str(), machine.name.c_str(), f.points, f.revolutions, f.chord_max * 1e6,
+                f.cycle_time);
+    for (const std::string& w : written) std::printf("  %s\n", w.c_str());
+  }
+  return kExitOk;
+}
+
+}  // namespace freeturn::cli

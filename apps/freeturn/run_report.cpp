@@ -1,0 +1,220 @@
+#include "run_report.hpp"
+
+#include <chrono>
+#include <cmath>
+#include <cstdio>
+#include <numbers>
+
+#include "freeturn/io/atomic_file.hpp"
+
+namespace freeturn::cli {
+namespace {
+
+constexpr std::size_t kMaxSamples = 4000;
+
+double now_seconds() {
+  return std::chrono::duration<double>(std::chrono::steady_clock::now().time_since_epoch()).count();
+}
+
+std::string json_string(const std::string& s) {
+  std::string out = "\"";
+  for (char ch : s) {
+    if (ch == '"' || ch == '\\') {
+      out += '\\';
+      out += ch;
+    } else if (static_cast<unsigned char>(ch) < 0x20) {
+      char buf[8];
+      std::snprintf(buf, sizeof buf, "\\u%04x", ch);
+      out += buf;
+    } else {
+      out += ch;
+    }
+  }
+  return out + "\"";
+}
+
+std::string num(double v) {
+  if (!std::isfinite(v)) return "null";
+  char buf[32];
+  std::snprintf(buf, sizeof buf, "%.9g", v);
+  return buf;
+}
+
+std::string html_escape(const std::string& s) {
+  std::string out;
+  for (char ch : s) {
+    if (ch == '<') out += "&lt;";
+    else if (ch == '>') out += "&gt;";
+    else if (ch == '&') out += "&amp;";
+    else out += ch;
+  }
+  return out;
+}
+
+// A polyline plot of (x, y) pairs scaled into a w × h box, with axis labels.
+std::string svg_plot(const std::vector<std::pair<double, double>>& xy, const std::string& title,
+                     const std::string& x_label, const std::string& y_label, bool equal_axes) {
+  const double w = 560, h = 320, m = 48;
+  double x0 = 1e300, x1 = -1e300, y0 = 1e300, y1 = -1e300;
+  for (const auto& [x, y] : xy) {
+    x0 = std::min(x0, x);
+    x1 = std::max(x1, x);
+    y0 = std::min(y0, y);
+    y1 = std::max(y1, y);
+  }
+  if (xy.empty() || !(x1 > x0)) {
+    x0 = 0;
+    x1 = 1;
+  }
+  if (xy.empty() || !(y1 > y0)) {
+    y0 = std::min(0.0, y0 == 1e300 ? 0.0 : y0);
+    y1 = y0 + 1;
+  }
+  double sx = (w - 2 * m) / (x1 - x0), sy = (h - 2 * m) / (y1 - y0);
+  if (equal_axes) sx = sy = std::min(sx, sy);
+  std::string path;
+  char buf[64];
+  for (const auto& [x, y] : xy) {
+    std::snprintf(buf, sizeof buf, "%.1f,%.1f ", m + (x - x0) * sx, h - m - (y - y0) * sy);
+    path += buf;
+  }
+  std::string svg = "<figure><svg xmlns=\"http://www.w3.org/2000/svg\" width=\"" + num(w) +
+                    "\" height=\"" + num(h) + "\" viewBox=\"0 0 " + num(w) + " " + num(h) + "\">";
+  svg += "<rect x=\"0\" y=\"0\" width=\"" + num(w) + "\" height=\"" + num(h) + "\" fill=\"#fff\" stroke=\"#ccc\"/>";
+  svg += "<polyline fill=\"none\" stroke=\"#1f5fa8\" stroke-width=\"0.7\" points=\"" + path + "\"/>";
+  svg += "<text x=\"" + num(w / 2) + "\" y=\"" + num(h - 10) + "\" text-anchor=\"middle\" font-size=\"12\">" +
+         html_escape(x_label) + " (" + num(x0) + " … " + num(x1) + ")</text>";
+  svg += "<text x=\"12\" y=\"" + num(h / 2) + "\" font-size=\"12\" transform=\"rotate(-90 12 " + num(h / 2) +
+         ")\" text-anchor=\"middle\">" + html_escape(y_label) + " (" + num(y0) + " … " + num(y1) + ")</text>";
+  svg += "</svg><figcaption>" + html_escape(title) + "</figcaption></figure>\n";
+  return svg;
+}
+
+}  // namespace
+
+void PassFigures::add(const CutterLocation& cl) {
+  ++points;
+  const double e = cl.contact.chord_error, s = cl.contact.scallop;
+  chord_max = std::max(chord_max, e);
+  scallop_max = std::max(scallop_max, s);
+  chord_sq_ += e * e;
+  scallop_sq_ += s * s;
+  if ((points - 1) % stride == 0) {
+    samples.push_back({cl.contact.point.x(), cl.contact.point.y(), cl.contact.r, e});
+    if (samples.size() >= kMaxSamples) {
+      // Keep every other sample and halve the rate: memory stays bounded.
+      std::size_t j = 0;
+      for (std::size_t i = 0; i < samples.size(); i += 2) samples[j++] = samples[i];
+      samples.resize(j);
+      stride *= 2;
+    }
+  }
+}
+
+void PassFigures::finish(const PathSummary& s, const DynamicsReport& d, const ToolCheckReport& c) {
+  revolutions = s.theta_end / (2 * std::numbers::pi);
+  chord_rms = points > 0 ? std::sqrt(chord_sq_ / static_cast<double>(points)) : 0.0;
+  scallop_rms = points > 0 ? std::sqrt(scallop_sq_ / static_cast<double>(points)) : 0.0;
+  dynamics = d;
+  cycle_time = d.cycle_time;
+  checks = c;
+  const std::string summary = c.summary();
+  std::size_t start = 0;
+  while (start < summary.size()) {
+    const std::size_t end = summary.find('\n', start);
+    check_warnings.push_back(summary.substr(start, end - start));
+    if (end == std::string::npos) break;
+    start = end + 1;
+  }
+}
+
+std::vector<std::string> write_report(const RunReport& r, const std::string& json_path,
+                                      const std::string& html_path) {
+  std::string j = "{\n  \"job\": " + json_string(r.job) + ",\n  \"job_file\": " + json_string(r.job_file) +
+                  ",\n  \"machine\": " + json_string(r.machine) + ",\n  \"plugin\": " + json_string(r.plugin) +
+                  ",\n  \"alpha_max_deg\": " + (r.alpha_max_deg < 0 ? "null" : num(r.alpha_max_deg)) +
+                  ",\n  \"axis_moved\": " + (r.axis_moved ? "true" : "false") + ",\n  \"warnings\": [";
+  for (std::size_t i = 0; i < r.warnings.size(); ++i) j += (i ? ", " : "") + json_string(r.warnings[i]);
+  j += "],\n  \"passes\": [";
+  static const char* const kAxes[4] = {"X", "Z", "C", "B"};
+  for (std::size_t p = 0; p < r.passes.size(); ++p) {
+    const PassFigures& f = r.passes[p];
+    j += std::string(p ? "," : "") + "\n    {\"name\": " + json_string(f.name) + ", \"stock_mm\": " + num(f.stock) +
+         ", \"points\": " + std::to_string(f.points) + ", \"revolutions\": " + num(f.revolutions) +
+         ",\n     \"chord_error_mm\": {\"max\": " + num(f.chord_max) + ", \"rms\": " + num(f.chord_rms) +
+         "}, \"scallop_mm\": {\"max\": " + num(f.scallop_max) + ", \"rms\": " + num(f.scallop_rms) +
+         "},\n     \"cycle_time_s\": " + num(f.cycle_time) + ", \"max_rpm\": " + num(f.dynamics.max_rpm) +
+         ", \"max_rpm_limited_by\": " + json_string(f.dynamics.limiting) + ",\n     \"peak_velocity\": {";
+    for (int a = 0; a < 4; ++a)
+      j += std::string(a ? ", " : "") + "\"" + kAxes[a] + "\": " + num(f.dynamics.peak_velocity[a]);
+    j += "}, \"peak_acceleration\": {";
+    for (int a = 0; a < 4; ++a)
+      j += std::string(a ? ", " : "") + "\"" + kAxes[a] + "\": " + num(f.dynamics.peak_acceleration[a]);
+    j += "}, \"peak_block_rate\": " + num(f.dynamics.peak_block_rate) + ",\n     \"checks\": {";
+    for (int c = 0; c < kToolCheckCount; ++c) {
+      const CheckFinding& k = f.checks.findings[c];
+      j += std::string(c ? ", " : "") + json_string(tool_check_name(static_cast<ToolCheck>(c))) +
+           ": {\"violations\": " + std::to_string(k.count) + ", \"worst\": " + num(k.worst) + "}";
+    }
+    j += "}}";
+  }
+  j += "\n  ]\n}\n";
+  AtomicFile json(json_path);
+  json.write(j);
+
+  std::string h = "<!DOCTYPE html>\n<html lang=\"en\"><head><meta charset=\"utf-8\"><title>freeturn: " +
+                  html_escape(r.job) +
+                  "</title><style>body{font-family:sans-serif;max-width:1200px;margin:2em auto;color:#222}"
+                  "table{border-collapse:collapse}td,th{border:1px solid #ccc;padding:4px 8px;text-align:right}"
+                  "th{text-align:left}figure{display:inline-block;margin:8px}.warn{color:#a15c00}</style></head><body>\n";
+  h += "<h1>" + html_escape(r.job) + " on " + html_escape(r.machine) + "</h1>\n";
+  if (r.alpha_max_deg >= 0) h += "<p>Quasi-revolution angle on the base: α<sub>max</sub> = " + num(r.alpha_max_deg) + "°</p>\n";
+  for (const std::string& w : r.warnings) h += "<p class=\"warn\">" + html_escape(w) + "</p>\n";
+  h += "<table><tr><th>pass</th><th>points</th><th>revolutions</th><th>chord max (nm)</th><th>chord rms (nm)</th>"
+       "<th>scallop max (nm)</th><th>cycle (s)</th><th>max rpm</th></tr>\n";
+  for (const PassFigures& f : r.passes)
+    h += "<tr><th>" + html_escape(f.name) + "</th><td>" + std::to_string(f.points) + "</td><td>" + num(f.revolutions) +
+         "</td><td>" + num(f.chord_max * 1e6) + "</td><td>" + num(f.chord_rms * 1e6) + "</td><td>" +
+         num(f.scallop_max * 1e6) + "</td><td>" + num(f.cycle_time) + "</td><td>" + num(f.dynamics.max_rpm) + "</td></tr>\n";
+  h += "</table>\n";
+  const PassFigures& f = r.passes.back();
+  std::vector<std::pair<double, double>> top, error;
+  for (const PlotPoint& p : f.samples) {
+    top.emplace_back(p.x, p.y);
+    error.emplace_back(p.r, p.chord * 1e6);
+  }
+  h += svg_plot(top, "The finishing path seen from above (every " + std::to_string(f.stride) + "th point)", "x (mm)", "y (mm)", true);
+  h += svg_plot(error, "Predicted chord error along the radius", "r (mm)", "chord error (nm)", false);
+  h += "</body></html>\n";
+  AtomicFile html(html_path);
+  html.write(h);
+  json.commit();
+  html.commit();
+  return {json_path, html_path};
+}
+
+Progress::Progress(bool enabled, std::string label) : enabled_(enabled), label_(std::move(label)) {
+  start_ = last_print_ = now_seconds();
+}
+
+void Progress::update(double, double r, long points) {
+  if (!enabled_) return;
+  if (first_r_ < 0) first_r_ = r;
+  const double t = now_seconds();
+  if (t - last_print_ < 0.25) return;
+  last_print_ = t;
+  const double elapsed = t - start_;
+  const double done = first_r_ > 0 ? std::clamp(1 - r / first_r_, 0.0, 1.0) : 0.0;
+  // Area swept grows as 1 − (r/r₀)², which tracks the point count on a spiral better.
+  const double fraction = 1 - (1 - done) * (1 - done);
+  const double left = fraction > 0.01 ? elapsed * (1 - fraction) / fraction : 0;
+  std::fprintf(stderr, "\r%s: %ld points, %.0f points/s, %3.0f%%, about %.0f s left   ", label_.c_str(),
+               points, points / std::max(elapsed, 1e-9), 100 * fraction, left);
+  std::fflush(stderr);
+}
+
+void Progress::done() {
+  if (enabled_) std::fprintf(stderr, "\r%*s\r", 80, "");
+}
+
+}  // namespace freeturn::cli

@@ -1,0 +1,72 @@
+#pragma once
+// What `freeturn run` reports: figures per pass, gathered while the pass streams (in
+// bounded memory: the plot series are decimated as they grow), then report.json and a
+// self-contained report.html with inline SVG plots.
+
+#include <string>
+#include <vector>
+
+#include "freeturn/machine/axis_mapper.hpp"
+#include "freeturn/path/cutter_points.hpp"
+#include "freeturn/tool/tool_checks.hpp"
+
+namespace freeturn::cli {
+
+struct PlotPoint {
+  double x, y, r, chord;
+};
+
+struct PassFigures {
+  std::string name;
+  double stock = 0;  // mm left above the design by this pass
+  long points = 0;
+  double revolutions = 0;
+  double chord_max = 0, chord_rms = 0, scallop_max = 0, scallop_rms = 0;  // mm
+  double cycle_time = 0;  // s
+  DynamicsReport dynamics;
+  ToolCheckReport checks;
+  std::vector<std::string> check_warnings;
+  std::vector<PlotPoint> samples;  // every `stride`-th point
+  long stride = 1;
+
+  void add(const CutterLocation& cl);
+  void finish(const PathSummary& s, const DynamicsReport& d, const ToolCheckReport& c);
+
+ private:
+  double chord_sq_ = 0, scallop_sq_ = 0;
+};
+
+struct RunReport {
+  std::string job, job_file, machine, plugin;
+  double alpha_max_deg = -1;  // spirals: the quasi-revolution angle on the base
+  bool axis_moved = false;
+  std::vector<std::string> warnings;
+  std::vector<PassFigures> passes;
+
+  PassFigures& add_pass(const std::string& name, double stock) {
+    passes.emplace_back();
+    passes.back().name = name;
+    passes.back().stock = stock;
+    return passes.back();
+  }
+};
+
+// Writes both files atomically; returns their paths.
+std::vector<std::string> write_report(const RunReport& r, const std::string& json_path,
+                                      const std::string& html_path);
+
+// A progress line on a terminal: points done, rate, estimated time left (from θ or r).
+class Progress {
+ public:
+  Progress(bool enabled, std::string label);
+  void update(double theta, double r, long points);
+  void done();
+
+ private:
+  bool enabled_;
+  std::string label_;
+  double start_ = 0, last_print_ = 0;
+  double first_r_ = -1;
+};
+
+}  // namespace freeturn::cli
