@@ -2,150 +2,86 @@
 // G21 (metric; never G71, a lathe cycle in LinuxCNC 2.9), G18 (ZX plane), G8 (radius
 // mode), inverse-time feed G93 with F on every G1 line (F = 1 / block time in minutes),
 // C accumulating, no Moore-only codes. Comments in parentheses.
-#include <cstdio>
-#include <cstring>
 #include <string>
 
+#include "freeturn/post_adapter.hpp"
 #include "freeturn/post_format.hpp"
-#include "freeturn/post_plugin.h"
-#include "freeturn/post_settings.hpp"
 
 namespace {
 
-struct IsoPost {
-  const ft_program_info* info = nullptr;
-  const ft_writer* writer = nullptr;
-  double retract = 1.0;        // mm above the first point for the approach
-  double approach_feed = 20;   // mm/min for the plunge to the first point
-  double first_z = 0;
-  bool first = true;
-  std::string line;
+using freeturn::post::append_number;
+using freeturn::post::append_word;
+using freeturn::post::PostError;
 
-  bool put(const std::string& s) { return writer->write(writer->context, s.data(), s.size()) == 0; }
-
-  void append_axis(char letter, double value, int decimals) {
-    char buf[48];
-    buf[0] = letter;
-    const int n = letter == 'C' && info->c_wrapped
-                      ? freeturn::post::format_wrapped_degrees(value, decimals, buf + 1)
-                      : freeturn::post::format_fixed(value, decimals, buf + 1);
-    line.push_back(' ');
-    line.append(buf, static_cast<std::size_t>(n + 1));
+class IsoPost {
+ public:
+  IsoPost(const ft_program_info& info, const freeturn::post::Output& out,
+          freeturn::post::FlatSettings& settings)
+      : info_(info), out_(out) {
+    std::string message;
+    if (!settings.number("retract", 1.0, retract_, message) ||
+        !settings.number("approach_feed", 20.0, approach_feed_, message))
+      throw PostError(message);
   }
 
-  // The axis words of a block in the machine's order.
-  bool append_axes(const ft_block& b, char* error, std::size_t size) {
-    for (int i = 0; i < info->layout.count; ++i) {
-      const char letter = info->layout.letters[i];
-      const double v = letter == 'X' ? b.x : letter == 'Z' ? b.z : letter == 'C' ? b.c : b.b;
-      if (!std::isfinite(v)) {
-        std::snprintf(error, size, "axis %c is not a finite number", letter);
-        return false;
+  void begin() {
+    out_.put("%\n(" + std::string(info_.program_name) + " for " + info_.machine_name +
+             ", written by freeturn)\nG21 G18 G8 G90 G40 G94\n");
+  }
+
+  void blocks(const ft_block* b, std::size_t count) {
+    for (std::size_t k = 0; k < count; ++k) {
+      line_.clear();
+      if (first_) {
+        // Approach: up, over, then down at a slow feed, then inverse-time feed.
+        first_ = false;
+        first_z_ = b[k].z;
+        line_ = "G0 ";
+        append_word(line_, 'Z', b[k].z + retract_, 6);
+        line_ += "\nG0";
+        for (int i = 0; i < info_.layout.count; ++i)
+          if (info_.layout.letters[i] != 'Z') word(b[k], i);
+        line_ += "\nG1 ";
+        append_word(line_, 'Z', b[k].z, 6);
+        line_ += " F";
+        append_number(line_, approach_feed_, 3);
+        line_ += "\nG93\n";
+      } else {
+        if (!(b[k].time > 0)) throw PostError("a block has no duration");
+        line_ = "G1";
+        for (int i = 0; i < info_.layout.count; ++i) word(b[k], i);
+        // LinuxCNC's G93: F = 1 / (block time in minutes), on every G1 line.
+        line_ += " F";
+        append_number(line_, 60.0 / b[k].time, 6);
+        line_ += '\n';
       }
-      append_axis(letter, v, info->layout.decimals[i]);
+      out_.put(line_);
     }
-    return true;
   }
+
+  void end() {
+    std::string tail = "G94\nG0 ";
+    append_word(tail, 'Z', first_z_ + retract_, 6);
+    out_.put(tail + "\nM2\n%\n");
+  }
+
+ private:
+  void word(const ft_block& b, int i) {
+    const char letter = info_.layout.letters[i];
+    const double v = letter == 'X' ? b.x : letter == 'Z' ? b.z : letter == 'C' ? b.c : b.b;
+    line_ += ' ';
+    if (!append_word(line_, letter, v, info_.layout.decimals[i], letter == 'C' && info_.c_wrapped))
+      throw PostError(std::string("axis ") + letter + " is not a finite number");
+  }
+
+  const ft_program_info& info_;
+  const freeturn::post::Output& out_;
+  double retract_ = 1.0, approach_feed_ = 20;
+  double first_z_ = 0;
+  bool first_ = true;
+  std::string line_;  // reused: no allocation per block
 };
-
-void* create(const ft_program_info* info, const ft_writer* writer, char* error, size_t size) {
-  auto* p = new IsoPost;
-  p->info = info;
-  p->writer = writer;
-  freeturn::post::FlatSettings settings;
-  std::string message;
-  if (!settings.parse(info->dialect_settings, message) ||
-      !settings.number("retract", 1.0, p->retract, message) ||
-      !settings.number("approach_feed", 20.0, p->approach_feed, message)) {
-    std::snprintf(error, size, "%s", message.c_str());
-    delete p;
-    return nullptr;
-  }
-  if (const std::string key = settings.unknown_key(); !key.empty()) {
-    std::snprintf(error, size, "unknown iso setting '%s' (known: retract, approach_feed)", key.c_str());
-    delete p;
-    return nullptr;
-  }
-  return p;
-}
-
-int begin(void* handle, char* error, size_t size) {
-  auto* p = static_cast<IsoPost*>(handle);
-  std::string head = "%\n(" + std::string(p->info->program_name) + " for " + p->info->machine_name +
-                     ", written by freeturn)\n";
-  head += "G21 G18 G8 G90 G40 G94\n";
-  if (!p->put(head)) {
-    std::snprintf(error, size, "cannot write the program header");
-    return 1;
-  }
-  return 0;
-}
-
-int blocks(void* handle, const ft_block* b, size_t count, char* error, size_t size) {
-  auto* p = static_cast<IsoPost*>(handle);
-  for (size_t k = 0; k < count; ++k) {
-    p->line.clear();
-    if (p->first) {
-      // Approach: up, over, then down at a slow feed, then inverse-time feed.
-      p->first = false;
-      p->first_z = b[k].z;
-      p->line = "G0";
-      p->append_axis('Z', b[k].z + p->retract, 6);
-      p->line += "\nG0";
-      ft_block over = b[k];
-      for (int i = 0; i < p->info->layout.count; ++i) {
-        const char letter = p->info->layout.letters[i];
-        if (letter == 'Z') continue;
-        const double v = letter == 'X' ? over.x : letter == 'C' ? over.c : over.b;
-        p->append_axis(letter, v, p->info->layout.decimals[i]);
-      }
-      p->line += "\nG1";
-      p->append_axis('Z', b[k].z, 6);
-      p->line += " F";
-      char buf[48];
-      p->line.append(buf, static_cast<std::size_t>(freeturn::post::format_fixed(p->approach_feed, 3, buf)));
-      p->line += "\nG93\n";
-    } else {
-      if (!(b[k].time > 0)) {
-        std::snprintf(error, size, "block %zu has no duration", k);
-        return 1;
-      }
-      p->line = "G1";
-      if (!p->append_axes(b[k], error, size)) return 1;
-      // LinuxCNC's G93: F = 1 / (block time in minutes), on every G1 line.
-      p->line += " F";
-      char buf[48];
-      p->line.append(buf, static_cast<std::size_t>(freeturn::post::format_fixed(60.0 / b[k].time, 6, buf)));
-      p->line += '\n';
-    }
-    if (!p->put(p->line)) {
-      std::snprintf(error, size, "cannot write block %zu", k);
-      return 1;
-    }
-  }
-  return 0;
-}
-
-int end(void* handle, char* error, size_t size) {
-  auto* p = static_cast<IsoPost*>(handle);
-  std::string tail = "G94\nG0";
-  char buf[48];
-  tail += " Z";
-  tail.append(buf, static_cast<std::size_t>(freeturn::post::format_fixed(p->first_z + p->retract, 6, buf)));
-  tail += "\nM2\n%\n";
-  if (!p->put(tail)) {
-    std::snprintf(error, size, "cannot write the program end");
-    return 1;
-  }
-  return 0;
-}
-
-void destroy(void* handle) { delete static_cast<IsoPost*>(handle); }
-
-const ft_post kPost = {FREETURN_POST_ABI_VERSION, "iso", create, begin, blocks, end, destroy};
 
 }  // namespace
 
-extern "C" __attribute__((visibility("default"))) const ft_post* freeturn_post_entry(void) {
-  return &kPost;
-}
+FREETURN_EXPORT_POST(IsoPost, "iso")

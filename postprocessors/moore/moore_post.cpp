@@ -5,176 +5,126 @@
 // C-axis mode (M79). Long programs are split: the main program calls child point files
 // with M98(<name>_NNN.nc), each ending in M99. The codes whose meaning public programs do
 // not settle (the header and footer lines) come from the machine YAML.
-#include <cmath>
 #include <cstdio>
 #include <string>
 
+#include "freeturn/post_adapter.hpp"
 #include "freeturn/post_format.hpp"
-#include "freeturn/post_plugin.h"
-#include "freeturn/post_settings.hpp"
 
 namespace {
 
-struct MoorePost {
-  const ft_program_info* info = nullptr;
-  const ft_writer* writer = nullptr;
-  std::string header, footer, spindle;
-  double retract = 1.0, approach_feed = 200, child_blocks = 0;
-  int time_decimals = 6;
-  bool first = true;
-  double last_time = -1;
-  double first_z = 0;
-  long long in_child = 0;
-  int children = 0;
-  std::string line;
+using freeturn::post::append_number;
+using freeturn::post::append_word;
+using freeturn::post::PostError;
 
-  bool put(const std::string& s) { return writer->write(writer->context, s.data(), s.size()) == 0; }
-};
+class MoorePost {
+ public:
+  MoorePost(const ft_program_info& info, const freeturn::post::Output& out,
+            freeturn::post::FlatSettings& s)
+      : info_(info), out_(out) {
+    std::string message;
+    double time_decimals = 6;
+    if (!s.number("retract", 1.0, retract_, message) ||
+        !s.number("approach_feed", 200.0, approach_feed_, message) ||
+        !s.number("child_blocks", 0.0, child_blocks_, message) ||
+        !s.number("time_decimals", 6.0, time_decimals, message))
+      throw PostError(message);
+    time_decimals_ = static_cast<int>(time_decimals);
+    header_ = freeturn::post::unescape_lines(
+        s.text("header", "G71 G01 G18 G40 G63 G90 G94 G54\\nT0101\\nG53 Z-180.\\nM80\\nG09 C0.0\\nG92 C0.0"));
+    footer_ = freeturn::post::unescape_lines(s.text("footer", "G53 Z-180.\\nM79\\nG52\\nT0000\\nM30"));
+    spindle_ = s.text("spindle", "M03");
+    bool has_c = false;
+    for (int i = 0; i < info.layout.count; ++i) has_c = has_c || info.layout.letters[i] == 'C';
+    if (!has_c) throw PostError("the moore post writes slow-tool-servo programs: the machine needs a C axis");
+  }
 
-void* create(const ft_program_info* info, const ft_writer* writer, char* error, size_t size) {
-  auto* p = new MoorePost;
-  p->info = info;
-  p->writer = writer;
-  freeturn::post::FlatSettings s;
-  std::string message;
-  double time_decimals = 6;
-  bool ok = s.parse(info->dialect_settings, message) &&
-            s.number("retract", 1.0, p->retract, message) &&
-            s.number("approach_feed", 200.0, p->approach_feed, message) &&
-            s.number("child_blocks", 0.0, p->child_blocks, message) &&
-            s.number("time_decimals", 6.0, time_decimals, message);
-  p->header = freeturn::post::unescape_lines(
-      s.text("header", "G71 G01 G18 G40 G63 G90 G94 G54\\nT0101\\nG53 Z-180.\\nM80\\nG09 C0.0\\nG92 C0.0"));
-  p->footer = freeturn::post::unescape_lines(s.text("footer", "G53 Z-180.\\nM79\\nG52\\nT0000\\nM30"));
-  p->spindle = s.text("spindle", "M03");
-  p->time_decimals = static_cast<int>(time_decimals);
-  if (ok && !s.unknown_key().empty()) {
-    message = "unknown moore setting '" + s.unknown_key() +
-              "' (known: header, footer, spindle, retract, approach_feed, child_blocks, time_decimals)";
-    ok = false;
+  void begin() {
+    std::string head = "( " + std::string(info_.program_name) + " for " + info_.machine_name +
+                       ", written by freeturn )\n" + header_ + "\n" + spindle_ + " S";
+    append_number(head, info_.spindle_rpm, 3);
+    out_.put(head + "\n");
   }
-  if (ok && info->layout.count < 3) {
-    message = "the moore post writes slow-tool-servo programs: the machine needs a C axis";
-    ok = false;
-  }
-  if (!ok) {
-    std::snprintf(error, size, "%s", message.c_str());
-    delete p;
-    return nullptr;
-  }
-  return p;
-}
 
-int begin(void* handle, char* error, size_t size) {
-  auto* p = static_cast<MoorePost*>(handle);
-  std::string head = "( " + std::string(p->info->program_name) + " for " + p->info->machine_name +
-                     ", written by freeturn )\n" + p->header + "\n";
-  char rpm[48];
-  head += p->spindle + " S";
-  head.append(rpm, static_cast<std::size_t>(freeturn::post::format_fixed(p->info->spindle_rpm, 3, rpm)));
-  head += "\n";
-  if (!p->put(head)) {
-    std::snprintf(error, size, "cannot write the header");
-    return 1;
-  }
-  return 0;
-}
-
-// The axis words of a block, in the machine's order, C first as NanoCAM writes them.
-bool append_block(MoorePost* p, const ft_block& b) {
-  const ft_axis_layout& l = p->info->layout;
-  bool ok = true;
-  for (const char letter : {'C', 'X', 'Z', 'B'}) {
-    for (int i = 0; i < l.count; ++i) {
-      if (l.letters[i] != letter) continue;
-      const double v = letter == 'X' ? b.x : letter == 'Z' ? b.z : letter == 'C' ? b.c : b.b;
-      if (!p->line.empty() && p->line.back() != '\n') p->line.push_back(' ');
-      ok = ok && freeturn::post::append_word(p->line, letter, v, l.decimals[i],
-                                             letter == 'C' && p->info->c_wrapped);
-    }
-  }
-  return ok;
-}
-
-int blocks(void* handle, const ft_block* b, size_t count, char* error, size_t size) {
-  auto* p = static_cast<MoorePost*>(handle);
-  for (size_t k = 0; k < count; ++k) {
-    p->line.clear();
-    if (p->first) {
-      // Approach in feed per minute, above the first point, then down to it.
-      p->first = false;
-      p->first_z = b[k].z;
-      ft_block above = b[k];
-      above.z += p->retract;
-      p->line = "G94 G01";
-      if (!append_block(p, above)) goto bad;
-      p->line += " F";
-      freeturn::post::append_number(p->line, p->approach_feed, 3);
-      p->line += "\n";
-      if (!append_block(p, b[k])) goto bad;
-      p->line += "\n";
-      if (!p->put(p->line)) goto io;
-      continue;
-    }
-    if (p->child_blocks > 0 && p->in_child == 0) {
-      // A new child point file, called from the main program.
-      char name[512];
-      std::snprintf(name, sizeof name, "%s_%03d.nc", p->info->program_name, ++p->children);
-      std::string call = std::string("M98(") + name + ")\n";
-      if (p->writer->select_main(p->writer->context) != 0 || !p->put(call) ||
-          p->writer->open_file(p->writer->context, name) != 0) {
-        std::snprintf(error, size, "cannot start the child program %s", name);
-        return 1;
+  void blocks(const ft_block* b, std::size_t count) {
+    for (std::size_t k = 0; k < count; ++k) {
+      line_.clear();
+      if (first_) {
+        // Approach in feed per minute, above the first point, then down to it.
+        first_ = false;
+        first_z_ = b[k].z;
+        ft_block above = b[k];
+        above.z += retract_;
+        line_ = "G94 G01";
+        words(above);
+        line_ += " F";
+        append_number(line_, approach_feed_, 3);
+        line_ += "\n";
+        words(b[k]);
+        out_.put(line_ + "\n");
+        continue;
       }
-      p->last_time = -1;  // every child states its feed
+      if (child_blocks_ > 0 && in_child_ == 0) {
+        // A new child point file, called from the main program.
+        char name[512];
+        std::snprintf(name, sizeof name, "%s_%03d.nc", info_.program_name, ++children_);
+        out_.select_main();
+        out_.put(std::string("M98(") + name + ")\n");
+        out_.open_file(name);
+        last_time_ = -1;  // every child states its feed
+      }
+      if (b[k].time != last_time_) {
+        line_ = "G93 F";
+        append_number(line_, b[k].time, time_decimals_);
+        line_ += "\n";
+        last_time_ = b[k].time;
+      }
+      words(b[k]);
+      line_ += "\n";
+      if (child_blocks_ > 0 && ++in_child_ >= static_cast<long long>(child_blocks_)) {
+        line_ += "M99\n";
+        in_child_ = 0;
+      }
+      out_.put(line_);
     }
-    if (b[k].time != p->last_time) {
-      p->line = "G93 F";
-      freeturn::post::append_number(p->line, b[k].time, p->time_decimals);
-      p->line += "\n";
-      p->last_time = b[k].time;
-    }
-    if (!append_block(p, b[k])) goto bad;
-    p->line += "\n";
-    if (p->child_blocks > 0 && ++p->in_child >= static_cast<long long>(p->child_blocks)) {
-      p->line += "M99\n";
-      p->in_child = 0;
-    }
-    if (!p->put(p->line)) goto io;
   }
-  return 0;
-bad:
-  std::snprintf(error, size, "a block has an axis value that is not a finite number");
-  return 1;
-io:
-  std::snprintf(error, size, "cannot write a block");
-  return 1;
-}
 
-int end(void* handle, char* error, size_t size) {
-  auto* p = static_cast<MoorePost*>(handle);
-  std::string tail;
-  if (p->child_blocks > 0 && p->in_child > 0) tail += "M99\n";
-  if (!tail.empty() && !p->put(tail)) goto io;
-  if (p->children > 0 && p->writer->select_main(p->writer->context) != 0) goto io;
-  tail = "G94\nG01 Z";
-  freeturn::post::append_number(tail, p->first_z + p->retract, 6);
-  tail += " F";
-  freeturn::post::append_number(tail, p->approach_feed, 3);
-  tail += "\n" + p->footer + "\n";
-  if (!p->put(tail)) goto io;
-  return 0;
-io:
-  std::snprintf(error, size, "cannot write the program end");
-  return 1;
-}
+  void end() {
+    if (child_blocks_ > 0 && in_child_ > 0) out_.put("M99\n");
+    if (children_ > 0) out_.select_main();
+    std::string tail = "G94\nG01 ";
+    append_word(tail, 'Z', first_z_ + retract_, 6);
+    tail += " F";
+    append_number(tail, approach_feed_, 3);
+    out_.put(tail + "\n" + footer_ + "\n");
+  }
 
-void destroy(void* handle) { delete static_cast<MoorePost*>(handle); }
+ private:
+  // The axis words of a block, C first as NanoCAM writes them, then X, Z, B.
+  void words(const ft_block& b) {
+    const ft_axis_layout& l = info_.layout;
+    for (const char letter : {'C', 'X', 'Z', 'B'})
+      for (int i = 0; i < l.count; ++i) {
+        if (l.letters[i] != letter) continue;
+        const double v = letter == 'X' ? b.x : letter == 'Z' ? b.z : letter == 'C' ? b.c : b.b;
+        if (!line_.empty() && line_.back() != '\n') line_.push_back(' ');
+        if (!append_word(line_, letter, v, l.decimals[i], letter == 'C' && info_.c_wrapped))
+          throw PostError(std::string("axis ") + letter + " is not a finite number");
+      }
+  }
 
-const ft_post kPost = {FREETURN_POST_ABI_VERSION, "moore", create, begin, blocks, end, destroy};
+  const ft_program_info& info_;
+  const freeturn::post::Output& out_;
+  std::string header_, footer_, spindle_;
+  double retract_ = 1.0, approach_feed_ = 200, child_blocks_ = 0;
+  int time_decimals_ = 6;
+  bool first_ = true;
+  double last_time_ = -1, first_z_ = 0;
+  long long in_child_ = 0;
+  int children_ = 0;
+  std::string line_;  // reused: no allocation per block
+};
 
 }  // namespace
 
-extern "C" __attribute__((visibility("default"))) const ft_post* freeturn_post_entry(void) {
-  return &kPost;
-}
+FREETURN_EXPORT_POST(MoorePost, "moore")

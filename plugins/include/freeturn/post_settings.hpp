@@ -5,6 +5,7 @@
 // is for them. A key the plugin does not know is an error, as in every other YAML
 // freeturn reads.
 
+#include <cstdlib>
 #include <map>
 #include <string>
 
@@ -55,6 +56,12 @@ class FlatSettings {
       return false;
     }
     return true;
+  }
+  // The keys the plugin asked for, comma-separated (for messages).
+  std::string known_keys() const {
+    std::string out;
+    for (const auto& [key, used] : used_) out += (out.empty() ? "" : ", ") + key;
+    return out;
   }
   // The first key that was never asked for, or "".
   std::string unknown_key() const {
