@@ -107,6 +107,11 @@ class PassStage final : public CutterSink, public AxisSink {
   std::string line_;
 };
 
+struct PreparedJob {
+  MachineDescription machine;
+  std::unique_ptr<PostPlugin> plugin;
+};
+
 MachineDescription machine_for(const Job& job, const std::string& machine_file) {
   MachineDescription m = load_machine(machine_file);
   const JobPlan& plan = *job.plan;
@@ -127,32 +132,29 @@ MachineDescription machine_for(const Job& job, const std::string& machine_file) 
   return m;
 }
 
-}  // namespace
-
-int run_run(const std::vector<std::string>& args) {
-  std::string job_path, out_dir = ".";
-  bool quiet = false;
-  for (std::size_t i = 0; i < args.size(); ++i) {
-    if ((args[i] == "-o" || args[i] == "--output") && i + 1 < args.size()) out_dir = args[++i];
-    else if (args[i] == "--quiet" || args[i] == "-q") quiet = true;
-    else if (!args[i].empty() && args[i][0] != '-' && job_path.empty()) job_path = args[i];
-    else throw InputError("usage", "unexpected argument '" + args[i] + "'; usage: freeturn run JOB.yaml [-o DIR] [--quiet]");
-  }
-  if (job_path.empty()) throw InputError("usage", "freeturn run JOB.yaml [-o DIR] [--quiet]");
-  const Job job = load_job(job_path);
+PreparedJob prepare_job(const Job& job) {
   if (!job.plan)
-    throw InputError(job_path, "the job has no tool, strategy, cutting and machine sections to run");
-  const JobPlan& plan = *job.plan;
-  std::string machine_ref = plan.machine;
+    throw InputError(job.file, "the job has no tool, strategy, cutting and machine sections to run");
+  std::string machine_ref = job.plan->machine;
   if (machine_ref.find('/') != std::string::npos && !std::filesystem::path(machine_ref).is_absolute())
-    machine_ref = (std::filesystem::path(job_path).parent_path() / machine_ref).string();
-  const std::string machine_file = find_machine_file(machine_ref);
-  const MachineDescription machine = machine_for(job, machine_file);
-  const auto plugin = PostPlugin::load(machine.plugin);
+    machine_ref = (std::filesystem::path(job.file).parent_path() / machine_ref).string();
+  PreparedJob p;
+  p.machine = machine_for(job, find_machine_file(machine_ref));
+  p.plugin = PostPlugin::load(p.machine.plugin);
+  return p;
+}
 
-  std::error_code ec;
-  std::filesystem::create_directories(out_dir, ec);
-  if (ec) throw InputError(out_dir, "cannot create the output folder: " + ec.message());
+RunReport execute_job(const Job& job, const PreparedJob& prepared, const std::string& out_dir,
+                      bool quiet, bool write) {
+  const JobPlan& plan = *job.plan;
+  const MachineDescription& machine = prepared.machine;
+  const auto& plugin = prepared.plugin;
+  const std::string& job_path = job.file;
+  if (write) {
+    std::error_code ec;
+    std::filesystem::create_directories(out_dir, ec);
+    if (ec) throw InputError(out_dir, "cannot create the output folder: " + ec.message());
+  }
   const auto out = [&](const std::string& name) { return (std::filesystem::path(out_dir) / name).string(); };
 
   RunReport report;
@@ -198,13 +200,13 @@ int run_run(const std::vector<std::string>& args) {
     PassFigures& figures = report.add_pass(finishing ? "finish" : "rough-" + std::to_string(pass + 1), stock[pass]);
     AxisCollector discard;
     AxisSink* post = &discard;
-    if (plan.outputs.nc) {
+    if (write && plan.outputs.nc) {
       programs.push_back(std::make_unique<PostProgram>(
           *plugin, machine, ProgramSettings{job.name + suffix, motion.spindle_rpm, motion.feed},
           out(job.name + "." + machine.name + suffix + ".nc")));
       post = programs.back().get();
     }
-    if (finishing && plan.outputs.cl_csv) {
+    if (write && finishing && plan.outputs.cl_csv) {
       csv = std::make_unique<AtomicFile>(out(job.name + ".cl.csv"));
       PassStage::header(*csv);
     }
@@ -239,6 +241,7 @@ int run_run(const std::vector<std::string>& args) {
       if (!quiet) std::fprintf(stderr, "warning: %s: %s\n", figures.name.c_str(), w.c_str());
     }
   }
+  if (!write) return report;
   // Everything succeeded: write the report, then put every file in place.
   std::vector<std::string> written;
   for (auto& p : programs)
@@ -247,18 +250,60 @@ int run_run(const std::vector<std::string>& args) {
     csv->commit();
     written.push_back(csv->path());
   }
-  if (plan.outputs.report) {
+  if (write && plan.outputs.report) {
     for (const std::string& f : write_report(report, out("report.json"), out("report.html")))
       written.push_back(f);
   }
-  if (!quiet) {
+  if (!quiet && write) {
     const PassFigures& f = report.passes.back();
     std::printf("%s on %s: %ld points, %.1f revolutions, chord error max %.3f nm, cycle %.1f s\n",
                 job.name.c_str(), machine.name.c_str(), f.points, f.revolutions, f.chord_max * 1e6,
                 f.cycle_time);
     for (const std::string& w : written) std::printf("  %s\n", w.c_str());
   }
+  return report;
+}
+
+}  // namespace
+
+int run_run(const std::vector<std::string>& args) {
+  std::string job_path, out_dir = ".";
+  bool quiet = false;
+  for (std::size_t i = 0; i < args.size(); ++i) {
+    if ((args[i] == "-o" || args[i] == "--output") && i + 1 < args.size()) out_dir = args[++i];
+    else if (args[i] == "--quiet" || args[i] == "-q") quiet = true;
+    else if (!args[i].empty() && args[i][0] != '-' && job_path.empty()) job_path = args[i];
+    else throw InputError("usage", "unexpected argument '" + args[i] + "'; usage: freeturn run JOB.yaml [-o DIR] [--quiet]");
+  }
+  if (job_path.empty()) throw InputError("usage", "freeturn run JOB.yaml [-o DIR] [--quiet]");
+  const Job job = load_job(job_path);
+  const PreparedJob prepared = prepare_job(job);
+  execute_job(job, prepared, out_dir, quiet, true);
   return kExitOk;
+}
+
+int run_check(const std::vector<std::string>& args) {
+  std::string job_path;
+  for (const std::string& a : args) {
+    if (!a.empty() && a[0] != '-' && job_path.empty()) job_path = a;
+    else throw InputError("usage", "unexpected argument '" + a + "'; usage: freeturn check JOB.yaml");
+  }
+  if (job_path.empty()) throw InputError("usage", "freeturn check JOB.yaml");
+  // Bad input (the job, the machine, the plugin) is exit 2; a job that would fail is 1.
+  const Job job = load_job(job_path);
+  const PreparedJob prepared = prepare_job(job);
+  try {
+    const RunReport r = execute_job(job, prepared, "", true, false);
+    const PassFigures& f = r.passes.back();
+    std::printf("PASS: %s on %s: %ld points, chord error max %.3f nm, highest rpm %.4g%s\n",
+                job.name.c_str(), r.machine.c_str(), f.points, f.chord_max * 1e6, f.dynamics.max_rpm,
+                r.alpha_max_deg >= 0 ? (", α_max " + std::to_string(r.alpha_max_deg) + "°").c_str() : "");
+    for (const std::string& w : r.warnings) std::printf("warning: %s\n", w.c_str());
+    return kExitOk;
+  } catch (const InputError& e) {
+    std::printf("FAIL: %s\n", e.what());
+    return kExitCheckFailed;
+  }
 }
 
 }  // namespace freeturn::cli

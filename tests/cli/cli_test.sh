@@ -63,4 +63,17 @@ echo "hello, world" > "$tmp/d.txt"
 contains "iso post listed" "$tmp/stdout" "libfreeturn_post_iso.so)  ok"
 contains "iso machine listed" "$tmp/stdout" "iso-lathe-xzcb           axes XZCB  C accumulating, B -60…60°"
 
+# run and check: a job whose spindle is too fast for the machine fails midway; run exits 2
+# and leaves no file behind, check says FAIL and exits 1; at a speed the machine follows,
+# check passes (0).
+sed 's/spindle_rpm: 20/spindle_rpm: 100000/' "$src/configs/jobs/oap_segment.yaml" > "$tmp/fast.yaml"
+"$freeturn" run "$tmp/fast.yaml" -o "$tmp/fast" > /dev/null 2> "$tmp/err"; expect "run too fast" 2 $?
+contains "run names the limit" "$tmp/err" "exceeds the machine's limit at 100000 rpm"
+[[ -z "$(ls -A "$tmp/fast" 2> /dev/null)" ]] || { echo "FAIL: a failed run left files:"; ls "$tmp/fast"; fail=1; }
+"$freeturn" check "$tmp/fast.yaml" > "$tmp/stdout"; expect "check too fast" 1 $?
+contains "check verdict" "$tmp/stdout" "FAIL: "
+"$freeturn" check "$src/configs/jobs/oap_segment.yaml" > "$tmp/stdout"; expect "check ok" 0 $?
+contains "check pass" "$tmp/stdout" "PASS: oap_segment on iso-lathe-xzc"
+"$freeturn" check "$tmp/bad.yaml" > /dev/null 2>&1; expect "check bad job" 2 $?
+
 exit $fail

@@ -118,6 +118,47 @@ TEST_SUITE("job") {
 }
 
 TEST_SUITE("job") {
+  TEST_CASE("bad run sections give file:line:col and what is wrong") {
+    const std::string head =
+        "name: a\naperture: {outer_radius: 5}\nsurface: {type: sphere, radius: 20}\n";
+    const std::string good_tool = "tool: {nose_radius: 0.5}\n";
+    const std::string good_strategy =
+        "strategy: {mode: spiral, spiral: planar, pitch: 0.01, points: {equal_angle: {per_rev: 90}}}\n";
+    const std::string good_rest = "cutting: {spindle_rpm: 10}\nmachine: iso-lathe-xzc\n";
+    struct Case {
+      std::string yaml;
+      const char* message;
+    };
+    const Case cases[] = {
+        {head + "tool: {nose_radius: -0.5}\n" + good_strategy + good_rest,
+         "job.yaml:4:21: tool.nose_radius must be greater than 0, not -0.5"},
+        {head + "tool: {nose_radius: .nan}\n" + good_strategy + good_rest,
+         "job.yaml:4:21: tool.nose_radius must be a finite number"},
+        {head + "tool: {nose_radius: 0.5, colour: red}\n" + good_strategy + good_rest,
+         "job.yaml:4:26: unknown key 'colour' in tool"},
+        {head + good_tool + "strategy: {mode: spiral, spiral: planar, pitch: abc, points: {equal_angle: {per_rev: 90}}}\n" + good_rest,
+         "job.yaml:5:49: strategy.pitch must be a number, not 'abc'"},
+        {head + good_tool + "strategy: {mode: zigzag}\n" + good_rest,
+         "job.yaml:5:18: strategy.mode must be spiral or profile, not 'zigzag'"},
+        {head + good_tool + "strategy: {mode: profile, points: {equal_angle: {per_rev: 90}}}\n" + good_rest,
+         "equal_angle points need a spiral"},
+        {head + good_tool + "strategy: {mode: spiral, spiral: planar, pitch: 0.01, points: {}}\n" + good_rest,
+         "strategy.points takes exactly one of equal_angle, equal_arc, chord"},
+        {head + good_tool + good_strategy + "cutting: {feed: 3}\nmachine: iso-lathe-xzc\n",
+         "cutting is missing the key 'spindle_rpm'"},
+        {head + good_tool + good_strategy + "cutting: {spindle_rpm: 10, roughing: [0.01, 0.02]}\nmachine: m\n",
+         "cutting.roughing depths must decrease"},
+        {head + good_tool + good_strategy + good_rest.substr(0, good_rest.find("machine")),
+         "job is missing the key 'machine'"},
+    };
+    for (const Case& c : cases) {
+      CAPTURE(c.yaml);
+      const std::string message = error_of(c.yaml);
+      CAPTURE(message);
+      CHECK(message.find(c.message) != std::string::npos);
+    }
+  }
+
   TEST_CASE("every surface type loads from YAML with its closed-form sag") {
     struct Case {
       const char* surface;
