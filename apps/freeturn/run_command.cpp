@@ -17,6 +17,7 @@
 #include "commands.hpp"
 #include "freeturn/core/error.hpp"
 #include "freeturn/io/atomic_file.hpp"
+#include "freeturn/io/mesh_export.hpp"
 #include "freeturn/job/job.hpp"
 #include "freeturn/job/machine_yaml.hpp"
 #include "freeturn/machine/axis_mapper.hpp"
@@ -244,6 +245,15 @@ RunReport execute_job(const Job& job, const PreparedJob& prepared, const std::st
   if (!write) return report;
   // Everything succeeded: write the report, then put every file in place.
   std::vector<std::string> written;
+  if (plan.outputs.mesh) {
+    const std::string obj = out(job.name + ".surface.obj"), vtk = out(job.name + ".path.vtk");
+    write_surface_mesh_obj(design, job.aperture.inner_radius, job.aperture.outer_radius, 64, 256, obj);
+    std::vector<Eigen::Vector3d> path;
+    for (const PlotPoint& p : report.passes.back().samples) path.emplace_back(p.x, p.y, p.z);
+    write_polyline_vtk(path, vtk);
+    written.push_back(obj);
+    written.push_back(vtk);
+  }
   for (auto& p : programs)
     for (const std::string& f : p->finish()) written.push_back(f);
   if (csv) {

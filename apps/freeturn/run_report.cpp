@@ -100,7 +100,7 @@ void PassFigures::add(const CutterLocation& cl) {
   chord_sq_ += e * e;
   scallop_sq_ += s * s;
   if ((points - 1) % stride == 0) {
-    samples.push_back({cl.contact.point.x(), cl.contact.point.y(), cl.contact.r, e});
+    samples.push_back({cl.contact.point.x(), cl.contact.point.y(), cl.contact.point.z(), cl.contact.r, e});
     if (samples.size() >= kMaxSamples) {
       // Keep every other sample and halve the rate: memory stays bounded.
       std::size_t j = 0;

@@ -13,7 +13,7 @@
 namespace freeturn::cli {
 
 struct PlotPoint {
-  double x, y, r, chord;
+  double x, y, z, r, chord;
 };
 
 struct PassFigures {

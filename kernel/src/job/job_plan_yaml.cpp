@@ -165,11 +165,14 @@ void read_outputs(MapReader& job, JobPlan& plan) {
   const auto o = job.optional_child("outputs");
   if (!o) return;
   MapReader m(*o, job.file(), "outputs");
-  for (const char* key : {"nc", "cl_csv", "report"}) {
+  const std::pair<const char*, bool*> keys[] = {{"nc", &plan.outputs.nc},
+                                                 {"cl_csv", &plan.outputs.cl_csv},
+                                                 {"report", &plan.outputs.report},
+                                                 {"mesh", &plan.outputs.mesh}};
+  for (const auto& [key, value] : keys) {
     if (const auto v = m.optional_child(key)) {
-      bool b;
-      if (!YAML::convert<bool>::decode(*v, b)) throw InputError(location_of(*v, job.file()), std::string("outputs.") + key + " must be true or false");
-      (std::string(key) == "nc" ? plan.outputs.nc : std::string(key) == "cl_csv" ? plan.outputs.cl_csv : plan.outputs.report) = b;
+      if (!YAML::convert<bool>::decode(*v, *value))
+        throw InputError(location_of(*v, job.file()), std::string("outputs.") + key + " must be true or false");
     }
   }
   m.finish();

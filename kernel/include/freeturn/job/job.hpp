@@ -38,6 +38,7 @@ struct Cutting {
 
 struct Outputs {
   bool nc = true, cl_csv = false, report = true;
+  bool mesh = false;  // the design as OBJ and the path (decimated) as VTK
 };
 
 // The sections a run needs; a job with only name, aperture and surface can be sampled.
