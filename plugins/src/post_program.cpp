@@ -24,6 +24,7 @@ PostProgram::PostProgram(const PostPlugin& plugin, const MachineDescription& mac
   info_.interpolation = machine_.interpolation == Interpolation::kCubic ? 1 : 0;
   info_.spindle_rpm = settings_.spindle_rpm;
   info_.feed = settings_.feed;
+  info_.feed_per_minute = machine_.feed_per_minute ? 1 : 0;
   info_.block_count = settings_.block_count;
   writer_ = {this, &PostProgram::write_bytes, &PostProgram::open_file, &PostProgram::select_main};
   handle_ = plugin_.post().create(&info_, &writer_, error_, sizeof error_);

@@ -45,14 +45,22 @@ class IsoPost {
         append_word(line_, 'Z', b[k].z, 6);
         line_ += " F";
         append_number(line_, approach_feed_, 3);
-        line_ += "\nG93\n";
+        if (info_.feed_per_minute) {
+          line_ += "\nF";
+          append_number(line_, info_.feed, 3);
+          line_ += '\n';
+        } else {
+          line_ += "\nG93\n";
+        }
       } else {
         if (!(b[k].time > 0)) throw PostError("a block has no duration");
         line_ = "G1";
         for (int i = 0; i < info_.layout.count; ++i) word(b[k], i);
-        // LinuxCNC's G93: F = 1 / (block time in minutes), on every G1 line.
-        line_ += " F";
-        append_number(line_, 60.0 / b[k].time, 6);
+        if (!info_.feed_per_minute) {
+          // LinuxCNC's G93: F = 1 / (block time in minutes), on every G1 line.
+          line_ += " F";
+          append_number(line_, 60.0 / b[k].time, 6);
+        }
         line_ += '\n';
       }
       out_.put(line_);

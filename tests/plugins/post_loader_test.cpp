@@ -29,7 +29,7 @@ TEST_SUITE("plugins") {
     CHECK_THROWS_WITH_AS(PostPlugin::load_file(kFixtures + "/missing.so"),
                          doctest::Contains("cannot load the post-processor"), InputError);
     CHECK_THROWS_WITH_AS(PostPlugin::load_file(kFixtures + "/libfreeturn_post_bad_abi.so"),
-                         doctest::Contains("post-processor ABI version 99; this freeturn needs version 1"),
+                         doctest::Contains("post-processor ABI version 99; this freeturn needs version 2"),
                          InputError);
     CHECK_THROWS_WITH_AS(PostPlugin::load_file(kFixtures + "/libfreeturn_post_no_entry.so"),
                          doctest::Contains("does not export freeturn_post_entry"), InputError);
@@ -141,6 +141,30 @@ TEST_SUITE("plugins") {
       CHECK(worst[2] <= 0.5e-5 * (1 + 1e-9));
       CHECK(worst[3] <= 0.5e-5 * (1 + 1e-9));
     }
+  }
+
+  TEST_CASE("iso X-Z profile with feed per minute: G94 and the path feed, no G93") {
+    const MachineDescription m = load_machine(kMachines + "/iso-lathe-xz.yaml");
+    REQUIRE(m.feed_per_minute);
+    const auto plugin = PostPlugin::load_file(kPlugins + "/libfreeturn_post_iso.so");
+    test::TempDir dir;
+    const std::string path = dir.file("profile.nc");
+    {
+      PostProgram program(*plugin, m, {"profile", 0, 2.5}, path);
+      std::vector<AxisRecord> r = {{3, 0.2, 0, 0, 0}, {2, 0.1, 0, 0, 24}, {1, 0.05, 0, 0, 24}};
+      program.write(r);
+      program.finish();
+    }
+    const std::string text = test::read_file(path);
+    CHECK(text.find("G93") == std::string::npos);
+    CHECK(text.find("\nF2.500\n") != std::string::npos);
+    CHECK(text.find("G1 X1.000000 Z0.050000\n") != std::string::npos);
+    // And a machine that programs C cannot take feed per minute.
+    test::TempDir machines;
+    const std::string bad = machines.write(
+        "m.yaml", "name: m\nplugin: iso\naxes: [{name: X}, {name: Z}, {name: C}]\nfeed_mode: per_minute\n");
+    CHECK_THROWS_WITH_AS(load_machine(bad), doctest::Contains("m.yaml:4:12: feed_mode per_minute cannot time C-axis moves"),
+                         InputError);
   }
 
   TEST_CASE("precitech refuses varying block times it cannot write") {

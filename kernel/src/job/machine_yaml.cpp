@@ -76,6 +76,14 @@ MachineDescription load_machine(const std::string& path) {
     m.interpolation = i == "pvt" ? Interpolation::kCubic : Interpolation::kLinear;
   }
   m.max_block_rate = map.positive("max_block_rate", std::numeric_limits<double>::infinity());
+  if (map.has("feed_mode")) {
+    const std::string f = map.text("feed_mode");
+    if (f != "inverse_time" && f != "per_minute")
+      map.fail("feed_mode", "feed_mode must be inverse_time or per_minute, not '" + f + "'");
+    if (f == "per_minute" && m.has(Axis::kC))
+      map.fail("feed_mode", "feed_mode per_minute cannot time C-axis moves: use inverse_time");
+    m.feed_per_minute = f == "per_minute";
+  }
   if (const auto dialect = map.optional_child(m.plugin)) {
     // Plugins take a flat map of scalars, handed over as "key: value" lines with line
     // breaks and backslashes escaped (\n, \\), so a template can span lines.

@@ -18,7 +18,7 @@
 extern "C" {
 #endif
 
-#define FREETURN_POST_ABI_VERSION 1
+#define FREETURN_POST_ABI_VERSION 2
 #define FREETURN_POST_ENTRY "freeturn_post_entry"
 
 /* One block in machine units: mm for X and Z, degrees for C and B (C already wrapped if
@@ -43,6 +43,7 @@ typedef struct ft_program_info {
   int interpolation;             /* 0: linear, 1: PVT */
   double spindle_rpm;            /* 0 in X-Z profile mode */
   double feed;                   /* mm/min in profile mode */
+  int feed_per_minute;           /* 1: program feed per minute (X-Z only); 0: inverse time */
   long long block_count;         /* blocks the program will receive */
 } ft_program_info;
 

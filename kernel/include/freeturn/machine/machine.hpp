@@ -36,6 +36,9 @@ struct MachineDescription {
   double pivot_distance = 0;   // mm, B pivot to nose centre
   Interpolation interpolation = Interpolation::kLinear;
   double max_block_rate = std::numeric_limits<double>::infinity();  // blocks per second
+  // How the program states speed: inverse time (each block's duration: G93) or feed per
+  // minute (G94; X-Z profile programs only, where it is the path feed).
+  bool feed_per_minute = false;
   std::string dialect_settings;  // the YAML text under the dialect's key, for the plugin
 
   bool has(Axis axis) const;
