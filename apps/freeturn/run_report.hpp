@@ -66,6 +66,7 @@ class Progress {
   bool enabled_;
   std::string label_;
   double start_ = 0, last_print_ = 0;
+  double interval_ = 0.25;  // s between updates
   double first_r_ = -1;
 };
 

@@ -76,4 +76,15 @@ contains "check verdict" "$tmp/stdout" "FAIL: "
 contains "check pass" "$tmp/stdout" "PASS: oap_segment on iso-lathe-xzc"
 "$freeturn" check "$tmp/bad.yaml" > /dev/null 2>&1; expect "check bad job" 2 $?
 
+# Progress: on a terminal (a pseudo-terminal from script(1)) run shows points and rate on
+# stderr; with --quiet, or when stderr is not a terminal, it shows none.
+if command -v script > /dev/null; then
+  FREETURN_PROGRESS_INTERVAL=0 script -qec "'$freeturn' run '$src/configs/jobs/oap_segment.yaml' -o '$tmp/p1'" /dev/null > "$tmp/tty.txt"
+  contains "progress on a terminal" "$tmp/tty.txt" "points/s"
+  FREETURN_PROGRESS_INTERVAL=0 script -qec "'$freeturn' run '$src/configs/jobs/oap_segment.yaml' -o '$tmp/p2' --quiet" /dev/null > "$tmp/tty.txt"
+  ! grep -q "points/s" "$tmp/tty.txt" || { echo "FAIL: --quiet still shows progress"; fail=1; }
+  FREETURN_PROGRESS_INTERVAL=0 "$freeturn" run "$src/configs/jobs/oap_segment.yaml" -o "$tmp/p3" > /dev/null 2> "$tmp/err"
+  ! grep -q "points/s" "$tmp/err" || { echo "FAIL: progress shown off a terminal"; fail=1; }
+fi
+
 exit $fail
