@@ -9,6 +9,8 @@
 #include <cmath>
 #include <cstdio>
 #include <filesystem>
+#include <fstream>
+#include <sstream>
 #include <memory>
 #include <numbers>
 #include <string>
@@ -73,9 +75,10 @@ class PassStage final : public CutterSink, public AxisSink {
     post_.write(records);
     for (std::size_t k = 0; k < records.size(); ++k) {
       const CutterLocation& cl = cls_[k];
-      figures_.add(cl);
+      figures_.add(cl, records[k], k > 0 ? records[k - 1] : previous_);
       if (csv_) row(cl, records[k]);
     }
+    if (!records.empty()) previous_ = records.back();
     progress_.update(cls_.back().contact.theta, cls_.back().contact.r, figures_.points);
   }
 
@@ -105,6 +108,7 @@ class PassStage final : public CutterSink, public AxisSink {
   PassFigures& figures_;
   Progress& progress_;
   std::span<const CutterLocation> cls_;
+  AxisRecord previous_;  // the last block of the previous chunk
   std::string line_;
 };
 
@@ -161,6 +165,12 @@ RunReport execute_job(const Job& job, const PreparedJob& prepared, const std::st
   RunReport report;
   report.job = job.name;
   report.job_file = job_path;
+  {
+    std::ifstream in(job_path, std::ios::binary);
+    std::ostringstream text;
+    text << in.rdbuf();
+    report.job_text = text.str();
+  }
   report.machine = machine.name;
   report.plugin = plugin->path();
 

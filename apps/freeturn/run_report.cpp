@@ -54,8 +54,10 @@ std::string html_escape(const std::string& s) {
 }
 
 // A polyline plot of (x, y) pairs scaled into a w × h box, with axis labels.
+// scatter: dots (values along the radius from a spiral), else a line.
 std::string svg_plot(const std::vector<std::pair<double, double>>& xy, const std::string& title,
-                     const std::string& x_label, const std::string& y_label, bool equal_axes) {
+                     const std::string& x_label, const std::string& y_label, bool equal_axes,
+                     bool scatter = false) {
   const double w = 560, h = 320, m = 48;
   double x0 = 1e300, x1 = -1e300, y0 = 1e300, y1 = -1e300;
   for (const auto& [x, y] : xy) {
@@ -77,13 +79,15 @@ std::string svg_plot(const std::vector<std::pair<double, double>>& xy, const std
   std::string path;
   char buf[64];
   for (const auto& [x, y] : xy) {
-    std::snprintf(buf, sizeof buf, "%.1f,%.1f ", m + (x - x0) * sx, h - m - (y - y0) * sy);
+    std::snprintf(buf, sizeof buf, scatter ? "M%.1f %.1fh0 " : "%.1f,%.1f ", m + (x - x0) * sx,
+                  h - m - (y - y0) * sy);
     path += buf;
   }
   std::string svg = "<figure><svg xmlns=\"http://www.w3.org/2000/svg\" width=\"" + num(w) +
                     "\" height=\"" + num(h) + "\" viewBox=\"0 0 " + num(w) + " " + num(h) + "\">";
   svg += "<rect x=\"0\" y=\"0\" width=\"" + num(w) + "\" height=\"" + num(h) + "\" fill=\"#fff\" stroke=\"#ccc\"/>";
-  svg += "<polyline fill=\"none\" stroke=\"#1f5fa8\" stroke-width=\"0.7\" points=\"" + path + "\"/>";
+  svg += scatter ? "<path fill=\"none\" stroke=\"#1f5fa8\" stroke-width=\"2\" stroke-linecap=\"round\" d=\"" + path + "\"/>"
+                 : "<polyline fill=\"none\" stroke=\"#1f5fa8\" stroke-width=\"0.7\" points=\"" + path + "\"/>";
   svg += "<text x=\"" + num(w / 2) + "\" y=\"" + num(h - 10) + "\" text-anchor=\"middle\" font-size=\"12\">" +
          html_escape(x_label) + " (" + num(x0) + " … " + num(x1) + ")</text>";
   svg += "<text x=\"12\" y=\"" + num(h / 2) + "\" font-size=\"12\" transform=\"rotate(-90 12 " + num(h / 2) +
@@ -94,15 +98,22 @@ std::string svg_plot(const std::vector<std::pair<double, double>>& xy, const std
 
 }  // namespace
 
-void PassFigures::add(const CutterLocation& cl) {
+void PassFigures::add(const CutterLocation& cl, const AxisRecord& record, const AxisRecord& previous) {
   ++points;
+  const std::size_t revolution = static_cast<std::size_t>(std::max(0.0, cl.contact.theta / (2 * std::numbers::pi)));
+  if (points_per_revolution.size() <= revolution) points_per_revolution.resize(revolution + 1, 0);
+  ++points_per_revolution[revolution];
+  const double rate = record.time > 0 ? 1 / record.time : 0;
+  // C velocity from the unwrapped step (a wrapped C jumps by 360° once a turn).
+  const double dc = std::remainder(record.c - previous.c, 360.0);
   const double e = cl.contact.chord_error, s = cl.contact.scallop;
   chord_max = std::max(chord_max, e);
   scallop_max = std::max(scallop_max, s);
   chord_sq_ += e * e;
   scallop_sq_ += s * s;
   if ((points - 1) % stride == 0) {
-    samples.push_back({cl.contact.point.x(), cl.contact.point.y(), cl.contact.point.z(), cl.contact.r, e});
+    samples.push_back({cl.contact.point.x(), cl.contact.point.y(), cl.contact.point.z(), cl.contact.r, e,
+                       (record.x - previous.x) * rate, (record.z - previous.z) * rate, dc * rate});
     if (samples.size() >= kMaxSamples) {
       // Keep every other sample and halve the rate: memory stays bounded.
       std::size_t j = 0;
@@ -133,6 +144,7 @@ void PassFigures::finish(const PathSummary& s, const DynamicsReport& d, const To
 std::vector<std::string> write_report(const RunReport& r, const std::string& json_path,
                                       const std::string& html_path) {
   std::string j = "{\n  \"job\": " + json_string(r.job) + ",\n  \"job_file\": " + json_string(r.job_file) +
+                  ",\n  \"job_yaml\": " + json_string(r.job_text) +
                   ",\n  \"machine\": " + json_string(r.machine) + ",\n  \"plugin\": " + json_string(r.plugin) +
                   ",\n  \"alpha_max_deg\": " + (r.alpha_max_deg < 0 ? "null" : num(r.alpha_max_deg)) +
                   ",\n  \"axis_moved\": " + (r.axis_moved ? "true" : "false") + ",\n  \"warnings\": [";
@@ -186,7 +198,17 @@ std::vector<std::string> write_report(const RunReport& r, const std::string& jso
     error.emplace_back(p.r, p.chord * 1e6);
   }
   h += svg_plot(top, "The finishing path seen from above (every " + std::to_string(f.stride) + "th point)", "x (mm)", "y (mm)", true);
-  h += svg_plot(error, "Predicted chord error along the radius", "r (mm)", "chord error (nm)", false);
+  h += svg_plot(error, "Predicted chord error along the radius", "r (mm)", "chord error (nm)", false, true);
+  std::vector<std::pair<double, double>> per_rev, vx, vz;
+  for (std::size_t k = 0; k < f.points_per_revolution.size(); ++k)
+    per_rev.emplace_back(static_cast<double>(k), static_cast<double>(f.points_per_revolution[k]));
+  for (const PlotPoint& p : f.samples) {
+    vx.emplace_back(p.r, p.vx);
+    vz.emplace_back(p.r, p.vz);
+  }
+  h += svg_plot(per_rev, "Points per revolution", "revolution", "points", false);
+  h += svg_plot(vx, "X velocity along the radius", "r (mm)", "X velocity (mm/s)", false, true);
+  h += svg_plot(vz, "Z velocity along the radius", "r (mm)", "Z velocity (mm/s)", false, true);
   h += "</body></html>\n";
   AtomicFile html(html_path);
   html.write(h);

@@ -14,6 +14,7 @@ namespace freeturn::cli {
 
 struct PlotPoint {
   double x, y, z, r, chord;
+  double vx, vz, vc;  // axis velocities of the block ending here (mm/s, mm/s, °/s)
 };
 
 struct PassFigures {
@@ -28,8 +29,10 @@ struct PassFigures {
   std::vector<std::string> check_warnings;
   std::vector<PlotPoint> samples;  // every `stride`-th point
   long stride = 1;
+  std::vector<long> points_per_revolution;  // by revolution index ⌊θ/2π⌋
 
-  void add(const CutterLocation& cl);
+  // `record` and `previous` are the machine blocks of this point and the one before.
+  void add(const CutterLocation& cl, const AxisRecord& record, const AxisRecord& previous);
   void finish(const PathSummary& s, const DynamicsReport& d, const ToolCheckReport& c);
 
  private:
@@ -37,7 +40,7 @@ struct PassFigures {
 };
 
 struct RunReport {
-  std::string job, job_file, machine, plugin;
+  std::string job, job_file, job_text, machine, plugin;
   double alpha_max_deg = -1;  // spirals: the quasi-revolution angle on the base
   bool axis_moved = false;
   std::vector<std::string> warnings;

@@ -17,7 +17,8 @@ flags=(--headless --no-sandbox --disable-gpu --no-first-run --user-data-dir="$tm
 "$browser" "${flags[@]}" --dump-dom "$page" > "$tmp/dom.html" 2> "$tmp/dom.log"
 "$browser" "${flags[@]}" --window-size=1280,1600 --screenshot="$tmp/shot.png" "$page" > /dev/null 2> "$tmp/shot.log"
 fail=0
-[[ $(grep -o '<svg' "$tmp/dom.html" | wc -l) == 2 ]] || { echo "FAIL: the DOM has no two SVG plots"; fail=1; }
+# The path from above, the error along the radius, points per revolution, X and Z velocity.
+[[ $(grep -o '<svg' "$tmp/dom.html" | wc -l) == 5 ]] || { echo "FAIL: the DOM does not hold the five SVG plots"; fail=1; }
 grep -q '<table>' "$tmp/dom.html" || { echo "FAIL: the DOM has no figures table"; fail=1; }
 grep -q 'oap_segment on iso-lathe-xzc' "$tmp/dom.html" || { echo "FAIL: the title is missing"; fail=1; }
 if grep -E 'CONSOLE|Uncaught|ERROR:.*(html|svg|render)' "$tmp/dom.log" "$tmp/shot.log"; then
