@@ -22,6 +22,7 @@ struct Command {
 int run_sample(const std::vector<std::string>& args);
 int run_run(const std::vector<std::string>& args);
 int run_check(const std::vector<std::string>& args);
+int run_simulate(const std::vector<std::string>& args);
 int run_ncdiff(const std::vector<std::string>& args);
 int run_plugins(const std::vector<std::string>& args);
 

@@ -8,6 +8,7 @@
 
 #include <cmath>
 #include <cstdio>
+#include <cstdlib>
 #include <filesystem>
 #include <fstream>
 #include <sstream>
@@ -28,6 +29,8 @@
 #include "freeturn/post_format.hpp"
 #include "freeturn/post_program.hpp"
 #include "freeturn/tool/tool_compensator.hpp"
+#include "freeturn/verify/cut_simulation.hpp"
+#include "freeturn/verify/residual_output.hpp"
 #include "run_report.hpp"
 
 namespace freeturn::cli {
@@ -65,10 +68,12 @@ class PassStage final : public CutterSink, public AxisSink {
     (void)mapper_in;
   }
   void set_mapper(AxisMapper& m) { mapper_ = &m; }
+  void set_simulator(CutSimulator* s) { simulator_ = s; }
 
   void write(std::span<const CutterLocation> chunk) override {
     cls_ = chunk;
     mapper_->write(chunk);  // calls back write(std::span<const AxisRecord>) below
+    if (simulator_) simulator_->write(chunk);
   }
 
   void write(std::span<const AxisRecord> records) override {
@@ -103,6 +108,7 @@ class PassStage final : public CutterSink, public AxisSink {
   }
 
   AxisMapper* mapper_ = nullptr;
+  CutSimulator* simulator_ = nullptr;
   AxisSink& post_;
   AtomicFile* csv_;
   PassFigures& figures_;
@@ -149,8 +155,10 @@ PreparedJob prepare_job(const Job& job) {
   return p;
 }
 
+// simulation: when set, the finishing pass is also cut in simulation and its residual
+// written (grid CSV, coloured PLY) with its figures in the report.
 RunReport execute_job(const Job& job, const PreparedJob& prepared, const std::string& out_dir,
-                      bool quiet, bool write) {
+                      bool quiet, bool write, const SimulationOptions* simulation = nullptr) {
   const JobPlan& plan = *job.plan;
   const MachineDescription& machine = prepared.machine;
   const auto& plugin = prepared.plugin;
@@ -223,6 +231,23 @@ RunReport execute_job(const Job& job, const PreparedJob& prepared, const std::st
     }
     Progress progress(progress_on, figures.name);
     PassStage stage(nullptr, *post, finishing ? csv.get() : nullptr, figures, progress);
+    std::unique_ptr<CutSimulator> simulator;
+    if (finishing && simulation) {
+      SimulationOptions so = *simulation;
+      so.inner_radius = job.aperture.inner_radius;
+      so.outer_radius = job.aperture.outer_radius;
+      const double pitch = spiral ? plan.strategy.pitch : 0.01;
+      if (!(so.radial_step > 0)) so.radial_step = pitch / 8;
+      if (!(so.band > 0)) so.band = 3 * pitch;
+      if (!(so.margin > 0)) so.margin = pitch;
+      const double cells = (so.outer_radius - so.inner_radius) / so.radial_step * so.columns;
+      if (cells > 6e7)
+        throw InputError("--radial-step", "the simulation grid would hold " + std::to_string(static_cast<long>(cells)) +
+                                              " cells (over 60 million); give a coarser radial step or fewer columns");
+      if (!spiral) throw InputError(job.file, "the cut simulation needs a spiral (strategy.mode: spiral)");
+      simulator = std::make_unique<CutSimulator>(surface, plan.tool.tool.nose_radius, so);
+      stage.set_simulator(simulator.get());
+    }
     AxisMapper mapper(machine, motion, stage);
     stage.set_mapper(mapper);
     ToolCompensator compensator(surface, compensation, checks, stage);
@@ -247,6 +272,10 @@ RunReport execute_job(const Job& job, const PreparedJob& prepared, const std::st
     }
     progress.done();
     figures.finish(summary, mapper.report(), compensator.report());
+    if (simulator) {
+      report.simulation = std::make_shared<SimulationResult>(simulator->result());
+      report.simulated = true;
+    }
     for (const std::string& w : figures.check_warnings) {
       report.warnings.push_back(figures.name + ": " + w);
       if (!quiet) std::fprintf(stderr, "warning: %s: %s\n", figures.name.c_str(), w.c_str());
@@ -255,6 +284,13 @@ RunReport execute_job(const Job& job, const PreparedJob& prepared, const std::st
   if (!write) return report;
   // Everything succeeded: write the report, then put every file in place.
   std::vector<std::string> written;
+  if (report.simulation) {
+    const std::string csv_path = out(job.name + ".residual.csv"), ply = out(job.name + ".residual.ply");
+    write_residual_csv(*report.simulation, job.aperture.inner_radius, csv_path);
+    write_residual_ply(*report.simulation, design, job.aperture.inner_radius, ply);
+    written.push_back(csv_path);
+    written.push_back(ply);
+  }
   if (plan.outputs.mesh) {
     const std::string obj = out(job.name + ".surface.obj"), vtk = out(job.name + ".path.vtk");
     write_surface_mesh_obj(design, job.aperture.inner_radius, job.aperture.outer_radius, 64, 256, obj);
@@ -288,17 +324,49 @@ RunReport execute_job(const Job& job, const PreparedJob& prepared, const std::st
 
 int run_run(const std::vector<std::string>& args) {
   std::string job_path, out_dir = ".";
-  bool quiet = false;
+  bool quiet = false, simulate = false;
   for (std::size_t i = 0; i < args.size(); ++i) {
     if ((args[i] == "-o" || args[i] == "--output") && i + 1 < args.size()) out_dir = args[++i];
     else if (args[i] == "--quiet" || args[i] == "-q") quiet = true;
+    else if (args[i] == "--simulate") simulate = true;
     else if (!args[i].empty() && args[i][0] != '-' && job_path.empty()) job_path = args[i];
-    else throw InputError("usage", "unexpected argument '" + args[i] + "'; usage: freeturn run JOB.yaml [-o DIR] [--quiet]");
+    else throw InputError("usage", "unexpected argument '" + args[i] + "'; usage: freeturn run JOB.yaml [-o DIR] [--quiet] [--simulate]");
   }
-  if (job_path.empty()) throw InputError("usage", "freeturn run JOB.yaml [-o DIR] [--quiet]");
+  if (job_path.empty()) throw InputError("usage", "freeturn run JOB.yaml [-o DIR] [--quiet] [--simulate]");
   const Job job = load_job(job_path);
   const PreparedJob prepared = prepare_job(job);
-  execute_job(job, prepared, out_dir, quiet, true);
+  SimulationOptions simulation;
+  execute_job(job, prepared, out_dir, quiet, true, simulate ? &simulation : nullptr);
+  return kExitOk;
+}
+
+int run_simulate(const std::vector<std::string>& args) {
+  std::string job_path, out_dir = ".";
+  SimulationOptions simulation;
+  for (std::size_t i = 0; i < args.size(); ++i) {
+    const bool value = i + 1 < args.size();
+    if ((args[i] == "-o" || args[i] == "--output") && value) {
+      out_dir = args[++i];
+    } else if (args[i] == "--radial-step" && value) {
+      simulation.radial_step = std::atof(args[++i].c_str());
+      if (!(simulation.radial_step > 0)) throw InputError("--radial-step", "must be a length > 0 (mm)");
+    } else if (args[i] == "--columns" && value) {
+      simulation.columns = std::atoi(args[++i].c_str());
+      if (simulation.columns < 2 || simulation.columns % 2) throw InputError("--columns", "must be an even number ≥ 2");
+    } else if (!args[i].empty() && args[i][0] != '-' && job_path.empty()) {
+      job_path = args[i];
+    } else {
+      throw InputError("usage", "unexpected argument '" + args[i] +
+                                    "'; usage: freeturn simulate JOB.yaml [-o DIR] [--radial-step MM] [--columns N]");
+    }
+  }
+  if (job_path.empty()) throw InputError("usage", "freeturn simulate JOB.yaml [-o DIR] [--radial-step MM] [--columns N]");
+  const Job job = load_job(job_path);
+  const PreparedJob prepared = prepare_job(job);
+  const RunReport r = execute_job(job, prepared, out_dir, true, true, &simulation);
+  const SimulationResult& s = *r.simulation;
+  std::printf("%s: simulated form error PV %.3f nm, RMS %.3f nm (max %+.3f nm at r = %.4f mm, min %+.3f nm at r = %.4f mm); %ld cells not reached\n",
+              job.name.c_str(), s.pv * 1e6, s.rms * 1e6, s.max * 1e6, s.max_r, s.min * 1e6, s.min_r, s.uncut);
   return kExitOk;
 }
 

@@ -172,7 +172,15 @@ std::vector<std::string> write_report(const RunReport& r, const std::string& jso
     }
     j += "}}";
   }
-  j += "\n  ]\n}\n";
+  j += "\n  ]";
+  if (r.simulation) {
+    const SimulationResult& s = *r.simulation;
+    j += ",\n  \"simulation\": {\"pv_mm\": " + num(s.pv) + ", \"rms_mm\": " + num(s.rms) + ", \"max_mm\": " +
+         num(s.max) + ", \"min_mm\": " + num(s.min) + ", \"max_at_r_mm\": " + num(s.max_r) +
+         ", \"min_at_r_mm\": " + num(s.min_r) + ", \"cells\": " + std::to_string(static_cast<long>(s.rings) * s.columns) +
+         ", \"uncut_cells\": " + std::to_string(s.uncut) + "}";
+  }
+  j += "\n}\n";
   AtomicFile json(json_path);
   json.write(j);
 
@@ -191,6 +199,10 @@ std::vector<std::string> write_report(const RunReport& r, const std::string& jso
          "</td><td>" + num(f.chord_max * 1e6) + "</td><td>" + num(f.chord_rms * 1e6) + "</td><td>" +
          num(f.scallop_max * 1e6) + "</td><td>" + num(f.cycle_time) + "</td><td>" + num(f.dynamics.max_rpm) + "</td></tr>\n";
   h += "</table>\n";
+  if (r.simulation)
+    h += "<p>Simulated form error of the finishing pass: PV " + num(r.simulation->pv * 1e6) + " nm, RMS " +
+         num(r.simulation->rms * 1e6) + " nm (residual grid " + std::to_string(r.simulation->rings) + " × " +
+         std::to_string(r.simulation->columns) + ").</p>\n";
   const PassFigures& f = r.passes.back();
   std::vector<std::pair<double, double>> top, error;
   for (const PlotPoint& p : f.samples) {

@@ -3,8 +3,11 @@
 // bounded memory: the plot series are decimated as they grow), then report.json and a
 // self-contained report.html with inline SVG plots.
 
+#include <memory>
 #include <string>
 #include <vector>
+
+#include "freeturn/verify/cut_simulation.hpp"
 
 #include "freeturn/machine/axis_mapper.hpp"
 #include "freeturn/path/cutter_points.hpp"
@@ -45,6 +48,8 @@ struct RunReport {
   bool axis_moved = false;
   std::vector<std::string> warnings;
   std::vector<PassFigures> passes;
+  bool simulated = false;
+  std::shared_ptr<SimulationResult> simulation;  // of the finishing pass, when simulated
 
   PassFigures& add_pass(const std::string& name, double stock) {
     passes.emplace_back();

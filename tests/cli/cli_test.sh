@@ -76,6 +76,17 @@ contains "check verdict" "$tmp/stdout" "FAIL: "
 contains "check pass" "$tmp/stdout" "PASS: oap_segment on iso-lathe-xzc"
 "$freeturn" check "$tmp/bad.yaml" > /dev/null 2>&1; expect "check bad job" 2 $?
 
+# simulate: the off-axis parabola's finishing cut; its form error is the scallop of a
+# 0.5 mm nose at 0.05 mm pitch, R − √(R² − f²/4) = 625.4 nm on a flat (the segment is
+# nearly flat), and the residual grid and coloured mesh are written.
+"$freeturn" simulate "$src/configs/jobs/oap_segment.yaml" -o "$tmp/sim" > "$tmp/stdout"; expect "simulate" 0 $?
+pv=$(sed -n 's/.*form error PV \([0-9.]*\) nm.*/\1/p' "$tmp/stdout")
+awk -v pv="$pv" 'BEGIN { exit !(pv > 615 && pv < 635) }' || { echo "FAIL: simulated PV '$pv' nm, expected about 625"; fail=1; }
+for f in oap_segment.residual.csv oap_segment.residual.ply report.json; do
+  [[ -s "$tmp/sim/$f" ]] || { echo "FAIL: simulate wrote no $f"; fail=1; }
+done
+contains "simulation figures in the report" "$tmp/sim/report.json" '"simulation": {"pv_mm": '
+
 # Progress: on a terminal (a pseudo-terminal from script(1)) run shows points and rate on
 # stderr; with --quiet, or when stderr is not a terminal, it shows none.
 if command -v script > /dev/null; then

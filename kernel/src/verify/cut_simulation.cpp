@@ -111,6 +111,7 @@ SimulationResult CutSimulator::result() const {
       design_.sag_gradient(rad * std::cos(phi), rad * std::sin(phi), z, zx, zy);
       const double e = (machined_[idx] - z) / std::sqrt(1 + zx * zx + zy * zy);
       r.residual[idx] = e;
+      if (rad < o_.inner_radius + o_.margin || rad > o_.outer_radius - o_.margin) continue;
       sum += e * e;
       ++cut;
       if (e > r.max) {

@@ -24,6 +24,10 @@ struct SimulationOptions {
   double radial_step = 0;  // mm between grid radii
   int columns = 360;       // angles, evenly spaced over the turn (even, so each has an opposite)
   double band = 0;         // mm, half-width of the swept arc about the contact point; 0: R
+  // Cells this close to the inner or outer radius are left out of the figures (still in
+  // the grid): the spiral's first turn leaves the outermost ring uncut by any pass
+  // beyond it, a part of the cut the aperture does not hold.
+  double margin = 0;       // mm
 };
 
 struct SimulationResult {

@@ -1,0 +1,67 @@
+#include "freeturn/verify/residual_output.hpp"
+
+#include <algorithm>
+#include <cmath>
+#include <cstdio>
+#include <numbers>
+
+#include "freeturn/io/atomic_file.hpp"
+
+namespace freeturn {
+
+void write_residual_csv(const SimulationResult& r, double inner, const std::string& path) {
+  AtomicFile f(path);
+  f.write("r,phi_deg,residual_nm\n");
+  char line[96];
+  for (int i = 0; i < r.rings; ++i)
+    for (int j = 0; j < r.columns; ++j) {
+      const double e = r.residual[static_cast<std::size_t>(i) * static_cast<std::size_t>(r.columns) + static_cast<std::size_t>(j)];
+      const int n = std::isnan(e) ? std::snprintf(line, sizeof line, "%.9g,%.9g,\n", inner + i * r.radial_step,
+                                                  360.0 * j / r.columns)
+                                  : std::snprintf(line, sizeof line, "%.9g,%.9g,%.6f\n", inner + i * r.radial_step,
+                                                  360.0 * j / r.columns, e * 1e6);
+      f.write(std::string_view(line, static_cast<std::size_t>(n)));
+    }
+  f.commit();
+}
+
+void write_residual_ply(const SimulationResult& r, const Surface& design, double inner,
+                        const std::string& path) {
+  const int ring_step = std::max(1, r.rings / 200), column_step = std::max(1, r.columns / 360);
+  const int rings = (r.rings - 1) / ring_step + 1, columns = r.columns / column_step;
+  const double scale = std::max({std::abs(r.max), std::abs(r.min), 1e-12});
+  AtomicFile f(path);
+  const long faces = static_cast<long>(rings - 1) * columns * 2;
+  f.write("ply\nformat ascii 1.0\ncomment freeturn simulated residual: red above the design, blue below (mm)\n");
+  char line[400];
+  int n = std::snprintf(line, sizeof line,
+                        "element vertex %d\nproperty double x\nproperty double y\nproperty double z\n"
+                        "property uchar red\nproperty uchar green\nproperty uchar blue\n"
+                        "element face %ld\nproperty list uchar int vertex_indices\nend_header\n",
+                        rings * columns, faces);
+  f.write(std::string_view(line, static_cast<std::size_t>(n)));
+  for (int a = 0; a < rings; ++a)
+    for (int b = 0; b < columns; ++b) {
+      const int i = a * ring_step, j = b * column_step;
+      const double rad = inner + i * r.radial_step, phi = 2 * std::numbers::pi * j / r.columns;
+      const double x = rad * std::cos(phi), y = rad * std::sin(phi);
+      double e = r.residual[static_cast<std::size_t>(i) * static_cast<std::size_t>(r.columns) + static_cast<std::size_t>(j)];
+      if (std::isnan(e)) e = 0;
+      const double t = std::clamp(e / scale, -1.0, 1.0);
+      const int red = t < 0 ? static_cast<int>(255 * (1 + t)) : 255;
+      const int blue = t > 0 ? static_cast<int>(255 * (1 - t)) : 255;
+      const int green = static_cast<int>(255 * (1 - std::abs(t)));
+      n = std::snprintf(line, sizeof line, "%.9g %.9g %.9g %d %d %d\n", x, y, design.sag(x, y), red, green, blue);
+      f.write(std::string_view(line, static_cast<std::size_t>(n)));
+    }
+  for (int a = 0; a + 1 < rings; ++a)
+    for (int b = 0; b < columns; ++b) {
+      const int v00 = a * columns + b, v01 = a * columns + (b + 1) % columns;
+      const int v10 = v00 + columns, v11 = v01 + columns;
+      n = std::snprintf(line, sizeof line, "3 %d %d %d\n3 %d %d %d\n", v00, v10, v11, v00, v11, v01);
+      f.write(std::string_view(line, static_cast<std::size_t>(n)));
+    }
+  f.commit();
+}
+
+}  // namespace freeturn
