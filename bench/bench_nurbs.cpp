@@ -40,12 +40,14 @@ const std::vector<PathPoint>& path() {
 
 }  // namespace
 
-static void BM_SurfacePointAndFirstDerivatives(benchmark::State& state) {
+// S and its partials up to `order` along a walk over the domain.
+static void BM_SurfaceEvaluate(benchmark::State& state) {
   const auto& s = surface();
+  const int order = static_cast<int>(state.range(0));
   double u = 0.1, v = 0.2, sum = 0;
   for (auto _ : state) {
-    const auto d = s.evaluate(u, v, 1);
-    sum += d.point.x() + d.su.y() + d.sv.z();
+    const auto d = s.evaluate(u, v, order);
+    sum += d.point.x() + d.su.y() + d.sv.z() + d.suu.y() + d.svv.z();
     u += 0.000123;
     v += 0.000321;
     if (u > 1) u -= 1;
@@ -54,23 +56,8 @@ static void BM_SurfacePointAndFirstDerivatives(benchmark::State& state) {
   }
   state.SetItemsProcessed(state.iterations());
 }
-BENCHMARK(BM_SurfacePointAndFirstDerivatives);
-
-static void BM_SurfacePointAndSecondDerivatives(benchmark::State& state) {
-  const auto& s = surface();
-  double u = 0.1, v = 0.2, sum = 0;
-  for (auto _ : state) {
-    const auto d = s.evaluate(u, v, 2);
-    sum += d.point.x() + d.suu.y() + d.svv.z();
-    u += 0.000123;
-    v += 0.000321;
-    if (u > 1) u -= 1;
-    if (v > 1) v -= 1;
-    benchmark::DoNotOptimize(sum);
-  }
-  state.SetItemsProcessed(state.iterations());
-}
-BENCHMARK(BM_SurfacePointAndSecondDerivatives);
+// Argument: the derivative order (1: point and first partials, 2: with second partials).
+BENCHMARK(BM_SurfaceEvaluate)->Arg(1)->Arg(2);
 
 static void BM_InversionWarm(benchmark::State& state) {
   const SurfaceLocator locator(surface());

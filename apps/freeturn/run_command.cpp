@@ -62,11 +62,8 @@ class RaisedSurface final : public Surface {
 // cutter location with the axis record the mapper made of it), progress.
 class PassStage final : public CutterSink, public AxisSink {
  public:
-  PassStage(AxisMapper* mapper_in, AxisSink& post, AtomicFile* csv, PassFigures& figures,
-            Progress& progress)
-      : post_(post), csv_(csv), figures_(figures), progress_(progress) {
-    (void)mapper_in;
-  }
+  PassStage(AxisSink& post, AtomicFile* csv, PassFigures& figures, Progress& progress)
+      : post_(post), csv_(csv), figures_(figures), progress_(progress) {}
   void set_mapper(AxisMapper& m) { mapper_ = &m; }
   void set_simulator(CutSimulator* s) { simulator_ = s; }
 
@@ -230,7 +227,7 @@ RunReport execute_job(const Job& job, const PreparedJob& prepared, const std::st
       PassStage::header(*csv);
     }
     Progress progress(progress_on, figures.name);
-    PassStage stage(nullptr, *post, finishing ? csv.get() : nullptr, figures, progress);
+    PassStage stage(*post, finishing ? csv.get() : nullptr, figures, progress);
     std::unique_ptr<CutSimulator> simulator;
     if (finishing && simulation) {
       SimulationOptions so = *simulation;

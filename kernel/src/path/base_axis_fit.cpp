@@ -58,24 +58,6 @@ struct AngleResiduals : Eigen::DenseFunctor<double> {
 
 }  // namespace
 
-void measure_angles(const std::vector<SurfaceSample>& samples, const BaseSurface& base,
-                    const BaseAxis& axis, double& max_angle, double& rms_angle) {
-  const double a[4] = {axis.tilt_x, axis.tilt_y, axis.shift_x, axis.shift_y};
-  max_angle = 0;
-  double sum = 0;
-  for (const SurfaceSample& s : samples) {
-    const detail::RevolutionTerms t = detail::revolution_terms(s, a);
-    const BasePoint b = base.at_radius(t.rho.value());
-    const double norm = std::sqrt(1 + b.slope * b.slope);
-    const double cosine = (t.n_h.value() - t.n_rho.value() * b.slope) / norm;
-    const double r = (t.n_rho.value() + t.n_h.value() * b.slope) / norm;
-    const double angle = std::atan2(std::hypot(r, t.n_theta.value()), std::abs(cosine));
-    max_angle = std::max(max_angle, angle);
-    sum += angle * angle;
-  }
-  rms_angle = samples.empty() ? 0.0 : std::sqrt(sum / static_cast<double>(samples.size()));
-}
-
 BaseSurface with_height_offset(const std::vector<SurfaceSample>& samples, const BaseSurface& base,
                                const BaseAxis& axis) {
   const Eigen::Vector3d t = axis.direction(), o = axis.point();
@@ -114,7 +96,9 @@ BaseAxisFit fit_base_and_axis_least_squares(const std::vector<SurfaceSample>& sa
   for (int i = 2; i < static_cast<int>(c.size()); ++i) coefficients[i] = x(i - 2);
   fit.base = with_height_offset(samples, BaseSurface(start.degree(), start.knots(), coefficients),
                                 fit.axis);
-  measure_angles(samples, fit.base, fit.axis, fit.max_angle, fit.rms_angle);
+  const QuasiRevolution q = measure_quasi_revolution(samples, fit.base, fit.axis);
+  fit.max_angle = q.max_angle;
+  fit.rms_angle = q.rms_angle;
   return fit;
 }
 

@@ -9,6 +9,7 @@
 #include "freeturn/core/error.hpp"
 #include "freeturn/nurbs/basis.hpp"
 #include "freeturn/nurbs/knot_vector.hpp"
+#include "revolution_terms.hpp"
 
 namespace freeturn {
 
@@ -77,14 +78,19 @@ BaseSurface fit_base_least_squares(const std::vector<SurfaceSample>& samples,
 }
 
 QuasiRevolution measure_quasi_revolution(const std::vector<SurfaceSample>& samples,
-                                         const BaseSurface& base) {
+                                         const BaseSurface& base, const BaseAxis& axis) {
+  // The design normal's components along the base normal (cos α), the meridian tangent
+  // (r) and around the axis (n_θ): sin α = |(r, n_θ)| (revolution_terms.hpp).
+  const double a[4] = {axis.tilt_x, axis.tilt_y, axis.shift_x, axis.shift_y};
   QuasiRevolution q;
   double sum = 0;
   for (const SurfaceSample& s : samples) {
-    const double rho = s.point.head<2>().norm();
-    const double theta = std::atan2(s.point.y(), s.point.x());
-    const Eigen::Vector3d nb = BaseSurface::normal(base.at_radius(rho), theta);
-    const double angle = std::atan2(s.normal.cross(nb).norm(), std::abs(s.normal.dot(nb)));
+    const detail::RevolutionTerms t = detail::revolution_terms(s, a);
+    const BasePoint b = base.at_radius(t.rho.value());
+    const double norm = std::sqrt(1 + b.slope * b.slope);
+    const double cosine = (t.n_h.value() - t.n_rho.value() * b.slope) / norm;
+    const double r = (t.n_rho.value() + t.n_h.value() * b.slope) / norm;
+    const double angle = std::atan2(std::hypot(r, t.n_theta.value()), std::abs(cosine));
     sum += angle * angle;
     if (angle > q.max_angle) {
       q.max_angle = angle;

@@ -85,8 +85,7 @@ class MinimaxProblem final : public Ipopt::TNLP {
     double worst = 0;
     for (std::size_t k = 0; k < samples_.size(); ++k)
       worst = std::max(worst, 1 - cosine(k, x, nullptr));
-    x[epigraph_] = worst;
-    start_max_ = worst;
+    x[epigraph_] = worst;  // a feasible start
     return true;
   }
 
@@ -132,7 +131,6 @@ class MinimaxProblem final : public Ipopt::TNLP {
 
   const std::vector<double>& solution() const { return solution_; }
   bool solved() const { return solved_; }
-  double start_max() const { return start_max_; }
   int epigraph() const { return epigraph_; }
   int axis_offset() const { return axis_offset_; }
 
@@ -166,7 +164,6 @@ class MinimaxProblem final : public Ipopt::TNLP {
   int free_coefficients_ = 0, axis_offset_ = 0, epigraph_ = 0;
   std::vector<double> solution_;
   bool solved_ = false;
-  double start_max_ = 0;
 };
 
 }  // namespace
@@ -174,8 +171,7 @@ class MinimaxProblem final : public Ipopt::TNLP {
 MinimaxBaseResult fit_base_minimax(const std::vector<SurfaceSample>& samples,
                                    const BaseSurface& start, const MinimaxBaseOptions& options) {
   MinimaxBaseResult result{start, {}};
-  double rms;
-  measure_angles(samples, start, BaseAxis{}, result.start_max_angle, rms);
+  result.start_max_angle = measure_quasi_revolution(samples, start).max_angle;
   BaseSurface first = start;
   BaseAxis first_axis;
   result.least_squares_max_angle = result.start_max_angle;
@@ -217,7 +213,7 @@ MinimaxBaseResult fit_base_minimax(const std::vector<SurfaceSample>& samples,
   // minimax), never worse than the start.
   result.base = first;
   result.axis = first_axis;
-  measure_angles(samples, first, first_axis, result.max_angle, rms);
+  result.max_angle = measure_quasi_revolution(samples, first, first_axis).max_angle;
   if (!problem->solution().empty()) {
     const std::vector<double>& x = problem->solution();
     std::vector<double> c(start.coefficients().size(), 0.0);
@@ -229,8 +225,7 @@ MinimaxBaseResult fit_base_minimax(const std::vector<SurfaceSample>& samples,
     }
     const BaseSurface base =
         with_height_offset(samples, BaseSurface(start.degree(), start.knots(), c), axis);
-    double max_angle;
-    measure_angles(samples, base, axis, max_angle, rms);
+    const double max_angle = measure_quasi_revolution(samples, base, axis).max_angle;
     if (max_angle <= result.max_angle) {
       result.base = base;
       result.axis = axis;

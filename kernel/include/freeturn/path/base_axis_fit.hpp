@@ -33,8 +33,4 @@ BaseAxisFit fit_base_and_axis_least_squares(const std::vector<SurfaceSample>& sa
 BaseSurface with_height_offset(const std::vector<SurfaceSample>& samples, const BaseSurface& base,
                                const BaseAxis& axis);
 
-// max α and rms α of the samples about `axis` against `base`.
-void measure_angles(const std::vector<SurfaceSample>& samples, const BaseSurface& base,
-                    const BaseAxis& axis, double& max_angle, double& rms_angle);
-
 }  // namespace freeturn

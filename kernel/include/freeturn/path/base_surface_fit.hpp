@@ -11,6 +11,7 @@
 #include <Eigen/Core>
 #include <vector>
 
+#include "freeturn/path/base_axis.hpp"
 #include "freeturn/path/base_surface.hpp"
 #include "freeturn/surface/surface.hpp"
 
@@ -45,9 +46,9 @@ struct QuasiRevolution {
   Eigen::Vector3d where = Eigen::Vector3d::Zero();  // the sample with the largest α
 };
 
-// α_i = ∠(n_design, n_base) at every sample, computed as atan2(|n_d × n_b|, |n_d · n_b|)
-// (accurate for small angles).
+// α_i = ∠(n_design, n_base) at every sample, about `axis` (default: the z axis), computed
+// as atan2(sin α, |cos α|) (accurate for small angles).
 QuasiRevolution measure_quasi_revolution(const std::vector<SurfaceSample>& samples,
-                                         const BaseSurface& base);
+                                         const BaseSurface& base, const BaseAxis& axis = {});
 
 }  // namespace freeturn
