@@ -12,6 +12,10 @@ function(freeturn_missing what package)
     "(or run scripts/setup.sh, which installs every missing package).")
 endfunction()
 
+# Threads (the C library's) for std::thread -> Threads::Threads
+set(THREADS_PREFER_PTHREAD_FLAG ON)
+find_package(Threads REQUIRED)
+
 # Eigen 3.4 (header only) -> Eigen3::Eigen
 find_package(Eigen3 3.4 QUIET NO_MODULE)
 if(NOT TARGET Eigen3::Eigen)

@@ -16,11 +16,11 @@ using freeturn::cli::Command;
 
 const Command kCommands[] = {
     {"run", "plan, compensate and post a job: NC programs, CL data and a report",
-     "freeturn run JOB.yaml [-o DIR] [--quiet] [--simulate]", freeturn::cli::run_run},
+     "freeturn run JOB.yaml [-o DIR] [--quiet] [--simulate] [--threads N]", freeturn::cli::run_run},
     {"check", "everything run does but writing: tool checks, machine limits, dynamics; a verdict",
      "freeturn check JOB.yaml", freeturn::cli::run_check},
     {"simulate", "run a job and simulate its finishing cut: the form error before cutting",
-     "freeturn simulate JOB.yaml [-o DIR] [--radial-step MM] [--columns N]", freeturn::cli::run_simulate},
+     "freeturn simulate JOB.yaml [-o DIR] [--radial-step MM] [--columns N] [--threads N]", freeturn::cli::run_simulate},
     {"sample", "evaluate a job's design surface over its aperture and write it as CSV",
      "freeturn sample JOB.yaml [-o DIR] [--grid N]", freeturn::cli::run_sample},
     {"ncdiff", "compare two NC programs by value (axis words, codes), ignoring formatting",

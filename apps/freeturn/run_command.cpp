@@ -231,16 +231,14 @@ RunReport execute_job(const Job& job, const PreparedJob& prepared, const std::st
     std::unique_ptr<CutSimulator> simulator;
     if (finishing && simulation) {
       SimulationOptions so = *simulation;
+      so.compensation = compensation;
+      so.interpolation = machine.interpolation;
       so.inner_radius = job.aperture.inner_radius;
       so.outer_radius = job.aperture.outer_radius;
       const double pitch = spiral ? plan.strategy.pitch : 0.01;
       if (!(so.radial_step > 0)) so.radial_step = pitch / 8;
       if (!(so.band > 0)) so.band = 3 * pitch;
       if (!(so.margin > 0)) so.margin = pitch;
-      const double cells = (so.outer_radius - so.inner_radius) / so.radial_step * so.columns;
-      if (cells > 6e7)
-        throw InputError("--radial-step", "the simulation grid would hold " + std::to_string(static_cast<long>(cells)) +
-                                              " cells (over 60 million); give a coarser radial step or fewer columns");
       if (!spiral) throw InputError(job.file, "the cut simulation needs a spiral (strategy.mode: spiral)");
       simulator = std::make_unique<CutSimulator>(surface, plan.tool.tool.nose_radius, so);
       stage.set_simulator(simulator.get());
@@ -256,6 +254,11 @@ RunReport execute_job(const Job& job, const PreparedJob& prepared, const std::st
       o.inner_radius = job.aperture.inner_radius;
       o.centre_to_edge = plan.strategy.centre_to_edge;
       o.nose_radius = plan.tool.tool.nose_radius;
+      o.axis_offset = compensation.pivot_distance > 0 ? compensation.pivot_distance
+                      : compensation.tool.program_point == ProgramPoint::kTip ? -compensation.tool.nose_radius
+                                                                             : 0.0;
+      o.b_follows = compensation.b_mode == BMode::kFollow;
+      o.edge_angle = compensation.edge_angle;
       o.points = plan.strategy.points;
       o.points.interpolation = machine.interpolation;
       summary = plan_spiral(surface, base.base, o, compensator);
@@ -263,6 +266,12 @@ RunReport execute_job(const Job& job, const PreparedJob& prepared, const std::st
       ProfileOptions o;
       o.outer_radius = job.aperture.outer_radius;
       o.inner_radius = job.aperture.inner_radius;
+      o.nose_radius = plan.tool.tool.nose_radius;
+      o.axis_offset = compensation.pivot_distance > 0 ? compensation.pivot_distance
+                      : compensation.tool.program_point == ProgramPoint::kTip ? -compensation.tool.nose_radius
+                                                                             : 0.0;
+      o.b_follows = compensation.b_mode == BMode::kFollow;
+      o.edge_angle = compensation.edge_angle;
       o.points = plan.strategy.points;
       o.points.interpolation = machine.interpolation;
       summary = plan_profile(surface, o, compensator);
@@ -270,7 +279,9 @@ RunReport execute_job(const Job& job, const PreparedJob& prepared, const std::st
     progress.done();
     figures.finish(summary, mapper.report(), compensator.report());
     if (simulator) {
-      report.simulation = std::make_shared<SimulationResult>(simulator->result());
+      report.simulation = std::make_shared<SimulationResult>(simulator->finish());
+      report.heat_map = std::make_shared<ResidualHeatMap>(
+          residual_heat_map(*report.simulation, job.aperture.inner_radius, 320));
       report.simulated = true;
     }
     for (const std::string& w : figures.check_warnings) {
@@ -319,20 +330,37 @@ RunReport execute_job(const Job& job, const PreparedJob& prepared, const std::st
 
 }  // namespace
 
+namespace {
+
+constexpr const char* kRunUsage = "freeturn run JOB.yaml [-o DIR] [--quiet] [--simulate] [--threads N]";
+constexpr const char* kSimulateUsage =
+    "freeturn simulate JOB.yaml [-o DIR] [--radial-step MM] [--columns N] [--threads N]";
+
+int parse_threads(const std::string& text) {
+  char* end = nullptr;
+  const long n = std::strtol(text.c_str(), &end, 10);
+  if (end == text.c_str() || *end != '\0' || n < 1 || n > 1024)
+    throw InputError("--threads", "must be a whole number from 1 to 1024, not '" + text + "'");
+  return static_cast<int>(n);
+}
+
+}  // namespace
+
 int run_run(const std::vector<std::string>& args) {
   std::string job_path, out_dir = ".";
   bool quiet = false, simulate = false;
+  SimulationOptions simulation;
   for (std::size_t i = 0; i < args.size(); ++i) {
     if ((args[i] == "-o" || args[i] == "--output") && i + 1 < args.size()) out_dir = args[++i];
     else if (args[i] == "--quiet" || args[i] == "-q") quiet = true;
     else if (args[i] == "--simulate") simulate = true;
+    else if (args[i] == "--threads" && i + 1 < args.size()) simulation.threads = parse_threads(args[++i]);
     else if (!args[i].empty() && args[i][0] != '-' && job_path.empty()) job_path = args[i];
-    else throw InputError("usage", "unexpected argument '" + args[i] + "'; usage: freeturn run JOB.yaml [-o DIR] [--quiet] [--simulate]");
+    else throw InputError("usage", "unexpected argument '" + args[i] + "'; usage: " + kRunUsage);
   }
-  if (job_path.empty()) throw InputError("usage", "freeturn run JOB.yaml [-o DIR] [--quiet] [--simulate]");
+  if (job_path.empty()) throw InputError("usage", kRunUsage);
   const Job job = load_job(job_path);
   const PreparedJob prepared = prepare_job(job);
-  SimulationOptions simulation;
   execute_job(job, prepared, out_dir, quiet, true, simulate ? &simulation : nullptr);
   return kExitOk;
 }
@@ -350,20 +378,28 @@ int run_simulate(const std::vector<std::string>& args) {
     } else if (args[i] == "--columns" && value) {
       simulation.columns = std::atoi(args[++i].c_str());
       if (simulation.columns < 2 || simulation.columns % 2) throw InputError("--columns", "must be an even number ≥ 2");
+    } else if (args[i] == "--threads" && value) {
+      simulation.threads = parse_threads(args[++i]);
     } else if (!args[i].empty() && args[i][0] != '-' && job_path.empty()) {
       job_path = args[i];
     } else {
-      throw InputError("usage", "unexpected argument '" + args[i] +
-                                    "'; usage: freeturn simulate JOB.yaml [-o DIR] [--radial-step MM] [--columns N]");
+      throw InputError("usage", "unexpected argument '" + args[i] + "'; usage: " + kSimulateUsage);
     }
   }
-  if (job_path.empty()) throw InputError("usage", "freeturn simulate JOB.yaml [-o DIR] [--radial-step MM] [--columns N]");
+  if (job_path.empty()) throw InputError("usage", kSimulateUsage);
   const Job job = load_job(job_path);
   const PreparedJob prepared = prepare_job(job);
   const RunReport r = execute_job(job, prepared, out_dir, true, true, &simulation);
   const SimulationResult& s = *r.simulation;
   std::printf("%s: simulated form error PV %.3f nm, RMS %.3f nm (max %+.3f nm at r = %.4f mm, min %+.3f nm at r = %.4f mm); %ld cells not reached\n",
               job.name.c_str(), s.pv * 1e6, s.rms * 1e6, s.max * 1e6, s.max_r, s.min * 1e6, s.min_r, s.uncut);
+  const double ratio = s.pv > 0 ? s.predicted.pv() / s.pv : 0;
+  std::printf("  the planner predicted PV %.3f nm (max %+.3f, min %+.3f nm): %.3f× the simulation, %s\n",
+              s.predicted.pv() * 1e6, s.predicted.max() * 1e6, s.predicted.min() * 1e6, ratio,
+              ratio < 1 ? "NOT an upper bound" : ratio <= 1.1 ? "an upper bound within 10%" : "an upper bound, loose by more than 10%");
+  for (const ResidualPlace& p : s.worst)
+    std::printf("  worst: %+.3f nm at r = %.4f mm, θ = %.2f° (%s)\n", p.residual * 1e6, p.r,
+                p.phi * 180 / std::numbers::pi, to_string(p.cause));
   return kExitOk;
 }
 

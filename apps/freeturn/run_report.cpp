@@ -1,6 +1,7 @@
 #include "run_report.hpp"
 
 #include <chrono>
+#include <cstdint>
 #include <cmath>
 #include <cstdio>
 #include <cstdlib>
@@ -55,6 +56,95 @@ std::string html_escape(const std::string& s) {
 
 // A polyline plot of (x, y) pairs scaled into a w × h box, with axis labels.
 // scatter: dots (values along the radius from a spiral), else a line.
+// An 8-bit palette BMP (browsers show it in an SVG <image>): index 0 is "no data", 1…255
+// run from blue (−limit) through white (0) to red (+limit).
+std::string bmp_heat_map(const ResidualHeatMap& m, double limit) {
+  const int n = m.size, row = (n + 3) / 4 * 4;
+  const std::uint32_t offset = 14 + 40 + 1024, image = static_cast<std::uint32_t>(row * n);
+  std::string b;
+  const auto u16 = [&](std::uint32_t v) { b += static_cast<char>(v & 255); b += static_cast<char>((v >> 8) & 255); };
+  const auto u32 = [&](std::uint32_t v) { u16(v & 0xffff); u16(v >> 16); };
+  b += "BM";
+  u32(offset + image);
+  u32(0);
+  u32(offset);
+  u32(40);
+  u32(static_cast<std::uint32_t>(n));
+  u32(static_cast<std::uint32_t>(-n));  // negative height: rows top-down
+  u16(1);
+  u16(8);
+  u32(0);
+  u32(image);
+  u32(2835);
+  u32(2835);
+  u32(256);
+  u32(0);
+  const auto bgr = [&](int blue, int green, int red) {
+    b += static_cast<char>(blue);
+    b += static_cast<char>(green);
+    b += static_cast<char>(red);
+    b += '\0';
+  };
+  bgr(244, 244, 244);
+  for (int k = 1; k < 256; ++k) {
+    const double t = (k - 1) / 254.0 * 2 - 1;  // −1 … 1
+    const int fade = static_cast<int>(std::lround(255 * (1 - std::abs(t))));
+    if (t < 0) bgr(255, fade, fade);
+    else bgr(fade, fade, 255);
+  }
+  for (int y = 0; y < n; ++y) {
+    for (int x = 0; x < n; ++x) {
+      const double v = m.mean[static_cast<std::size_t>(y) * static_cast<std::size_t>(n) + static_cast<std::size_t>(x)];
+      int index = 0;
+      if (!std::isnan(v)) index = 1 + static_cast<int>(std::lround((std::clamp(v / limit, -1.0, 1.0) + 1) / 2 * 254));
+      b += static_cast<char>(index);
+    }
+    b.append(static_cast<std::size_t>(row - n), '\0');
+  }
+  return b;
+}
+
+std::string base64(const std::string& in) {
+  static const char* digits = "ABCDEFGHIJKLMNOPQRSTUVWXYZabcdefghijklmnopqrstuvwxyz0123456789+/";
+  std::string out;
+  out.reserve((in.size() + 2) / 3 * 4);
+  for (std::size_t i = 0; i < in.size(); i += 3) {
+    const std::uint32_t a = static_cast<unsigned char>(in[i]);
+    const std::uint32_t b = i + 1 < in.size() ? static_cast<unsigned char>(in[i + 1]) : 0;
+    const std::uint32_t c = i + 2 < in.size() ? static_cast<unsigned char>(in[i + 2]) : 0;
+    const std::uint32_t v = a << 16 | b << 8 | c;
+    out += digits[v >> 18 & 63];
+    out += digits[v >> 12 & 63];
+    out += i + 1 < in.size() ? digits[v >> 6 & 63] : '=';
+    out += i + 2 < in.size() ? digits[v & 63] : '=';
+  }
+  return out;
+}
+
+// The residual map with a colour bar in nm, symmetric about 0 and as wide as the
+// figures' extremes (the margin's uncut edge, left out of the figures, is clipped).
+std::string svg_heat_map(const ResidualHeatMap& m, double max, double min) {
+  const double limit = std::max({std::abs(max), std::abs(min), 1e-9});
+  const int side = 360, bar_x = side + 30;
+  std::string svg = "<figure><svg xmlns=\"http://www.w3.org/2000/svg\" width=\"" + num(side + 170) +
+                    "\" height=\"" + num(side + 20) + "\"><defs><linearGradient id=\"residual\" x1=\"0\" y1=\"1\" x2=\"0\" y2=\"0\">"
+                    "<stop offset=\"0\" stop-color=\"#0000ff\"/><stop offset=\"0.5\" stop-color=\"#ffffff\"/>"
+                    "<stop offset=\"1\" stop-color=\"#ff0000\"/></linearGradient></defs>";
+  svg += "<image x=\"10\" y=\"10\" width=\"" + num(side) + "\" height=\"" + num(side) +
+         "\" style=\"image-rendering:pixelated\" href=\"data:image/bmp;base64," + base64(bmp_heat_map(m, limit)) + "\"/>";
+  svg += "<rect x=\"" + num(bar_x) + "\" y=\"10\" width=\"16\" height=\"" + num(side) +
+         "\" fill=\"url(#residual)\" stroke=\"#ccc\"/>";
+  const auto label = [&](double y, double value) {
+    svg += "<text x=\"" + num(bar_x + 22) + "\" y=\"" + num(y + 4) + "\" font-size=\"12\">" + num(value * 1e6) + " nm</text>";
+  };
+  label(10, limit);
+  label(10 + side / 2.0, 0);
+  label(10 + side, -limit);
+  svg += "</svg><figcaption>Simulated residual seen from above, mean per pixel (" + num(2 * m.half_width / m.size * 1e3) +
+         " µm): red above the design, blue below; colours clipped at the figures' extremes</figcaption></figure>\n";
+  return svg;
+}
+
 std::string svg_plot(const std::vector<std::pair<double, double>>& xy, const std::string& title,
                      const std::string& x_label, const std::string& y_label, bool equal_axes,
                      bool scatter = false) {
@@ -139,6 +229,17 @@ void PassFigures::finish(const PathSummary& s, const DynamicsReport& d, const To
     if (end == std::string::npos) break;
     start = end + 1;
   }
+  if (s.jumps > 0) {
+    std::string w = std::to_string(s.jumps);
+    w += " segments where the nose centre jumps (a crease sharper than the nose), the first at θ = ";
+    w += num(s.first_jump_theta * 180 / std::numbers::pi);
+    w += "°, r = ";
+    w += num(s.first_jump_r);
+    w += " mm: the chord tolerance cannot hold there; worst ";
+    w += num(s.max_jump_error * 1e6);
+    w += " nm";
+    check_warnings.push_back(w);
+  }
 }
 
 std::vector<std::string> write_report(const RunReport& r, const std::string& json_path,
@@ -178,7 +279,16 @@ std::vector<std::string> write_report(const RunReport& r, const std::string& jso
     j += ",\n  \"simulation\": {\"pv_mm\": " + num(s.pv) + ", \"rms_mm\": " + num(s.rms) + ", \"max_mm\": " +
          num(s.max) + ", \"min_mm\": " + num(s.min) + ", \"max_at_r_mm\": " + num(s.max_r) +
          ", \"min_at_r_mm\": " + num(s.min_r) + ", \"cells\": " + std::to_string(static_cast<long>(s.rings) * s.columns) +
-         ", \"uncut_cells\": " + std::to_string(s.uncut) + "}";
+         ", \"uncut_cells\": " + std::to_string(s.uncut) + ",\n    \"predicted\": {\"pv_mm\": " + num(s.predicted.pv()) +
+         ", \"max_mm\": " + num(s.predicted.max()) + ", \"min_mm\": " + num(s.predicted.min()) +
+         ", \"max_scallop_mm\": " + num(s.predicted.max_scallop) + ", \"max_chord_above_mm\": " +
+         num(s.predicted.max_chord_above) + ", \"max_chord_below_mm\": " + num(s.predicted.max_chord_below) +
+         ", \"pv_ratio\": " + num(s.pv > 0 ? s.predicted.pv() / s.pv : 0) + "},\n    \"worst\": [";
+    for (std::size_t k = 0; k < s.worst.size(); ++k)
+      j += std::string(k ? ", " : "") + "{\"r_mm\": " + num(s.worst[k].r) + ", \"theta_deg\": " +
+           num(s.worst[k].phi * 180 / std::numbers::pi) + ", \"residual_mm\": " + num(s.worst[k].residual) +
+           ", \"cause\": " + json_string(to_string(s.worst[k].cause)) + "}";
+    j += "]}";
   }
   j += "\n}\n";
   AtomicFile json(json_path);
@@ -199,10 +309,21 @@ std::vector<std::string> write_report(const RunReport& r, const std::string& jso
          "</td><td>" + num(f.chord_max * 1e6) + "</td><td>" + num(f.chord_rms * 1e6) + "</td><td>" +
          num(f.scallop_max * 1e6) + "</td><td>" + num(f.cycle_time) + "</td><td>" + num(f.dynamics.max_rpm) + "</td></tr>\n";
   h += "</table>\n";
-  if (r.simulation)
-    h += "<p>Simulated form error of the finishing pass: PV " + num(r.simulation->pv * 1e6) + " nm, RMS " +
-         num(r.simulation->rms * 1e6) + " nm (residual grid " + std::to_string(r.simulation->rings) + " × " +
-         std::to_string(r.simulation->columns) + ").</p>\n";
+  if (r.simulation) {
+    const SimulationResult& s = *r.simulation;
+    const double ratio = s.pv > 0 ? s.predicted.pv() / s.pv : 0;
+    h += "<h2>Simulated cut</h2>\n<p>Form error of the finishing pass: PV " + num(s.pv * 1e6) + " nm, RMS " +
+         num(s.rms * 1e6) + " nm (residual grid " + std::to_string(s.rings) + " × " + std::to_string(s.columns) +
+         "). The planner predicted PV " + num(s.predicted.pv() * 1e6) + " nm: " + num(ratio) + "× the simulation" +
+         (ratio < 1 ? " (<span class=\"warn\">not an upper bound</span>)" : ratio <= 1.1 ? " (an upper bound within 10%)" : " (an upper bound, loose by more than 10%)") + ".</p>\n";
+    h += "<table><tr><th>worst place</th><th>r (mm)</th><th>θ (°)</th><th>residual (nm)</th><th>cause</th></tr>\n";
+    for (std::size_t k = 0; k < s.worst.size(); ++k)
+      h += "<tr><th>" + std::to_string(k + 1) + "</th><td>" + num(s.worst[k].r) + "</td><td>" +
+           num(s.worst[k].phi * 180 / std::numbers::pi) + "</td><td>" + num(s.worst[k].residual * 1e6) + "</td><td>" +
+           to_string(s.worst[k].cause) + "</td></tr>\n";
+    h += "</table>\n";
+    if (r.heat_map) h += svg_heat_map(*r.heat_map, s.max, s.min);
+  }
   const PassFigures& f = r.passes.back();
   std::vector<std::pair<double, double>> top, error;
   for (const PlotPoint& p : f.samples) {

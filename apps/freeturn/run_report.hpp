@@ -8,6 +8,7 @@
 #include <vector>
 
 #include "freeturn/verify/cut_simulation.hpp"
+#include "freeturn/verify/residual_output.hpp"
 
 #include "freeturn/machine/axis_mapper.hpp"
 #include "freeturn/path/cutter_points.hpp"
@@ -50,6 +51,7 @@ struct RunReport {
   std::vector<PassFigures> passes;
   bool simulated = false;
   std::shared_ptr<SimulationResult> simulation;  // of the finishing pass, when simulated
+  std::shared_ptr<ResidualHeatMap> heat_map;     // its residual from above
 
   PassFigures& add_pass(const std::string& name, double stock) {
     passes.emplace_back();

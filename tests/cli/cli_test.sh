@@ -86,6 +86,16 @@ for f in oap_segment.residual.csv oap_segment.residual.ply report.json; do
   [[ -s "$tmp/sim/$f" ]] || { echo "FAIL: simulate wrote no $f"; fail=1; }
 done
 contains "simulation figures in the report" "$tmp/sim/report.json" '"simulation": {"pv_mm": '
+# The scallop dominates this cut: the planner's prediction bounds it within 10%, and the
+# worst places say so.
+contains "prediction bound" "$tmp/stdout" "an upper bound within 10%"
+contains "worst place cause" "$tmp/stdout" "(scallop)"
+contains "worst places in the report" "$tmp/sim/report.json" '"cause": "scallop"'
+# The same on one thread: the same residual grid, byte for byte.
+"$freeturn" simulate "$src/configs/jobs/oap_segment.yaml" -o "$tmp/sim1" --threads 1 > /dev/null; expect "simulate 1 thread" 0 $?
+cmp -s "$tmp/sim/oap_segment.residual.csv" "$tmp/sim1/oap_segment.residual.csv" || { echo "FAIL: the residual grid differs on one thread"; fail=1; }
+"$freeturn" simulate "$src/configs/jobs/oap_segment.yaml" -o "$tmp/sim0" --threads 0 > /dev/null 2>&1; expect "simulate --threads 0" 2 $?
+[[ ! -e "$tmp/sim0" ]] || { echo "FAIL: a refused simulate left output"; fail=1; }
 
 # Progress: on a terminal (a pseudo-terminal from script(1)) run shows points and rate on
 # stderr; with --quiet, or when stderr is not a terminal, it shows none.

@@ -30,3 +30,63 @@ inline double densest_chord_error(const Surface& s, const std::vector<ContactPoi
 }
 
 }  // namespace freeturn::test
+
+#include "freeturn/tool/compensation.hpp"
+#include "freeturn/tool/cutter_location.hpp"
+
+namespace freeturn::test {
+
+// The same for the tool: the nose centre moving linearly in (radial position, C, z)
+// between cutter locations, its lower arc of radius R in the radial plane, against the
+// design's section there. At each of `samples` points of each segment the arc's overlap
+// with the section, max over ρ of f(ρ) − (c_z − √(R² − (ρ − c_ρ)²)), is found by brute
+// force (`grid` values of ρ across the nose, then golden section about the best), and
+// scaled to the normal by 1/√(1 + |∇f|²). Returns the largest |overlap|. With `axes`, the
+// programmed axes X, Z, B are interpolated instead and the centre found from them (a B
+// pivot swinging the nose on an arc).
+inline double densest_nose_error(const Surface& s, const std::vector<CutterLocation>& path,
+                                 double R, int samples = 50, int grid = 400,
+                                 const CompensationOptions* axes = nullptr) {
+  double worst = 0;
+  const auto radial = [](const Eigen::Vector3d& p, double c) { return p.x() * std::cos(c) + p.y() * std::sin(c); };
+  for (std::size_t k = 1; k < path.size(); ++k) {
+    const CutterLocation &a = path[k - 1], &b = path[k];
+    const double ca = a.contact.theta, cb = b.contact.theta;
+    const double ra = radial(a.nose_centre, ca), rb = radial(b.nose_centre, cb);
+    for (int j = 1; j < samples; ++j) {
+      const double t = static_cast<double>(j) / samples;
+      const double c = ca + t * (cb - ca);
+      double cr = ra + t * (rb - ra), cz = a.nose_centre.z() + t * (b.nose_centre.z() - a.nose_centre.z());
+      if (axes) {
+        const Eigen::Vector2d centre =
+            nose_centre_from_axes(a.x + t * (b.x - a.x), a.z + t * (b.z - a.z), a.b + t * (b.b - a.b), *axes);
+        cr = centre.x();
+        cz = centre.y();
+      }
+      const double ct = std::cos(c), st = std::sin(c);
+      const auto overlap = [&](double rho) {
+        const double d = rho - cr;
+        return s.sag(rho * ct, rho * st) - (cz - std::sqrt(std::max(0.0, R * R - d * d)));
+      };
+      double best_rho = cr, best = -1e300;
+      for (int i = 0; i <= grid; ++i) {
+        const double rho = cr - 0.98 * R + 1.96 * R * i / grid;
+        const double v = overlap(rho);
+        if (v > best) best = v, best_rho = rho;
+      }
+      double lo = best_rho - 1.96 * R / grid, hi = best_rho + 1.96 * R / grid;
+      for (int it = 0; it < 60; ++it) {  // ternary search for the maximum
+        const double m1 = lo + (hi - lo) / 3, m2 = hi - (hi - lo) / 3;
+        if (overlap(m1) > overlap(m2)) hi = m2;
+        else lo = m1;
+      }
+      const double rho = 0.5 * (lo + hi);
+      double f, fx, fy;
+      s.sag_gradient(rho * ct, rho * st, f, fx, fy);
+      worst = std::max(worst, std::abs(overlap(rho)) / std::sqrt(1 + fx * fx + fy * fy));
+    }
+  }
+  return worst;
+}
+
+}  // namespace freeturn::test

@@ -5,6 +5,7 @@
 #include <string>
 
 #include "freeturn/core/error.hpp"
+#include "nose_section.hpp"
 #include "path_stepper.hpp"
 #include "section_prediction.hpp"
 
@@ -14,17 +15,16 @@ namespace {
 // τ = r_outer − r; X = r, C = 0, Z = f(r, 0).
 class ProfilePath {
  public:
-  ProfilePath(const Surface& design, const ProfileOptions& o) : design_(design), o_(o) {}
+  ProfilePath(const Surface& design, const ProfileOptions& o)
+      : design_(design), o_(o), nose_(design, ToolMotion{o.nose_radius, o.axis_offset, o.b_follows, o.edge_angle}) {}
 
   double tau_end() const { return o_.outer_radius - o_.inner_radius; }
   double cap() const { return o_.points.max_radial_step; }
   double angle_per_tau() const { return 0.0; }
   bool creased() const { return design_.has_creases(); }
 
-  double deviation(double x_axis, double, double z) const {
-    double f, fx, fy;
-    design_.sag_gradient(x_axis, 0.0, f, fx, fy);
-    return std::abs(z - f) / std::sqrt(1 + fx * fx + fy * fy);
+  double deviation(double x_axis, double, double z, double b, double hint_r) const {
+    return nose_.deviation(x_axis, 0.0, z, b, hint_r);
   }
 
   void at(double tau, detail::AxisState& s) const {
@@ -32,19 +32,33 @@ class ProfilePath {
     double z, zx, zy;
     design_.sag_gradient(r, 0.0, z, zx, zy);
     s.tau = tau;
-    s.x_axis = r;
+    s.contact_r = r;
     s.c = 0;
-    s.z = z;
+    nose_.axes(r, 0.0, z, zx, zy, s.x_axis, s.z, s.b);
     s.point = {r, 0.0, z};
-    // d/dτ = −d/dr.
-    s.dx = -1.0;
-    s.dz = -zx;
+    // d/dτ = −d/dr. With a nose the centre rides the offset curve, whose speed differs
+    // from the contact's by 1 + Rκ: differences of the centre's axes give it.
+    if (nose_.nose_radius() == 0 && !nose_.b_follows()) {
+      s.dx = -1.0;
+      s.dz = -zx;
+      return;
+    }
+    const double d = 1e-6;
+    double x_lo, z_lo, b_lo, x_hi, z_hi, b_hi, f, fx, fy;
+    design_.sag_gradient(r - d, 0.0, f, fx, fy);
+    nose_.axes(r - d, 0.0, f, fx, fy, x_lo, z_lo, b_lo);
+    design_.sag_gradient(r + d, 0.0, f, fx, fy);
+    nose_.axes(r + d, 0.0, f, fx, fy, x_hi, z_hi, b_hi);
+    s.dx = -(x_hi - x_lo) / (2 * d);
+    s.dz = -(z_hi - z_lo) / (2 * d);
+    s.db = -(b_hi - b_lo) / (2 * d);
   }
   void commit(const detail::AxisState&) {}
 
  private:
   const Surface& design_;
   const ProfileOptions& o_;
+  detail::NoseSection nose_;
 };
 
 }  // namespace
@@ -75,15 +89,24 @@ PathSummary plan_profile(const Surface& design, const ProfileOptions& o, Contact
   ProfilePath path(design, o);
   ContactChunker out(sink);
   PathSummary summary;
-  detail::distribute(path, o.points, [&](const detail::AxisState& s, double error) {
+  detail::distribute(path, o.points, [&](const detail::AxisState& s, double error, bool jump) {
     ContactPoint p;
     p.theta = 0;
-    p.r = s.x_axis;
+    p.r = s.contact_r;
     p.point = s.point;
-    p.chord_error = error;
+    p.chord_error = std::abs(error);
+    p.chord_below = error < 0;
     detail::fill_section(design, p);
+    if (jump) {
+      summary.jumps++;
+      summary.max_jump_error = std::max(summary.max_jump_error, p.chord_error);
+      if (summary.jumps == 1) {
+        summary.first_jump_theta = p.theta;
+        summary.first_jump_r = p.r;
+      }
+    }
     summary.points++;
-    summary.max_chord_error = std::max(summary.max_chord_error, error);
+    summary.max_chord_error = std::max(summary.max_chord_error, p.chord_error);
     out.push(p);
   });
   out.flush();

@@ -6,6 +6,7 @@
 
 #include "freeturn/core/error.hpp"
 #include "freeturn/surface/height_field_queries.hpp"
+#include "nose_section.hpp"
 #include "path_stepper.hpp"
 #include "section_prediction.hpp"
 
@@ -21,7 +22,8 @@ std::string where(double theta, double r) {
 class SpiralPath {
  public:
   SpiralPath(const Surface& design, const BaseSurface& base, const SpiralOptions& o)
-      : design_(design), base_(base), o_(o), b_(o.pitch / (2 * std::numbers::pi)) {
+      : design_(design), base_(base), o_(o), nose_(design, ToolMotion{o.nose_radius, o.axis_offset, o.b_follows, o.edge_angle}),
+        b_(o.pitch / (2 * std::numbers::pi)) {
     s_outer_ = base.arc_length(o.outer_radius);
     s_inner_ = base.arc_length(o.inner_radius);
     end_ = (s_outer_ - s_inner_) / b_;
@@ -33,10 +35,8 @@ class SpiralPath {
   bool creased() const { return design_.has_creases(); }
   double pitch() const { return o_.pitch; }
 
-  double deviation(double x_axis, double c, double z) const {
-    double f, fx, fy;
-    design_.sag_gradient(x_axis * std::cos(c), x_axis * std::sin(c), f, fx, fy);
-    return std::abs(z - f) / std::sqrt(1 + fx * fx + fy * fy);
+  double deviation(double x_axis, double c, double z, double b, double hint_r) const {
+    return nose_.deviation(x_axis, c, z, b, hint_r);
   }
 
   void at(double theta, detail::AxisState& s) const {
@@ -49,6 +49,7 @@ class SpiralPath {
       evaluate(hi_theta, hi);
       s.dx = (hi.x_axis - lo.x_axis) / (hi_theta - lo_theta);
       s.dz = (hi.z - lo.z) / (hi_theta - lo_theta);
+      s.db = (hi.b - lo.b) / (hi_theta - lo_theta);
     }
   }
   void commit(const detail::AxisState& s) { lambda_ = s.warm; }
@@ -74,8 +75,8 @@ class SpiralPath {
       if (!std::isfinite(z))
         throw InputError(where(theta, bp.rho), "the design surface is undefined here");
       s.point = {x, y, z};
-      s.x_axis = bp.rho;
-      s.z = z;
+      s.contact_r = bp.rho;
+      nose_.axes(s.contact_r, theta, z, zx, zy, s.x_axis, s.z, s.b);
       return;
     }
     const Eigen::Vector3d origin = BaseSurface::point(bp, theta);
@@ -87,13 +88,21 @@ class SpiralPath {
     s.warm = hit.t;
     s.point = hit.point;
     // The base normal lies in the radial plane at θ, so the contact does too.
-    s.x_axis = std::max(0.0, hit.point.x() * c + hit.point.y() * sn);
-    s.z = hit.point.z();
+    s.contact_r = std::max(0.0, hit.point.x() * c + hit.point.y() * sn);
+    if (nose_.nose_radius() == 0 && !nose_.b_follows()) {
+      s.x_axis = s.contact_r;
+      s.z = hit.point.z();
+      return;
+    }
+    double z, zx, zy;
+    design_.sag_gradient(hit.point.x(), hit.point.y(), z, zx, zy);
+    nose_.axes(s.contact_r, theta, hit.point.z(), zx, zy, s.x_axis, s.z, s.b);
   }
 
   const Surface& design_;
   const BaseSurface& base_;
   const SpiralOptions& o_;
+  detail::NoseSection nose_;
   double b_, s_outer_ = 0, s_inner_ = 0, end_ = 0;
   double lambda_ = 0;  // the committed point's projection distance
 };
@@ -113,12 +122,13 @@ PathSummary plan_spiral(const Surface& design, const BaseSurface& base,
   SpiralPath path(design, base, o);
   ContactChunker out(sink);
   PathSummary summary;
-  detail::distribute(path, o.points, [&](const detail::AxisState& s, double error) {
+  detail::distribute(path, o.points, [&](const detail::AxisState& s, double error, bool jump) {
     ContactPoint p;
     p.theta = s.c;
-    p.r = s.x_axis;
+    p.r = s.contact_r;
     p.point = s.point;
-    p.chord_error = error;
+    p.chord_error = std::abs(error);
+    p.chord_below = error < 0;
     const double zr = detail::fill_section(design, p);
     // Adjacent turns are p apart along the base's generating curve; on the design they
     // are p / cos β apart, β the angle between the two sections' tangents.
@@ -127,9 +137,17 @@ PathSummary plan_spiral(const Surface& design, const BaseSurface& base,
         (1 + bp.slope * zr) / (std::sqrt(1 + bp.slope * bp.slope) * std::sqrt(1 + zr * zr));
     p.pass_spacing = o.pitch / cos_beta;
     p.scallop = detail::scallop_height(p.pass_spacing, p.section_curvature, o.nose_radius);
+    if (jump) {
+      summary.jumps++;
+      summary.max_jump_error = std::max(summary.max_jump_error, p.chord_error);
+      if (summary.jumps == 1) {
+        summary.first_jump_theta = p.theta;
+        summary.first_jump_r = p.r;
+      }
+    }
     summary.points++;
     summary.theta_end = p.theta;
-    summary.max_chord_error = std::max(summary.max_chord_error, error);
+    summary.max_chord_error = std::max(summary.max_chord_error, p.chord_error);
     summary.max_scallop = std::max(summary.max_scallop, p.scallop);
     summary.max_pass_spacing = std::max(summary.max_pass_spacing, p.pass_spacing);
     out.push(p);

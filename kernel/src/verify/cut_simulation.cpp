@@ -6,26 +6,56 @@
 #include <numbers>
 
 #include "freeturn/core/error.hpp"
+#include "freeturn/core/parallel_for.hpp"
 
 namespace freeturn {
 namespace {
 
 constexpr double kUncut = std::numeric_limits<double>::infinity();
+constexpr std::size_t kBatch = 16384;  // segments swept per parallel batch
 
 // The signed position along e_r(θ), in the radial plane at θ, of a point of that plane.
 double radial_of(const Eigen::Vector3d& p, double theta) {
   return p.x() * std::cos(theta) + p.y() * std::sin(theta);
 }
 
+// The worst cell of a stretch of rings, and the figures of one ring.
+struct RingFigures {
+  double sum = 0;
+  long cut = 0, uncut = 0;
+  double max = -kUncut, min = kUncut;
+  int max_col = 0, min_col = 0;
+  double worst = 0;  // the largest |residual|
+  int worst_col = -1;
+};
+
 }  // namespace
 
+const char* to_string(ResidualCause cause) {
+  switch (cause) {
+    case ResidualCause::kScallop: return "scallop";
+    case ResidualCause::kChord: return "chord";
+    case ResidualCause::kGouge: return "gouge";
+  }
+  return "?";
+}
+
 CutSimulator::CutSimulator(const Surface& design, double nose_radius, const SimulationOptions& o)
-    : design_(design), R_(nose_radius), o_(o) {
+    : design_(design), R_(nose_radius), o_(o), threads_(thread_count(o.threads)) {
   if (!(o.radial_step > 0) || !(o.outer_radius > o.inner_radius) || o.columns < 2 || o.columns % 2)
     throw InputError("simulation", "needs a radial step > 0, outer > inner radius and an even number of columns");
   if (o_.band <= 0 || o_.band > R_) o_.band = R_;
-  rings_ = static_cast<int>(std::floor((o.outer_radius - o.inner_radius) / o.radial_step)) + 1;
-  machined_.assign(static_cast<std::size_t>(rings_) * static_cast<std::size_t>(o.columns), kUncut);
+  const double rings = std::floor((o.outer_radius - o.inner_radius) / o.radial_step) + 1;
+  const double cells = rings * o.columns;
+  if (!(cells <= static_cast<double>(o.max_cells)))
+    throw InputError("simulation", "the grid would hold " + std::to_string(static_cast<long>(cells)) +
+                                       " cells (over " + std::to_string(o.max_cells) +
+                                       "); give a coarser radial step (--radial-step) or fewer columns (--columns)");
+  rings_ = static_cast<int>(rings);
+  const std::size_t n = static_cast<std::size_t>(rings_) * static_cast<std::size_t>(o.columns);
+  machined_.assign(n, kUncut);
+  offset_.assign(n, 0);
+  pending_.reserve(kBatch + 1);
 }
 
 void CutSimulator::lower_column(int column, double c_r, double c_z, double p_r) {
@@ -33,6 +63,7 @@ void CutSimulator::lower_column(int column, double c_r, double c_z, double p_r) 
   // R of its centre): s ≥ 0 in this column, s < 0 in the opposite one at radius −s.
   const int n = o_.columns;
   const double lo = std::max(p_r - o_.band, c_r - R_), hi = std::min(p_r + o_.band, c_r + R_);
+  const double to_offset = 65535.0 / o_.band;
   for (int side = 0; side < 2; ++side) {
     const double sign = side == 0 ? 1.0 : -1.0;
     const int col = side == 0 ? column : (column + n / 2) % n;
@@ -48,89 +79,200 @@ void CutSimulator::lower_column(int column, double c_r, double c_z, double p_r) 
       const double s = sign * (o_.inner_radius + i * o_.radial_step);
       const double d = s - c_r;
       const double h = c_z - std::sqrt(std::max(0.0, R_ * R_ - d * d));
-      double& cell = machined_[static_cast<std::size_t>(i) * static_cast<std::size_t>(n) + static_cast<std::size_t>(col)];
-      cell = std::min(cell, h);
+      const std::size_t idx = static_cast<std::size_t>(i) * static_cast<std::size_t>(n) + static_cast<std::size_t>(col);
+      if (h < machined_[idx]) {
+        machined_[idx] = h;
+        offset_[idx] = static_cast<std::uint16_t>(std::min(65535.0, std::abs(s - p_r) * to_offset + 0.5));
+      }
     }
   }
 }
 
-void CutSimulator::sweep(const CutterLocation& a, const CutterLocation& b) {
-  const double ta = a.contact.theta, tb = b.contact.theta;
-  if (!(tb > ta)) return;
-  const int n = o_.columns;
+// Every segment of the batch, in path order, on the columns whose pair index (column mod
+// n/2) lies in [pair_begin, pair_end): this thread owns those columns and their opposites.
+// Segment i runs from pending_[i] to pending_[i + 1], for i in [first_, end).
+void CutSimulator::sweep_columns(std::size_t end, int pair_begin, int pair_end) {
+  const int n = o_.columns, half = n / 2;
   const double per_column = 2 * std::numbers::pi / n;
-  const long first = static_cast<long>(std::ceil(ta / per_column));
-  const long last = static_cast<long>(std::ceil(tb / per_column)) - 1;
-  const double ra = radial_of(a.nose_centre, ta), rb = radial_of(b.nose_centre, tb);
-  const double pa = radial_of(a.contact.point, ta), pb = radial_of(b.contact.point, tb);
-  for (long k = first; k <= last; ++k) {
-    const double t = (k * per_column - ta) / (tb - ta);
-    const double c_r = ra + t * (rb - ra);
-    const double c_z = a.nose_centre.z() + t * (b.nose_centre.z() - a.nose_centre.z());
-    lower_column(static_cast<int>(((k % n) + n) % n), c_r, c_z, pa + t * (pb - pa));
+  const bool cubic = o_.interpolation == Interpolation::kCubic;
+  for (std::size_t i = first_; i < end; ++i) {
+    const CutterLocation& a = pending_[i];
+    const CutterLocation& b = pending_[i + 1];
+    const double ta = a.contact.theta, tb = b.contact.theta;
+    if (!(tb > ta)) continue;
+    const long first = static_cast<long>(std::ceil(ta / per_column));
+    const long last = static_cast<long>(std::ceil(tb / per_column)) - 1;
+    if (last < first) continue;
+    const double h = tb - ta;
+    // PVT: each block's velocity (per radian of θ) from its neighbours, as a controller
+    // that is given positions only derives it; one-sided at the path's ends.
+    Eigen::Vector3d va = Eigen::Vector3d::Zero(), vb = Eigen::Vector3d::Zero();
+    const Eigen::Vector3d qa(a.x, a.z, a.b), qb(b.x, b.z, b.b);
+    if (cubic) {
+      const CutterLocation& before = i > 0 ? pending_[i - 1] : a;
+      const CutterLocation& after = i + 2 < pending_.size() ? pending_[i + 2] : b;
+      const auto slope = [](const CutterLocation& p, const CutterLocation& q) {
+        const double d = q.contact.theta - p.contact.theta;
+        return d > 0 ? Eigen::Vector3d((q.x - p.x) / d, (q.z - p.z) / d, (q.b - p.b) / d) : Eigen::Vector3d::Zero();
+      };
+      va = slope(before, b);
+      vb = slope(a, after);
+    }
+    const double pa = radial_of(a.contact.point, ta), pb = radial_of(b.contact.point, tb);
+    for (long k = first; k <= last; ++k) {
+      const int column = static_cast<int>(((k % n) + n) % n);
+      const int pair = column % half;
+      if (pair < pair_begin || pair >= pair_end) continue;
+      const double t = (k * per_column - ta) / h;
+      Eigen::Vector3d q;
+      if (cubic) {
+        const double t2 = t * t, t3 = t2 * t;
+        q = (2 * t3 - 3 * t2 + 1) * qa + (t3 - 2 * t2 + t) * h * va + (-2 * t3 + 3 * t2) * qb + (t3 - t2) * h * vb;
+      } else {
+        q = qa + t * (qb - qa);
+      }
+      const Eigen::Vector2d centre = nose_centre_from_axes(q.x(), q.y(), q.z(), o_.compensation);
+      lower_column(column, centre.x(), centre.y(), pa + t * (pb - pa));
+    }
   }
+}
+
+// Sweeps the segments whose PVT neighbours have arrived (all of them when `last`), then
+// keeps the locations the next segments need.
+void CutSimulator::sweep_batch(bool last) {
+  if (pending_.size() < 2) return;
+  const std::size_t end = last ? pending_.size() - 1 : pending_.size() - 2;
+  if (end > first_) {
+    const int half = o_.columns / 2;
+    parallel_for(threads_, half, [&](long begin, long stop) {
+      sweep_columns(end, static_cast<int>(begin), static_cast<int>(stop));
+    });
+  }
+  // Keep the location before the next segment and the rest: [end − 1, size).
+  const std::size_t keep_from = end > 0 ? end - 1 : 0;
+  pending_.erase(pending_.begin(), pending_.begin() + static_cast<std::ptrdiff_t>(keep_from));
+  first_ = end - keep_from;
 }
 
 void CutSimulator::write(std::span<const CutterLocation> chunk) {
+  const double lo = o_.inner_radius + o_.margin, hi = o_.outer_radius - o_.margin;
   for (const CutterLocation& cl : chunk) {
-    if (has_previous_) sweep(previous_, cl);
-    previous_ = cl;
-    has_previous_ = true;
-  }
-  // The last location itself (a closed interval at the end of the path).
-  if (!chunk.empty()) {
-    const CutterLocation& cl = chunk.back();
-    const double per_column = 2 * std::numbers::pi / o_.columns;
-    const double k = cl.contact.theta / per_column;
-    if (std::abs(k - std::round(k)) < 1e-9)
-      lower_column(static_cast<int>((static_cast<long>(std::llround(k)) % o_.columns + o_.columns) % o_.columns),
-                   radial_of(cl.nose_centre, cl.contact.theta), cl.nose_centre.z(),
-                   radial_of(cl.contact.point, cl.contact.theta));
+    const double r = cl.contact.r;
+    if (r >= lo && r <= hi) {
+      predicted_.max_scallop = std::max(predicted_.max_scallop, cl.contact.scallop);
+      double& side = cl.contact.chord_below ? predicted_.max_chord_below : predicted_.max_chord_above;
+      side = std::max(side, cl.contact.chord_error);
+    }
+    pending_.push_back(cl);
+    if (pending_.size() > kBatch) sweep_batch(false);
   }
 }
 
-SimulationResult CutSimulator::result() const {
+SimulationResult CutSimulator::finish() {
+  sweep_batch(true);
+  // The last location itself: the segments cover [θ_a, θ_b), so a column exactly at the
+  // path's last angle is still to cut.
+  if (!pending_.empty()) {
+    const CutterLocation& cl = pending_.back();
+    const double k = cl.contact.theta / (2 * std::numbers::pi / o_.columns);
+    if (std::abs(k - std::round(k)) < 1e-9) {
+      const Eigen::Vector2d centre = nose_centre_from_axes(cl.x, cl.z, cl.b, o_.compensation);
+      lower_column(static_cast<int>((std::llround(k) % o_.columns + o_.columns) % o_.columns), centre.x(),
+                   centre.y(), radial_of(cl.contact.point, cl.contact.theta));
+    }
+    pending_.clear();
+  }
+
   SimulationResult r;
   r.rings = rings_;
   r.columns = o_.columns;
   r.radial_step = o_.radial_step;
-  r.residual.assign(machined_.size(), std::numeric_limits<double>::quiet_NaN());
+  r.predicted = predicted_;
+  const int n = o_.columns;
+  const double from_offset = o_.band / 65535.0;
+  std::vector<RingFigures> rings(static_cast<std::size_t>(rings_));
+  // The residual replaces the machined height in place, ring by ring in parallel.
+  parallel_for(threads_, rings_, [&](long begin, long end) {
+    for (long i = begin; i < end; ++i) {
+      RingFigures& f = rings[static_cast<std::size_t>(i)];
+      const double rad = o_.inner_radius + static_cast<double>(i) * o_.radial_step;
+      const bool counted = rad >= o_.inner_radius + o_.margin && rad <= o_.outer_radius - o_.margin;
+      for (int j = 0; j < n; ++j) {
+        double& cell = machined_[static_cast<std::size_t>(i) * static_cast<std::size_t>(n) + static_cast<std::size_t>(j)];
+        if (cell == kUncut) {
+          ++f.uncut;
+          cell = std::numeric_limits<double>::quiet_NaN();
+          continue;
+        }
+        const double phi = 2 * std::numbers::pi * j / n;
+        double z, zx, zy;
+        design_.sag_gradient(rad * std::cos(phi), rad * std::sin(phi), z, zx, zy);
+        const double e = (cell - z) / std::sqrt(1 + zx * zx + zy * zy);
+        cell = e;
+        if (!counted) continue;
+        f.sum += e * e;
+        ++f.cut;
+        if (e > f.max) f.max = e, f.max_col = j;
+        if (e < f.min) f.min = e, f.min_col = j;
+        if (std::abs(e) > f.worst) f.worst = std::abs(e), f.worst_col = j;
+      }
+    }
+  });
+  // Reduced in ring order: the same sums on any thread count.
   double sum = 0;
   long cut = 0;
   r.max = -kUncut;
   r.min = kUncut;
-  for (int i = 0; i < rings_; ++i)
-    for (int j = 0; j < o_.columns; ++j) {
-      const std::size_t idx = static_cast<std::size_t>(i) * static_cast<std::size_t>(o_.columns) + static_cast<std::size_t>(j);
-      if (machined_[idx] == kUncut) {
-        ++r.uncut;
-        continue;
-      }
-      const double rad = o_.inner_radius + i * o_.radial_step, phi = 2 * std::numbers::pi * j / o_.columns;
-      double z, zx, zy;
-      design_.sag_gradient(rad * std::cos(phi), rad * std::sin(phi), z, zx, zy);
-      const double e = (machined_[idx] - z) / std::sqrt(1 + zx * zx + zy * zy);
-      r.residual[idx] = e;
-      if (rad < o_.inner_radius + o_.margin || rad > o_.outer_radius - o_.margin) continue;
-      sum += e * e;
-      ++cut;
-      if (e > r.max) {
-        r.max = e;
-        r.max_r = rad;
-        r.max_phi = phi;
-      }
-      if (e < r.min) {
-        r.min = e;
-        r.min_r = rad;
-        r.min_phi = phi;
-      }
-    }
+  for (int i = 0; i < rings_; ++i) {
+    const RingFigures& f = rings[static_cast<std::size_t>(i)];
+    r.uncut += f.uncut;
+    sum += f.sum;
+    cut += f.cut;
+    const double rad = o_.inner_radius + i * o_.radial_step;
+    if (f.cut > 0 && f.max > r.max) r.max = f.max, r.max_r = rad, r.max_phi = 2 * std::numbers::pi * f.max_col / n;
+    if (f.cut > 0 && f.min < r.min) r.min = f.min, r.min_r = rad, r.min_phi = 2 * std::numbers::pi * f.min_col / n;
+  }
   if (cut > 0) {
     r.pv = r.max - r.min;
     r.rms = std::sqrt(sum / static_cast<double>(cut));
   } else {
     r.max = r.min = 0;
   }
+
+  // The worst place of each twentieth of the radii, the five worst of those, and why.
+  constexpr int kStretches = 20;
+  std::vector<ResidualPlace> places;
+  for (int s = 0; s < kStretches; ++s) {
+    const int i0 = rings_ * s / kStretches, i1 = rings_ * (s + 1) / kStretches;
+    int best = -1;
+    for (int i = i0; i < i1; ++i)
+      if (rings[static_cast<std::size_t>(i)].worst_col >= 0 &&
+          (best < 0 || rings[static_cast<std::size_t>(i)].worst > rings[static_cast<std::size_t>(best)].worst))
+        best = i;
+    if (best < 0) continue;
+    const int j = rings[static_cast<std::size_t>(best)].worst_col;
+    const std::size_t idx = static_cast<std::size_t>(best) * static_cast<std::size_t>(n) + static_cast<std::size_t>(j);
+    ResidualPlace p;
+    p.r = o_.inner_radius + best * o_.radial_step;
+    p.phi = 2 * std::numbers::pi * j / n;
+    p.residual = machined_[idx];
+    const double d = offset_[idx] * from_offset;
+    p.scallop_part = R_ - std::sqrt(std::max(0.0, R_ * R_ - d * d));
+    if (p.residual < 0)
+      p.cause = -p.residual > 1.1 * predicted_.max_chord_below + 1e-6 ? ResidualCause::kGouge : ResidualCause::kChord;
+    else
+      p.cause = p.scallop_part >= p.residual - p.scallop_part ? ResidualCause::kScallop : ResidualCause::kChord;
+    places.push_back(p);
+  }
+  std::stable_sort(places.begin(), places.end(), [](const ResidualPlace& a, const ResidualPlace& b) {
+    return std::abs(a.residual) > std::abs(b.residual);
+  });
+  if (places.size() > 5) places.resize(5);
+  r.worst = std::move(places);
+  r.residual = std::move(machined_);
+  machined_.clear();
+  offset_.clear();
+  offset_.shrink_to_fit();
   return r;
 }
 

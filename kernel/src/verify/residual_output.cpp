@@ -3,11 +3,50 @@
 #include <algorithm>
 #include <cmath>
 #include <cstdio>
+#include <limits>
 #include <numbers>
 
 #include "freeturn/io/atomic_file.hpp"
 
 namespace freeturn {
+
+ResidualHeatMap residual_heat_map(const SimulationResult& r, double inner, int size) {
+  ResidualHeatMap map;
+  map.size = size;
+  const double outer = inner + (r.rings - 1) * r.radial_step;
+  map.half_width = outer;
+  const double pixel = 2 * outer / size;
+  map.mean.assign(static_cast<std::size_t>(size) * static_cast<std::size_t>(size),
+                  std::numeric_limits<double>::quiet_NaN());
+  map.low = std::numeric_limits<double>::infinity();
+  map.high = -map.low;
+  for (int py = 0; py < size; ++py)
+    for (int px = 0; px < size; ++px) {
+      const double x = -outer + (px + 0.5) * pixel, y = outer - (py + 0.5) * pixel;
+      const double rad = std::hypot(x, y);
+      if (rad < inner - 0.5 * r.radial_step || rad > outer + 0.5 * r.radial_step) continue;
+      double phi = std::atan2(y, x);
+      if (phi < 0) phi += 2 * std::numbers::pi;
+      const long column = std::lround(phi / (2 * std::numbers::pi) * r.columns) % r.columns;
+      const int i0 = std::max(0, static_cast<int>(std::ceil((rad - 0.5 * pixel - inner) / r.radial_step)));
+      const int i1 = std::min(r.rings - 1, static_cast<int>(std::floor((rad + 0.5 * pixel - inner) / r.radial_step)));
+      double sum = 0;
+      long count = 0;
+      for (int i = i0; i <= i1; ++i) {
+        const double e = r.residual[static_cast<std::size_t>(i) * static_cast<std::size_t>(r.columns) + static_cast<std::size_t>(column)];
+        if (std::isnan(e)) continue;
+        sum += e;
+        ++count;
+      }
+      if (count == 0) continue;
+      const double mean = sum / static_cast<double>(count);
+      map.mean[static_cast<std::size_t>(py) * static_cast<std::size_t>(size) + static_cast<std::size_t>(px)] = mean;
+      map.low = std::min(map.low, mean);
+      map.high = std::max(map.high, mean);
+    }
+  if (map.low > map.high) map.low = map.high = 0;
+  return map;
+}
 
 void write_residual_csv(const SimulationResult& r, double inner, const std::string& path) {
   AtomicFile f(path);

@@ -19,6 +19,9 @@ struct ContactPoint {
   // Predicted chord error of the segment that ends here (mm): the largest distance of the
   // machine's interpolated motion from the design surface; 0 for the first point.
   double chord_error = 0;
+  // Which side of the design that worst deviation lies: below it (the motion cuts into
+  // the design) or above (it leaves material, which adds to the scallop).
+  bool chord_below = false;
   // Pass spacing across adjacent turns along the surface (mm), the curvature of the
   // surface's radial section (1/mm, > 0 concave as seen from the tool), and the scallop
   // height they leave with the tool's nose radius (mm; 0 when no nose radius was given).

@@ -32,6 +32,19 @@ struct CutterPointOptions {
   double max_radial_step = 0.5;  // mm
 };
 
+// The point the machine's axes carry, for measuring the chord error on the motion the
+// controller really interpolates (tool/compensation.hpp places it the same way).
+struct ToolMotion {
+  double nose_radius = 0;  // mm (0: the contact path itself, no nose)
+  // The programmed point is the nose centre + axis_offset·(sin B, cos B): the pivot
+  // distance L for a B pivot, −R for the tool tip, 0 for the centre.
+  double axis_offset = 0;
+  // B follows the section normal (B = ψ − edge_angle), so a pivot or tip swings with it;
+  // with B fixed the offset is a constant and drops out.
+  bool b_follows = false;
+  double edge_angle = 0;  // rad
+};
+
 // What a planner reports once the path is complete.
 struct PathSummary {
   long points = 0;
@@ -39,6 +52,12 @@ struct PathSummary {
   double max_chord_error = 0;   // mm, over all segments
   double max_scallop = 0;       // mm
   double max_pass_spacing = 0;  // mm
+  // Segments across which the nose centre jumps (a crease sharper than the nose): the
+  // chord tolerance cannot hold there; their worst error (also in max_chord_error) and
+  // where the first one ends.
+  long jumps = 0;
+  double max_jump_error = 0;  // mm
+  double first_jump_theta = 0, first_jump_r = 0;
 };
 
 }  // namespace freeturn

@@ -1,20 +1,33 @@
 #pragma once
-// Simulating the cut (issue 9, first part): the tool nose, a circle of radius R in the
-// radial plane at the spindle angle, swept along the motion between cutter locations,
-// leaves the machined surface; the residual is machined minus design along the normal.
+// Simulating the cut (paper 001's promise: the form error known before cutting).
+//
+// The tool nose, a circle of radius R in the radial plane at the spindle angle, swept
+// along the motion between cutter locations, leaves the machined surface; the residual is
+// machined minus design along the normal (docs/verify.md).
 //
 // The machined heights live on a polar grid (radii × angle columns). Each segment between
 // two cutter locations passes every column whose angle it spans (once per revolution on
-// a spiral); there the nose centre is interpolated linearly in (radial position, θ, z),
-// and the nose's lower arc lowers the cells it covers: z_m = min(z_m, c_z − √(R² − (ρ − c_r)²)).
+// a spiral); there the programmed axes X, Z, B are interpolated as the controller does
+// (linearly in θ, or by cubic Hermite with each block's velocity from its neighbours, the
+// PVT controller's own), the nose centre found from them (on a B machine with a pivot it
+// swings on an arc about the pivot), and the nose's lower arc lowers the cells it covers:
+// z_m = min(z_m, c_z − √(R² − (ρ − c_r)²)).
 // Only the part of the arc within `band` of the contact point is swept: the rest of the
 // edge is cut away again by the neighbouring passes (a gouge there is the tool checks'
 // business). Cells on the far side of the axis are reached through the opposite column.
+//
+// Parallel and deterministic: a column and its opposite belong to one thread, which
+// applies the segments in path order, so every cell sees the same cuts in the same order
+// whatever the thread count; the figures are reduced ring by ring in ring order.
 
+#include <cstdint>
 #include <span>
+#include <string>
 #include <vector>
 
 #include "freeturn/surface/surface.hpp"
+#include "freeturn/path/cutter_points.hpp"
+#include "freeturn/tool/compensation.hpp"
 #include "freeturn/tool/cutter_location.hpp"
 
 namespace freeturn {
@@ -28,6 +41,37 @@ struct SimulationOptions {
   // the grid): the spiral's first turn leaves the outermost ring uncut by any pass
   // beyond it, a part of the cut the aperture does not hold.
   double margin = 0;       // mm
+  int threads = 0;         // 0: the machine's hardware threads
+  Interpolation interpolation = Interpolation::kLinear;  // the controller's, between blocks
+  // How the path was compensated: what the programmed axes are (the nose centre, the tip,
+  // or the B pivot) and so how the nose centre follows from them.
+  CompensationOptions compensation;
+  long max_cells = 40'000'000;  // 10 bytes each; a larger grid is refused
+};
+
+// Why a place is off the design.
+enum class ResidualCause {
+  kScallop,  // above the design, mostly the nose's flank between passes
+  kChord,    // the interpolated motion between blocks, above or below the design
+  kGouge,    // below the design by more than the predicted chord error allows
+};
+const char* to_string(ResidualCause cause);
+
+struct ResidualPlace {
+  double r = 0, phi = 0;  // mm, rad
+  double residual = 0;    // mm
+  ResidualCause cause = ResidualCause::kChord;
+  double scallop_part = 0;  // mm: the nose flank's height where it cut (≥ 0)
+};
+
+// What the planner predicted for the same region (its contact points within the figures'
+// radii): material above the design up to max chord above + max scallop, cuts below it up
+// to max chord below; PV the two together.
+struct ResidualPrediction {
+  double max_scallop = 0, max_chord_above = 0, max_chord_below = 0;  // mm
+  double max() const { return max_chord_above + max_scallop; }
+  double min() const { return -max_chord_below; }
+  double pv() const { return max() - min(); }
 };
 
 struct SimulationResult {
@@ -38,29 +82,40 @@ struct SimulationResult {
   double pv = 0, rms = 0, max = 0, min = 0;
   long uncut = 0;  // cells no pass reached
   double max_r = 0, max_phi = 0, min_r = 0, min_phi = 0;  // where the extremes are
+  // The worst places, largest |residual| first, at most five, each the worst of its own
+  // stretch of radius (a twentieth of the aperture).
+  std::vector<ResidualPlace> worst;
+  ResidualPrediction predicted;
 };
 
 class CutSimulator final : public CutterSink {
  public:
   // nose_radius: the radius the tool really has (a wrong compensation shows as the
-  // difference from the one the path was planned with).
+  // difference from the one the path was planned with). Throws InputError for a bad grid
+  // or one over max_cells.
   CutSimulator(const Surface& design, double nose_radius, const SimulationOptions& options);
 
   void write(std::span<const CutterLocation> chunk) override;
-  // The residual and its figures over the cells that were cut.
-  SimulationResult result() const;
+  // Sweeps what is left, then the residual and its figures over the cells that were cut.
+  // Once: the grid becomes the residual.
+  SimulationResult finish();
 
  private:
-  void sweep(const CutterLocation& a, const CutterLocation& b);
+  void sweep_batch(bool last);
+  void sweep_columns(std::size_t end, int pair_begin, int pair_end);
   void lower_column(int column, double c_r, double c_z, double p_r);
 
   const Surface& design_;
   double R_;
   SimulationOptions o_;
-  int rings_ = 0;
-  std::vector<double> machined_;  // rings × columns
-  bool has_previous_ = false;
-  CutterLocation previous_;
+  int rings_ = 0, threads_ = 1;
+  std::vector<double> machined_;       // rings × columns
+  std::vector<std::uint16_t> offset_;  // |ρ − contact| of the cut that set the cell, in band/65535
+  // The batch: locations from pending_[first_] on start segments still to sweep; the one
+  // before (if any) gives the first block's velocity in PVT.
+  std::vector<CutterLocation> pending_;
+  std::size_t first_ = 0;
+  ResidualPrediction predicted_;
 };
 
 }  // namespace freeturn

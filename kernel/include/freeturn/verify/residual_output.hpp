@@ -4,11 +4,25 @@
 // design, white on it, red above), both written atomically.
 
 #include <string>
+#include <vector>
 
 #include "freeturn/surface/surface.hpp"
 #include "freeturn/verify/cut_simulation.hpp"
 
 namespace freeturn {
+
+// The residual seen from above on a square raster over [−outer, outer]², outer = the
+// grid's outer radius: each pixel the mean of the cut cells of the column nearest its
+// centre's angle whose radii lie within the pixel's width of its centre's radius. Radially
+// a mean (a scallop finer than a pixel shows as its mean height, not as moiré); around the
+// turn the nearest column (columns may lie farther apart than pixels at the rim).
+struct ResidualHeatMap {
+  int size = 0;              // pixels per side
+  double half_width = 0;     // mm, the raster spans [−half_width, half_width] in x and y
+  std::vector<double> mean;  // size × size, row-major from +y down (image order); NaN: no cell
+  double low = 0, high = 0;  // the smallest and largest pixel means (mm)
+};
+ResidualHeatMap residual_heat_map(const SimulationResult& r, double inner_radius, int size);
 
 void write_residual_csv(const SimulationResult& r, double inner_radius, const std::string& path);
 

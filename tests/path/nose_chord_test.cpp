@@ -1,0 +1,122 @@
+#include <doctest/doctest.h>
+
+#include <cmath>
+#include <memory>
+#include <numbers>
+
+#include "freeturn/path/profile.hpp"
+#include "freeturn/path/spiral.hpp"
+#include "freeturn/surface/even_asphere.hpp"
+#include "freeturn/surface/sinusoidal.hpp"
+#include "freeturn/surface/transformed_surface.hpp"
+#include "freeturn/tool/tool_compensator.hpp"
+#include "path/dense_check.hpp"
+
+using namespace freeturn;
+
+namespace {
+
+std::vector<CutterLocation> compensated(const Surface& s, double R, const auto& plan,
+                                       CompensationOptions c = {}) {
+  c.tool.nose_radius = R;
+  ToolCheckOptions checks;
+  checks.policy.fill(CheckPolicy::kOff);
+  CutterCollector out;
+  ToolCompensator compensator(s, c, checks, out);
+  plan(compensator);
+  return out.locations;
+}
+
+std::vector<ContactPoint> contacts(const std::vector<CutterLocation>& cls) {
+  std::vector<ContactPoint> p;
+  for (const CutterLocation& cl : cls) p.push_back(cl.contact);
+  return p;
+}
+
+}  // namespace
+
+TEST_SUITE("path") {
+  TEST_CASE("with a nose, ε holds on the nose-centre motion the machine interpolates (spiral)") {
+    // An off-axis sphere, where the nose centre's path curves around the turn differently
+    // from the contact's.
+    const TransformedSurface sphere(std::make_unique<EvenAsphere>(1 / 30.0, 0), 8, 0,
+                                    Eigen::Matrix3d::Identity());
+    const double eps = 5e-4, R = 0.5;
+    SpiralOptions o;
+    o.outer_radius = 1.0;
+    o.inner_radius = 0.5;
+    o.pitch = 0.05;
+    o.nose_radius = R;
+    o.points.tolerance = eps;
+    o.points.max_angle_step = 1.0;
+    const auto cls = compensated(sphere, R, [&](ContactSink& sink) {
+      plan_spiral(sphere, BaseSurface::plane(1.0), o, sink);
+    });
+    const double nose = test::densest_nose_error(sphere, cls, R);
+    const double contact = test::densest_chord_error(sphere, contacts(cls));
+    MESSAGE("ε " << eps * 1e6 << " nm: nose motion " << nose * 1e6 << " nm, contact path "
+                 << contact * 1e6 << " nm, " << cls.size() << " points");
+    CHECK(nose <= 1.002 * eps);
+    CHECK(nose >= 0.9 * eps);
+    // The planner's own figure per segment agrees with the brute force.
+    double planned = 0;
+    for (const CutterLocation& cl : cls) planned = std::max(planned, cl.contact.chord_error);
+    CHECK(planned == doctest::Approx(nose).epsilon(0.01));
+  }
+
+  TEST_CASE("with a nose, ε holds on the nose-centre motion (profile)") {
+    // The sinusoidal ring of paper 001, period 2 mm.
+    const SinusoidalRing ring(0.05, std::numbers::pi, 0.0);
+    {
+      const double eps = 1e-4, R = 0.2;
+      ProfileOptions o;
+      // Away from the centre, where the ring's profile meets its mirror image in a cone
+      // tip the nose cannot follow (the centre check's business).
+      o.outer_radius = 5.0;
+      o.inner_radius = 0.5;
+      o.nose_radius = R;
+      o.points.tolerance = eps;
+      const auto cls = compensated(ring, R, [&](ContactSink& sink) { plan_profile(ring, o, sink); });
+      const double nose = test::densest_nose_error(ring, cls, R, 200);
+      MESSAGE("profile ε " << eps * 1e6 << " nm: nose motion " << nose * 1e6 << " nm, " << cls.size() << " points");
+      CHECK(nose <= 1.002 * eps);
+      CHECK(nose >= 0.9 * eps);
+    }
+  }
+
+  TEST_CASE("with B following about a pivot, ε holds on the pivot's motion, where the nose swings on arcs") {
+    // An Alvarez plate (paper 002's 4-axis part): its slope changes around the turn, so B
+    // does, and the nose centre swings on an arc of radius L between blocks.
+    const Alvarez plate(0.02, 0.0);
+    const double eps = 2e-4, R = 0.5, L = 60;
+    CompensationOptions c;
+    c.b_mode = BMode::kFollow;
+    c.pivot_distance = L;
+    SpiralOptions o;
+    o.outer_radius = 3.0;
+    o.inner_radius = 1.0;
+    o.pitch = 0.1;
+    o.nose_radius = R;
+    o.axis_offset = L;
+    o.b_follows = true;
+    o.points.tolerance = eps;
+    o.points.max_angle_step = 1.0;
+    c.tool.nose_radius = R;
+    const auto cls = compensated(plate, R, [&](ContactSink& sink) {
+      plan_spiral(plate, BaseSurface::plane(3.0), o, sink);
+    }, c);
+    const double pivot = test::densest_nose_error(plate, cls, R, 50, 400, &c);
+    const double centre = test::densest_nose_error(plate, cls, R);
+    MESSAGE("ε " << eps * 1e6 << " nm: pivot motion " << pivot * 1e6 << " nm (a linear nose centre would err "
+                 << centre * 1e6 << " nm), " << cls.size() << " points");
+    CHECK(pivot <= 1.002 * eps);
+    CHECK(pivot >= 0.9 * eps);
+    // Planned as if the centre moved linearly, the same tolerance errs more on the pivot.
+    SpiralOptions naive = o;
+    naive.axis_offset = 0;
+    const auto naive_cls = compensated(plate, R, [&](ContactSink& sink) {
+      plan_spiral(plate, BaseSurface::plane(3.0), naive, sink);
+    }, c);
+    CHECK(test::densest_nose_error(plate, naive_cls, R, 50, 400, &c) > 1.2 * eps);
+  }
+}
