@@ -91,6 +91,10 @@ contains "simulation figures in the report" "$tmp/sim/report.json" '"simulation"
 contains "prediction bound" "$tmp/stdout" "an upper bound within 10%"
 contains "worst place cause" "$tmp/stdout" "(scallop)"
 contains "worst places in the report" "$tmp/sim/report.json" '"cause": "scallop"'
+# On a PVT machine the controller's cubics: the prediction still bounds the simulation.
+sed 's/^machine: .*/machine: precitech-nanoform-250/' "$src/configs/jobs/oap_segment.yaml" > "$tmp/oap_pvt.yaml"
+(cd "$src/configs/jobs" && "$freeturn" simulate "$tmp/oap_pvt.yaml" -o "$tmp/sim_pvt") > "$tmp/stdout"; expect "simulate pvt" 0 $?
+contains "prediction bound (pvt)" "$tmp/stdout" "an upper bound within 10%"
 # The same on one thread: the same residual grid, byte for byte.
 "$freeturn" simulate "$src/configs/jobs/oap_segment.yaml" -o "$tmp/sim1" --threads 1 > /dev/null; expect "simulate 1 thread" 0 $?
 cmp -s "$tmp/sim/oap_segment.residual.csv" "$tmp/sim1/oap_segment.residual.csv" || { echo "FAIL: the residual grid differs on one thread"; fail=1; }

@@ -198,7 +198,7 @@ TEST_SUITE("path") {
     CHECK(cubic.points.size() < linear.points.size() / 2);
   }
 
-  TEST_CASE("scallop prediction: f²/8 (1/R − κ) on a plane and a concave sphere") {
+  TEST_CASE("scallop prediction: R − √(R² − f²/4) on a plane, the circles' cusp in a concave sphere") {
     const double pitch = 0.02, nose = 0.5;
     SpiralOptions o;
     o.outer_radius = 3;
@@ -207,7 +207,8 @@ TEST_SUITE("path") {
     o.points = equal_angle(36);
     ContactCollector flat;
     plan_spiral(EvenAsphere(0, 0), BaseSurface::plane(3), o, flat);
-    for (const auto& p : flat.points) CHECK(p.scallop == doctest::Approx(pitch * pitch / (8 * nose)).epsilon(1e-12));
+    const double flat_scallop = nose - std::sqrt(nose * nose - pitch * pitch / 4);
+    for (const auto& p : flat.points) CHECK(p.scallop == doctest::Approx(flat_scallop).epsilon(1e-12));
     // A concave sphere (R = 2 mm, seen from the tool) on its own base: f = p, κ = 1/2.
     const EvenAsphere bowl(0.5, 0);
     ContactCollector cut;
@@ -215,9 +216,15 @@ TEST_SUITE("path") {
     fo.spans = 32;
     plan_spiral(bowl, fit_base_least_squares(sample_aperture(bowl, 0, 1.5), fo),
                 [&] { SpiralOptions s = o; s.outer_radius = 1.5; return s; }(), cut);
+    // The cusp of two nose circles whose centres lie ρ − R from the sphere's centre, f/ρ
+    // apart in angle: h = ρ − [(ρ − R) cos(φ/2) + √(R² − (ρ − R)² sin²(φ/2))].
+    const double rho = 2, phi = pitch / rho;
+    const double cusp = rho - ((rho - nose) * std::cos(phi / 2) +
+                               std::sqrt(nose * nose - std::pow((rho - nose) * std::sin(phi / 2), 2)));
     for (const auto& p : cut.points) {
       CHECK(p.section_curvature == doctest::Approx(0.5).epsilon(1e-9));
-      CHECK(p.scallop == doctest::Approx(pitch * pitch / 8 * (1 / nose - 0.5)).epsilon(1e-5));
+      CHECK(p.scallop == doctest::Approx(cusp).epsilon(1e-4));
+      CHECK(p.scallop >= cusp * (1 - 1e-9));  // an upper bound, where f²/8 (1/R − κ) falls short
     }
   }
 

@@ -26,10 +26,17 @@ inline double fill_section(const Surface& design, ContactPoint& p) {
 }
 
 // Scallop height between passes f apart on a section of curvature κ cut by a nose of
-// radius R: h = (f²/8)(1/R − κ) (the two circles' sagittas), 0 without a nose radius.
+// radius R: the sagitta of a circle of the relative radius R_e = 1/(1/R − κ) over the
+// chord f, R_e − √(R_e² − f²/4) ≈ (f²/8)(1/R − κ): exact on a flat (κ = 0), where the
+// parabolic form falls short by f⁴/128R³ (0.4 nm of 625 at R 0.5 mm, f 50 µm), enough to
+// stop it bounding the simulated cut. 0 without a nose radius.
 inline double scallop_height(double spacing, double curvature, double nose_radius) {
   if (!(nose_radius > 0)) return 0.0;
-  return std::max(0.0, spacing * spacing / 8 * (1 / nose_radius - curvature));
+  const double relative = 1 / nose_radius - curvature;
+  if (!(relative > 0)) return 0.0;
+  const double r_e = 1 / relative, half = 0.5 * spacing;
+  if (half >= r_e) return spacing * spacing / 8 * relative;  // the passes do not overlap as circles
+  return r_e - std::sqrt(r_e * r_e - half * half);
 }
 
 }  // namespace freeturn::detail
