@@ -3,9 +3,11 @@
 # builds one build flavour. Idempotent: with everything in place it only runs an
 # incremental build.
 #
-#   scripts/setup.sh [release|asan]   install what is missing, configure, build
+#   scripts/setup.sh [release|asan|fuzz]
+#                                     install what is missing, configure, build
 #                                     (release: optimised, for the demo and bench/;
-#                                      asan: AddressSanitizer + UBSan, for the tests)
+#                                      asan: AddressSanitizer + UBSan, for the tests;
+#                                      fuzz: clang with libFuzzer, the fuzz/ harnesses)
 #   scripts/setup.sh --check          list the missing packages, one per line;
 #                                     exit 0 if none is missing, 1 otherwise
 set -euo pipefail
@@ -46,7 +48,13 @@ flavour="${1:-release}"
 case "$flavour" in
   release) cmake_args=(-DCMAKE_BUILD_TYPE=Release -DFREETURN_BUILD_BENCH=ON -DFREETURN_BUILD_TESTS=OFF) ;;
   asan) cmake_args=(-DCMAKE_BUILD_TYPE=Debug -DFREETURN_SANITIZE=ON) ;;
-  *) echo "setup.sh: unknown build flavour '$flavour' (release or asan)" >&2; exit 2 ;;
+  fuzz)
+    # libFuzzer and the sanitizer runtimes come with clang's compiler-rt.
+    packages+=(clang libclang-rt-14-dev)
+    cmake_args=(-DCMAKE_BUILD_TYPE=Debug -DFREETURN_FUZZ=ON -DFREETURN_BUILD_TESTS=OFF
+                -DCMAKE_CXX_COMPILER=clang++)
+    ;;
+  *) echo "setup.sh: unknown build flavour '$flavour' (release, asan or fuzz)" >&2; exit 2 ;;
 esac
 
 mapfile -t missing < <(missing_packages)
@@ -65,4 +73,9 @@ fi
 build="$root/build/$flavour"
 # Configuring again is quick with a cache, and repairs a build folder left half-configured.
 cmake -S "$root" -B "$build" "${cmake_args[@]}" >/dev/null
-cmake --build "$build" --parallel "$(nproc)"
+if [[ "$flavour" == fuzz ]]; then
+  # The harnesses only: the CLI, posts and plugins are the other flavours' business.
+  cmake --build "$build" --parallel "$(nproc)" --target job_yaml_fuzzer machine_yaml_fuzzer iges_fuzzer nc_parser_fuzzer
+else
+  cmake --build "$build" --parallel "$(nproc)"
+fi

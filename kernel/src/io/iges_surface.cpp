@@ -1,5 +1,7 @@
 #include "freeturn/io/iges_surface.hpp"
 
+#include "number_text.hpp"
+
 #include <cmath>
 #include <fstream>
 #include <map>
@@ -99,14 +101,8 @@ class ParameterReader {
     std::string t = trim(next(what));
     for (char& ch : t)
       if (ch == 'D' || ch == 'd') ch = 'E';
-    std::size_t used = 0;
     double value = 0;
-    try {
-      value = std::stod(t, &used);
-    } catch (const std::exception&) {
-      used = 0;
-    }
-    if (used != t.size() || t.empty() || !std::isfinite(value))
+    if (!detail::parse_finite(t, value))
       throw InputError(where_, what + " must be a number, not '" + t + "'");
     return value;
   }
@@ -137,11 +133,12 @@ struct Directory {
 int directory_field(const Record& r, int field, const std::string& path) {
   const std::string t = trim(r.data.substr(static_cast<std::size_t>(8 * field), 8));
   if (t.empty()) return 0;
-  if (t.find_first_not_of("-0123456789") != std::string::npos)
+  int value = 0;
+  if (!detail::parse_int(t, value))
     throw InputError(SourceLocation{path, r.file_line, 8 * field + 1},
                      "directory field " + std::to_string(field + 1) + " must be an integer, not '" +
                          t + "'");
-  return std::stoi(t);
+  return value;
 }
 
 class IgesFile {
@@ -226,15 +223,20 @@ class IgesFile {
     const std::vector<std::string> fields = split_fields(text, delimiter_, terminator_);
     const auto field = [&](std::size_t k) { return k < fields.size() ? trim(fields[k]) : ""; };
     const std::string scale = field(12), unit = field(13);
-    if (!scale.empty() && std::stod(scale) != 1.0)
+    std::string scale_number = scale;
+    for (char& ch : scale_number)
+      if (ch == 'D' || ch == 'd') ch = 'E';
+    double scale_value = 1.0;
+    if (!scale.empty() && (!detail::parse_finite(scale_number, scale_value) || scale_value != 1.0))
       throw InputError(SourceLocation{path_, line, 0},
                        "model space scale " + scale + " is not supported (only 1.0)");
     static const std::map<int, double> kMillimetres = {{1, 25.4}, {2, 1.0},     {4, 304.8},
                                                        {6, 1000}, {8, 0.0254}, {9, 0.001},
                                                        {10, 10},  {11, 2.54e-5}};
-    const int flag = unit.empty() ? 2 : std::stoi(unit);
+    int flag = 2;
+    const bool flag_read = unit.empty() || detail::parse_int(unit, flag);
     const auto it = kMillimetres.find(flag);
-    if (it == kMillimetres.end())
+    if (!flag_read || it == kMillimetres.end())
       throw InputError(SourceLocation{path_, line, 0},
                        "units flag " + unit + " is not supported (use 2 = mm)");
     mm_per_unit_ = it->second;

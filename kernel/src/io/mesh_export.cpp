@@ -1,8 +1,10 @@
 #include "freeturn/io/mesh_export.hpp"
 
 // OpenMesh's property containers trip GCC 12's -Wmaybe-uninitialized at -O1 (ASan builds).
+#if defined(__GNUC__) && !defined(__clang__)
 #pragma GCC diagnostic push
 #pragma GCC diagnostic ignored "-Wmaybe-uninitialized"
+#endif
 #include <OpenMesh/Core/Mesh/TriMesh_ArrayKernelT.hh>
 #include <cmath>
 #include <cstdio>
@@ -109,4 +111,6 @@ void write_polyline_vtk(const std::vector<Eigen::Vector3d>& points, const std::s
 
 }  // namespace freeturn
 
+#if defined(__GNUC__) && !defined(__clang__)
 #pragma GCC diagnostic pop
+#endif

@@ -1,5 +1,7 @@
 #include "freeturn/io/nc_program.hpp"
 
+#include "number_text.hpp"
+
 #include <algorithm>
 #include <cctype>
 #include <cmath>
@@ -51,7 +53,8 @@ std::vector<NcBlock> parse_nc(const std::string& text, const std::string& file) 
         const std::string number = l.substr(number_start, j - number_start);
         if (ch != '#' && ch != '[' && !number.empty() && number != "-" && number != "+" &&
             number != ".") {
-          w.value = std::strtod(number.c_str(), nullptr);
+          if (!detail::parse_finite(number, w.value))
+            fail("'" + std::string(1, w.letter) + number + "' is not a number");
           w.text = std::string(1, w.letter) + number;
           // M98(child.nc): the parentheses are the call's argument, not a comment.
           if (w.letter == 'M' && w.value == 98 && j < l.size() && l[j] == '(') {
