@@ -1,5 +1,6 @@
 #include "freeturn/post_program.hpp"
 
+#include <algorithm>
 #include <filesystem>
 
 #include "freeturn/core/error.hpp"
@@ -8,10 +9,12 @@ namespace freeturn {
 
 PostProgram::PostProgram(const PostPlugin& plugin, const MachineDescription& machine,
                          const ProgramSettings& settings, const std::string& path)
-    : plugin_(plugin), machine_(machine), settings_(settings) {
+    : plugin_(plugin), machine_(machine), settings_(settings), guard_(machine_),
+      watch_(plugin.post().name) {
   folder_ = std::filesystem::path(path).parent_path().string();
   files_.push_back(std::make_unique<AtomicFile>(path));
   current_ = files_.front().get();
+  guard_.select_file(0, std::filesystem::path(path).filename().string());
   info_.program_name = settings_.name.c_str();
   info_.machine_name = machine_.name.c_str();
   info_.dialect_settings = machine_.dialect_settings.c_str();
@@ -27,13 +30,42 @@ PostProgram::PostProgram(const PostPlugin& plugin, const MachineDescription& mac
   info_.feed_per_minute = machine_.feed_per_minute ? 1 : 0;
   info_.block_count = settings_.block_count;
   writer_ = {this, &PostProgram::write_bytes, &PostProgram::open_file, &PostProgram::select_main};
-  handle_ = plugin_.post().create(&info_, &writer_, error_, sizeof error_);
+  {
+    PluginWatch::Call call(watch_, "create");
+    handle_ = plugin_.post().create(&info_, &writer_, error_, sizeof error_);
+  }
   if (handle_ == nullptr) fail("create");
-  if (plugin_.post().begin(handle_, error_, sizeof error_) != 0) fail("begin");
+  // A constructor that throws runs no destructor: the plugin's state is released here.
+  try {
+    check_output("create");
+    int status;
+    {
+      PluginWatch::Call call(watch_, "begin");
+      status = plugin_.post().begin(handle_, error_, sizeof error_);
+    }
+    check_output("begin");
+    if (status != 0) fail("begin");
+  } catch (...) {
+    PluginWatch::Call call(watch_, "destroy");
+    plugin_.post().destroy(handle_);
+    handle_ = nullptr;
+    throw;
+  }
 }
 
 PostProgram::~PostProgram() {
-  if (handle_) plugin_.post().destroy(handle_);
+  if (handle_) {
+    PluginWatch::Call call(watch_, "destroy");
+    plugin_.post().destroy(handle_);
+  }
+}
+
+void PostProgram::check_output(const char* stage) {
+  const std::string who = "post-processor '" + std::string(plugin_.post().name) + "' (" + plugin_.path() + ")";
+  if (!refused_.empty()) throw InputError(who, std::string(stage) + ": " + refused_ + "; no NC file was written");
+  if (!guard_.ok())
+    throw InputError(who, std::string(stage) + ": wrote a number no machine may get: " + guard_.reason() +
+                              "; no NC file was written");
 }
 
 void PostProgram::fail(const char* stage) const {
@@ -44,26 +76,55 @@ void PostProgram::fail(const char* stage) const {
 
 void PostProgram::write(std::span<const AxisRecord> chunk) {
   blocks_.resize(chunk.size());
-  for (std::size_t k = 0; k < chunk.size(); ++k)
+  for (std::size_t k = 0; k < chunk.size(); ++k) {
+    const std::string refused = guard_.check_record(chunk[k], blocks_written_ + static_cast<long long>(k) + 1);
+    if (!refused.empty())
+      throw InputError("NC guard (machine '" + machine_.name + "')", refused + "; no NC file was written");
     blocks_[k] = {chunk[k].x, chunk[k].z, chunk[k].c, chunk[k].b, chunk[k].time};
-  if (plugin_.post().blocks(handle_, blocks_.data(), blocks_.size(), error_, sizeof error_) != 0)
-    fail("blocks");
+  }
+  blocks_written_ += static_cast<long long>(chunk.size());
+  int status;
+  {
+    PluginWatch::Call call(watch_, "blocks");
+    status = plugin_.post().blocks(handle_, blocks_.data(), blocks_.size(), error_, sizeof error_);
+  }
+  check_output("blocks");
+  if (status != 0) fail("blocks");
 }
 
 std::vector<std::string> PostProgram::finish() {
-  if (plugin_.post().end(handle_, error_, sizeof error_) != 0) fail("end");
-  std::vector<std::string> paths;
-  for (auto& f : files_) {
-    f->commit();
-    paths.push_back(f->path());
+  int status;
+  {
+    PluginWatch::Call call(watch_, "end");
+    status = plugin_.post().end(handle_, error_, sizeof error_);
   }
+  guard_.end_files();
+  check_output("end");
+  if (status != 0) fail("end");
+  // Child files first, the main program last: the program an operator loads appears only
+  // once every file it calls is in place (docs/robustness.md on the window between).
+  std::vector<std::string> paths;
+  for (std::size_t k = files_.size(); k-- > 0;) {
+    files_[k]->commit();
+    paths.push_back(files_[k]->path());
+  }
+  std::reverse(paths.begin(), paths.end());
   return paths;
 }
 
 int PostProgram::write_bytes(void* context, const char* data, size_t size) {
   auto* self = static_cast<PostProgram*>(context);
   try {
-    self->current_->write(std::string_view(data, size));
+    if (!self->refused_.empty() || !self->guard_.ok()) return 1;
+    const std::string_view bytes(data, size);
+    self->guard_.feed(bytes);
+    if (!self->guard_.ok()) return 1;
+    if (self->settings_.max_file_bytes >= 0 && self->guard_.file_bytes() > self->settings_.max_file_bytes) {
+      self->refused_ = self->current_->path() + " would be larger than limits.max_file_mb = " +
+                       std::to_string(static_cast<double>(self->settings_.max_file_bytes) / (1 << 20)) + " MB";
+      return 1;
+    }
+    self->current_->write(bytes);
     return 0;
   } catch (const std::exception&) {
     return 1;
@@ -78,6 +139,7 @@ int PostProgram::open_file(void* context, const char* name) {
     self->files_.push_back(
         std::make_unique<AtomicFile>((std::filesystem::path(self->folder_) / file).string()));
     self->current_ = self->files_.back().get();
+    self->guard_.select_file(self->files_.size() - 1, file.string());
     return 0;
   } catch (const std::exception&) {
     return 1;
@@ -87,6 +149,7 @@ int PostProgram::open_file(void* context, const char* name) {
 int PostProgram::select_main(void* context) {
   auto* self = static_cast<PostProgram*>(context);
   self->current_ = self->files_.front().get();
+  self->guard_.select_file(0, "");
   return 0;
 }
 

@@ -1,18 +1,75 @@
 #include "freeturn/io/atomic_file.hpp"
 
+#include <signal.h>
 #include <unistd.h>
 
+#include <atomic>
 #include <cerrno>
 #include <cstring>
+#include <filesystem>
 
 #include "freeturn/core/error.hpp"
 
 namespace freeturn {
 
+namespace {
+
+// Temporaries of this path left by runs that were killed (their process is gone): a
+// SIGKILL gives no chance to remove them, so the next writer of the path does.
+void remove_stale_temporaries(const std::string& path) {
+  namespace fs = std::filesystem;
+  const fs::path target(path);
+  const fs::path folder = target.has_parent_path() ? target.parent_path() : fs::path(".");
+  const std::string prefix = target.filename().string() + ".tmp-";
+  std::error_code ec;
+  for (fs::directory_iterator it(folder, ec), end; !ec && it != end; it.increment(ec)) {
+    const std::string name = it->path().filename().string();
+    if (name.size() <= prefix.size() || name.compare(0, prefix.size(), prefix) != 0) continue;
+    const std::string digits = name.substr(prefix.size());
+    if (digits.find_first_not_of("0123456789") != std::string::npos || digits.size() > 9) continue;
+    const pid_t pid = static_cast<pid_t>(std::stol(digits));
+    if (::kill(pid, 0) == -1 && errno == ESRCH) fs::remove(it->path(), ec);
+  }
+}
+
+// The temporaries in use, for remove_all_temporaries(): fixed slots, so that a signal
+// handler can read them without allocating. A path that finds no free slot (or is too
+// long) is not registered; the next run removes it as stale.
+constexpr int kSlots = 64;
+constexpr std::size_t kPathMax = 1024;
+char g_temporaries[kSlots][kPathMax];
+std::atomic<bool> g_slot_used[kSlots];
+
+int register_temporary(const std::string& path) {
+  if (path.size() >= kPathMax) return -1;
+  for (int k = 0; k < kSlots; ++k) {
+    bool expected = false;
+    if (!g_slot_used[k].load(std::memory_order_relaxed) &&
+        g_slot_used[k].compare_exchange_strong(expected, true)) {
+      std::memcpy(g_temporaries[k], path.c_str(), path.size() + 1);
+      return k;
+    }
+  }
+  return -1;
+}
+
+void release_temporary(int slot) {
+  if (slot >= 0) g_slot_used[slot].store(false);
+}
+
+}  // namespace
+
+void AtomicFile::remove_all_temporaries() noexcept {
+  for (int k = 0; k < kSlots; ++k)
+    if (g_slot_used[k].load()) ::unlink(g_temporaries[k]);
+}
+
 AtomicFile::AtomicFile(std::string path) : path_(std::move(path)) {
+  remove_stale_temporaries(path_);
   temp_path_ = path_ + ".tmp-" + std::to_string(::getpid());
   file_ = std::fopen(temp_path_.c_str(), "wb");
   if (!file_) throw InputError(path_, std::string("cannot write: ") + std::strerror(errno));
+  slot_ = register_temporary(temp_path_);
 }
 
 AtomicFile::~AtomicFile() {
@@ -20,6 +77,7 @@ AtomicFile::~AtomicFile() {
     std::fclose(file_);
     std::remove(temp_path_.c_str());
   }
+  release_temporary(slot_);
 }
 
 void AtomicFile::write(std::string_view bytes) {
@@ -32,7 +90,10 @@ void AtomicFile::commit() {
   const int saved_errno = errno;
   const bool closed = std::fclose(file_) == 0;
   file_ = nullptr;
-  if (!flushed || !closed || std::rename(temp_path_.c_str(), path_.c_str()) != 0) {
+  const bool renamed = flushed && closed && std::rename(temp_path_.c_str(), path_.c_str()) == 0;
+  release_temporary(slot_);
+  slot_ = -1;
+  if (!renamed) {
     const int err = flushed ? errno : saved_errno;
     std::remove(temp_path_.c_str());
     throw InputError(path_, std::string("could not complete the file: ") + std::strerror(err));

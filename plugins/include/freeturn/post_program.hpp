@@ -3,6 +3,10 @@
 // text out through AtomicFiles (the main program and any child files it opens), all
 // committed together by finish(). Destroyed without finish() — an error anywhere in the
 // pipeline — it leaves no file behind.
+//
+// Everything crosses NcGuard both ways (records before the plugin sees them, text after
+// it wrote them), every plugin call runs under PluginWatch (a crash or hang ends the run
+// with the plugin's name and no output), and a file past max_file_bytes is refused.
 
 #include <map>
 #include <memory>
@@ -10,6 +14,8 @@
 #include <vector>
 
 #include "freeturn/io/atomic_file.hpp"
+#include "freeturn/nc_guard.hpp"
+#include "freeturn/plugin_watch.hpp"
 #include "freeturn/machine/axis_record.hpp"
 #include "freeturn/machine/machine.hpp"
 #include "freeturn/post_loader.hpp"
@@ -20,6 +26,7 @@ struct ProgramSettings {
   std::string name;  // the job's name
   double spindle_rpm = 0, feed = 0;
   long long block_count = -1;  // −1 when not known in advance
+  long long max_file_bytes = -1;  // a file growing past this is refused (−1: no limit)
 };
 
 class PostProgram final : public AxisSink {
@@ -38,6 +45,8 @@ class PostProgram final : public AxisSink {
   static int open_file(void* context, const char* name);
   static int select_main(void* context);
   [[noreturn]] void fail(const char* stage) const;
+  // After a plugin call: what the guard or the size limit refused, as an InputError.
+  void check_output(const char* stage);
 
   const PostPlugin& plugin_;
   MachineDescription machine_;
@@ -50,6 +59,10 @@ class PostProgram final : public AxisSink {
   AtomicFile* current_ = nullptr;
   std::vector<ft_block> blocks_;
   char error_[512] = {0};
+  NcGuard guard_;
+  PluginWatch watch_;
+  std::string refused_;  // the size limit's refusal, raised after the call
+  long long blocks_written_ = 0;
 };
 
 // The machine file for a name (on the machine search path) or a path (absolute, or with

@@ -12,7 +12,8 @@ namespace freeturn {
 
 class AtomicFile {
  public:
-  // Opens "<path>.tmp-<pid>" for writing. Throws InputError if it cannot.
+  // Opens "<path>.tmp-<pid>" for writing, first removing temporaries of the same path
+  // whose process is gone (a killed run's). Throws InputError if it cannot.
   explicit AtomicFile(std::string path);
   ~AtomicFile();
   AtomicFile(const AtomicFile&) = delete;
@@ -24,7 +25,13 @@ class AtomicFile {
 
   const std::string& path() const { return path_; }
 
+  // Removes the temporary of every AtomicFile not yet committed or destroyed. For a
+  // process about to end abnormally (a post-processor plugin that crashed or hung):
+  // async-signal-safe, it only unlinks.
+  static void remove_all_temporaries() noexcept;
+
  private:
+  int slot_ = -1;  // in the registry remove_all_temporaries() reads
   std::string path_;
   std::string temp_path_;
   std::FILE* file_ = nullptr;

@@ -1,0 +1,58 @@
+#pragma once
+// The one gate every NC byte passes (docs/robustness.md): numbers that must never reach a
+// machine are stopped here, whatever produced them.
+//
+// Before a post-processor formats a block, the block's values must be finite and inside
+// the machine's travel (and B inside its limits). After, every line the plugin wrote is
+// read back outside its comments: each number must be finite and parse whole, the text
+// must hold no "nan" or "inf", and each axis word of the machine's layout must lie inside
+// the travel within half a unit of its declared decimals (except on lines that leave the
+// work frame: G53, G28, G30, G92). The first violation is kept
+// with its file and line; PostProgram turns it into an error naming the plugin, and no NC
+// file is committed.
+
+#include <string>
+#include <string_view>
+#include <vector>
+
+#include "freeturn/machine/axis_record.hpp"
+#include "freeturn/machine/machine.hpp"
+
+namespace freeturn {
+
+class NcGuard {
+ public:
+  explicit NcGuard(const MachineDescription& machine);
+
+  // "" when the record may be formatted, else why not. block: its index in the program.
+  std::string check_record(const AxisRecord& record, long long block) const;
+
+  // The plugin's output, in pieces of any size, to the file `index` (0: the main program,
+  // then each child in the order opened); each file keeps its own line count and size.
+  void select_file(std::size_t index, const std::string& name);
+  void feed(std::string_view bytes);
+  void end_files();  // last lines without their newline
+
+  bool ok() const { return reason_.empty(); }
+  const std::string& reason() const { return reason_; }  // with "file:line: "
+  long long file_bytes() const { return files_[current_].bytes; }
+
+ private:
+  void check_line(std::string_view line);
+  void refuse(const std::string& what);
+
+  struct Range {
+    bool checked = false;
+    double min = 0, max = 0;
+  };
+  struct File {
+    std::string name, line;  // the line being written
+    long long lines = 0, bytes = 0;
+  };
+  Range ranges_[26];  // per letter A…Z
+  std::vector<File> files_;
+  std::size_t current_ = 0;
+  std::string reason_;
+};
+
+}  // namespace freeturn

@@ -1,0 +1,157 @@
+#include "freeturn/nc_guard.hpp"
+
+#include <cctype>
+#include <charconv>
+#include <cmath>
+#include <string>
+#include <system_error>
+
+namespace freeturn {
+namespace {
+
+std::string number_text(double v) {
+  char buffer[32];
+  const auto [end, error] = std::to_chars(buffer, buffer + sizeof buffer, v);
+  return error == std::errc() ? std::string(buffer, end) : "?";
+}
+
+}  // namespace
+
+NcGuard::NcGuard(const MachineDescription& machine) {
+  for (const AxisSpec& s : machine.axes) {
+    const char letter = axis_letter(s.axis)[0];
+    Range& r = ranges_[letter - 'A'];
+    const double half_unit = 0.5 * std::pow(10.0, -s.decimals);
+    if (s.axis == Axis::kC) {
+      if (!machine.c_wrapped) continue;  // accumulating: any finite angle
+      r = {true, -half_unit, 360 + half_unit};
+    } else if (s.axis == Axis::kB) {
+      r = {true, std::max(s.min, machine.b_min_deg) - half_unit, std::min(s.max, machine.b_max_deg) + half_unit};
+    } else {
+      r = {true, s.min - half_unit, s.max + half_unit};
+    }
+  }
+}
+
+std::string NcGuard::check_record(const AxisRecord& record, long long block) const {
+  const std::pair<char, double> values[] = {{'X', record.x}, {'Z', record.z}, {'C', record.c}, {'B', record.b}};
+  std::string why = "block ";
+  why += std::to_string(block);
+  why += ": ";
+  if (!std::isfinite(record.time) || record.time < 0) {
+    why += "block time ";
+    why += number_text(record.time);
+    why += " s is not a finite duration";
+    return why;
+  }
+  for (const auto& [letter, v] : values) {
+    const Range& r = ranges_[letter - 'A'];
+    const bool outside = letter != 'C' && r.checked && (v < r.min || v > r.max);
+    if (std::isfinite(v) && !outside) continue;
+    why += letter;
+    why += " = ";
+    why += number_text(v);
+    why += std::isfinite(v) ? " is outside its travel [" + number_text(r.min) + ", " + number_text(r.max) + "]"
+                            : std::string(" is not a finite number");
+    return why;
+  }
+  return {};
+}
+
+void NcGuard::select_file(std::size_t index, const std::string& name) {
+  if (files_.size() <= index) files_.resize(index + 1);
+  if (files_[index].name.empty()) files_[index].name = name;
+  current_ = index;
+}
+
+void NcGuard::feed(std::string_view bytes) {
+  if (files_.empty()) select_file(0, "program");
+  File& f = files_[current_];
+  f.bytes += static_cast<long long>(bytes.size());
+  while (!bytes.empty()) {
+    const std::size_t newline = bytes.find('\n');
+    if (newline == std::string_view::npos) {
+      f.line.append(bytes);
+      return;
+    }
+    f.line.append(bytes.substr(0, newline));
+    bytes.remove_prefix(newline + 1);
+    ++f.lines;
+    check_line(f.line);
+    f.line.clear();
+  }
+}
+
+void NcGuard::end_files() {
+  for (std::size_t k = 0; k < files_.size(); ++k) {
+    if (files_[k].line.empty()) continue;
+    current_ = k;
+    ++files_[k].lines;
+    check_line(files_[k].line);
+    files_[k].line.clear();
+  }
+}
+
+void NcGuard::refuse(const std::string& what) {
+  if (!reason_.empty()) return;
+  reason_ = files_[current_].name;
+  reason_ += ":";
+  reason_ += std::to_string(files_[current_].lines);
+  reason_ += ": ";
+  reason_ += what;
+}
+
+void NcGuard::check_line(std::string_view line) {
+  // The words outside comments: "( … )" and everything after ';'.
+  std::string code;
+  int depth = 0;
+  for (const char ch : line) {
+    if (ch == ';' && depth == 0) break;
+    if (ch == '(') ++depth;
+    else if (ch == ')' && depth > 0) --depth;
+    else if (depth == 0) code += static_cast<char>(std::tolower(static_cast<unsigned char>(ch)));
+  }
+  if (code.find("nan") != std::string::npos || code.find("inf") != std::string::npos)
+    return refuse("a number that is not finite: " + std::string(line));
+  // Machine-coordinate moves (G53), reference returns (G28, G30) and position presets
+  // (G92) are not in the work frame the travel is given in: their numbers need only be
+  // finite.
+  bool work_frame = true;
+  for (const char* code_word : {"g53", "g28", "g30", "g92"}) {
+    for (std::size_t at = code.find(code_word); at != std::string::npos; at = code.find(code_word, at + 1)) {
+      const std::size_t after = at + 3;
+      if (after >= code.size() || !std::isdigit(static_cast<unsigned char>(code[after]))) work_frame = false;
+    }
+  }
+  for (std::size_t i = 0; i < code.size(); ++i) {
+    if (!std::isalpha(static_cast<unsigned char>(code[i]))) continue;
+    std::size_t j = i + 1;
+    if (j < code.size() && (code[j] == '-' || code[j] == '+')) ++j;
+    const std::size_t digits = j;
+    while (j < code.size() && (std::isdigit(static_cast<unsigned char>(code[j])) || code[j] == '.')) ++j;
+    if (j == digits) continue;  // a keyword letter, not a word
+    const char letter = static_cast<char>(std::toupper(static_cast<unsigned char>(code[i])));
+    std::string_view number(code.data() + i + 1, j - i - 1);
+    if (!number.empty() && number.front() == '+') number.remove_prefix(1);
+    double v = 0;
+    const auto [end, error] = std::from_chars(number.data(), number.data() + number.size(), v);
+    std::string word(1, letter);
+    word += number;
+    if (error != std::errc() || end != number.data() + number.size() || !std::isfinite(v)) {
+      word += " is not a number";
+      return refuse(word);
+    }
+    const Range& r = ranges_[letter - 'A'];
+    if (work_frame && r.checked && (v < r.min || v > r.max)) {
+      word += " is outside the machine's range [";
+      word += number_text(r.min);
+      word += ", ";
+      word += number_text(r.max);
+      word += "]";
+      return refuse(word);
+    }
+    i = j - 1;
+  }
+}
+
+}  // namespace freeturn

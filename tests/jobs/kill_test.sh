@@ -1,0 +1,46 @@
+#!/usr/bin/env bash
+# Crash-safe outputs: `freeturn run` killed with SIGKILL at random moments, over and over,
+# never leaves a partial file under a final name and never damages what was there
+# before. Every output file must afterwards be byte-identical either to what was there
+# before the run (a marker written first) or to the complete output of an undisturbed run.
+# usage: kill_test.sh <freeturn> <source dir> <job> <kills>
+set -u
+freeturn=$1 src=$2 job=$3 kills=$4
+tmp=$(mktemp -d)
+trap 'rm -rf "$tmp"' EXIT
+start=$(date +%s%N)
+"$freeturn" run "$src/configs/jobs/$job.yaml" -o "$tmp/ref" --quiet || { echo "FAIL: the job did not run"; exit 1; }
+run_ms=$(( ($(date +%s%N) - start) / 1000000 ))
+mapfile -t outputs < <(cd "$tmp/ref" && ls)
+mkdir "$tmp/out"
+for f in "${outputs[@]}"; do printf 'OLD %s\n' "$f" > "$tmp/out/$f"; cp "$tmp/out/$f" "$tmp/old.$f"; done
+fail=0 kept_old=0 complete=0 mixed=0 leftovers=0
+for ((i = 1; i <= kills; i++)); do
+  "$freeturn" run "$src/configs/jobs/$job.yaml" -o "$tmp/out" --quiet > /dev/null 2>&1 &
+  pid=$!
+  # Anywhere from the start to a little past the undisturbed run's end.
+  sleep "$(awk -v ms="$run_ms" -v r="$RANDOM" 'BEGIN { printf "%.3f", ms * 1.2 * r / 32767 / 1000 }')"
+  kill -KILL "$pid" 2> /dev/null
+  wait "$pid" 2> /dev/null
+  old=0 new=0
+  for f in "${outputs[@]}"; do
+    if cmp -s "$tmp/out/$f" "$tmp/old.$f"; then old=$((old + 1))
+    elif cmp -s "$tmp/out/$f" "$tmp/ref/$f"; then new=$((new + 1))
+    else echo "FAIL: kill $i left $f neither as it was nor complete"; fail=1; break 2
+    fi
+  done
+  ((new == 0)) && kept_old=$((kept_old + 1))
+  ((old == 0)) && complete=$((complete + 1))
+  ((old > 0 && new > 0)) && mixed=$((mixed + 1))
+  # Back to the old state, so every kill lands on a file that was there before.
+  for f in "${outputs[@]}"; do cp "$tmp/old.$f" "$tmp/out/$f"; done
+done
+# A killed run cannot remove its temporaries (they never carry a final name); the next
+# run of the same outputs does.
+"$freeturn" run "$src/configs/jobs/$job.yaml" -o "$tmp/out" --quiet || { echo "FAIL: the last run failed"; fail=1; }
+for f in "${outputs[@]}"; do cmp -s "$tmp/out/$f" "$tmp/ref/$f" || { echo "FAIL: the last run left $f different"; fail=1; }; done
+leftovers=$(find "$tmp/out" -name '*.tmp-*' | wc -l)
+[[ $leftovers == 0 ]] || { echo "FAIL: $leftovers temporary files left after a complete run"; fail=1; }
+echo "$kills kills over a ${run_ms} ms run: $kept_old left every file as it was, $complete found the run complete, $mixed between (files committed one by one, children first); no temporary file left after the next complete run"
+[[ $fail == 0 ]] && echo "1 passed, 0 failed"
+exit $fail
