@@ -6,6 +6,7 @@
 # usage: smoke.sh <fuzzer> <fuzz dir> <name> <seconds>
 set -u
 fuzzer=$1 dir=$2 name=$3 seconds=$4
+[[ -x "$fuzzer" ]] || { echo "$fuzzer not built (scripts/setup.sh fuzz): skipped"; exit 77; }
 tmp=$(mktemp -d)
 trap 'rm -rf "$tmp"' EXIT
 cd "$tmp" || exit 1

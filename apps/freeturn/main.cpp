@@ -37,7 +37,8 @@ void print_help(std::FILE* out) {
   for (const Command& c : kCommands) std::fprintf(out, "  %-10s %s\n", c.name, c.summary);
   std::fprintf(out,
                "\n'freeturn <command> --help' shows a command's usage.\n"
-               "exit codes: 0 ok, 1 a check failed or files differ, 2 bad input or usage\n");
+               "exit codes: 0 ok, 1 a check failed or files differ, 2 bad input or usage,\n"
+               "3 a post-processor plugin crashed or hung (nothing written)\n");
 }
 
 }  // namespace

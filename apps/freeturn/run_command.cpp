@@ -65,6 +65,11 @@ class PassStage final : public CutterSink, public AxisSink {
   PassStage(AxisSink& post, AtomicFile* csv, PassFigures& figures, Progress& progress)
       : post_(post), csv_(csv), figures_(figures), progress_(progress) {}
   void set_mapper(AxisMapper& m) { mapper_ = &m; }
+  // The job's limits: points over all passes (counted in *points_so_far), CL file bytes.
+  void set_limits(const Limits& limits, long long* points_so_far) {
+    limits_ = limits;
+    points_so_far_ = points_so_far;
+  }
   void set_simulator(CutSimulator* s) { simulator_ = s; }
 
   void write(std::span<const CutterLocation> chunk) override {
@@ -74,6 +79,18 @@ class PassStage final : public CutterSink, public AxisSink {
   }
 
   void write(std::span<const AxisRecord> records) override {
+    if (points_so_far_) {
+      *points_so_far_ += static_cast<long long>(records.size());
+      if (*points_so_far_ > limits_.max_points) {
+        std::string why = "the job passes ";
+        why += std::to_string(limits_.max_points);
+        why += " points at r = ";
+        why += std::to_string(cls_.back().contact.r);
+        why += " mm and is not done: more than limits.max_points allows (a pitch or tolerance typo?); "
+               "nothing was written";
+        throw InputError("limits.max_points", why);
+      }
+    }
     post_.write(records);
     for (std::size_t k = 0; k < records.size(); ++k) {
       const CutterLocation& cl = cls_[k];
@@ -101,6 +118,10 @@ class PassStage final : public CutterSink, public AxisSink {
       post::append_number(line_, values[i], i == 15 ? 12 : 9);
     }
     line_ += '\n';
+    csv_bytes_ += static_cast<long long>(line_.size());
+    if (static_cast<double>(csv_bytes_) > limits_.max_file_mb * 1048576.0)
+      throw InputError("limits.max_file_mb", "the CL file would be larger than " +
+                                                 std::to_string(limits_.max_file_mb) + " MB; nothing was written");
     csv_->write(line_);
   }
 
@@ -113,7 +134,39 @@ class PassStage final : public CutterSink, public AxisSink {
   std::span<const CutterLocation> cls_;
   AxisRecord previous_;  // the last block of the previous chunk
   std::string line_;
+  Limits limits_;
+  long long* points_so_far_ = nullptr;
+  long long csv_bytes_ = 0;
 };
+
+// Before any work: the fewest points the passes can have (each step is at most the angle
+// cap, or the equal angle; at most the radial cap in profile mode), against the limit, so
+// that a typo in the pitch is refused at once rather than after minutes of planning.
+void check_point_bound(const Job& job, const JobPlan& plan, std::size_t passes) {
+  const CutterPointOptions& p = plan.strategy.points;
+  const double width = job.aperture.outer_radius - job.aperture.inner_radius;
+  double per_pass;
+  std::string how;
+  if (plan.strategy.mode == Strategy::Mode::kSpiral) {
+    const double turns = width / plan.strategy.pitch;
+    const double per_turn = p.rule == CutterPointRule::kEqualAngle
+                                ? p.points_per_revolution
+                                : std::ceil(2 * std::numbers::pi / p.max_angle_step);
+    per_pass = turns * per_turn;
+    how = std::to_string(turns) + " turns at pitch " + std::to_string(plan.strategy.pitch) + " mm, at least " +
+          std::to_string(per_turn) + " points per turn";
+  } else {
+    per_pass = width / p.max_radial_step;
+    how = "steps of at most " + std::to_string(p.max_radial_step) + " mm";
+  }
+  const double total = per_pass * static_cast<double>(passes);
+  if (total > static_cast<double>(plan.limits.max_points))
+    throw InputError(job.file, "the job needs at least " + std::to_string(static_cast<long long>(total)) +
+                                   " points (" + how + ", " + std::to_string(passes) +
+                                   " passes): more than limits.max_points = " +
+                                   std::to_string(plan.limits.max_points) +
+                                   "; check the pitch and tolerance, or raise the limit");
+}
 
 struct PreparedJob {
   MachineDescription machine;
@@ -205,6 +258,8 @@ RunReport execute_job(const Job& job, const PreparedJob& prepared, const std::st
   motion.enforce_dynamics = plan.cutting.enforce_dynamics;
 
   std::vector<double> stock = plan.cutting.roughing_depths;
+  check_point_bound(job, plan, stock.size() + 1);
+  long long points_so_far = 0;
   stock.push_back(0.0);  // the finishing pass
   std::vector<std::unique_ptr<PostProgram>> programs;
   std::unique_ptr<AtomicFile> csv;
@@ -218,7 +273,9 @@ RunReport execute_job(const Job& job, const PreparedJob& prepared, const std::st
     AxisSink* post = &discard;
     if (write && plan.outputs.nc) {
       programs.push_back(std::make_unique<PostProgram>(
-          *plugin, machine, ProgramSettings{job.name + suffix, motion.spindle_rpm, motion.feed},
+          *plugin, machine,
+          ProgramSettings{job.name + suffix, motion.spindle_rpm, motion.feed, -1,
+                          static_cast<long long>(plan.limits.max_file_mb * 1048576.0)},
           out(job.name + "." + machine.name + suffix + ".nc")));
       post = programs.back().get();
     }
@@ -228,6 +285,7 @@ RunReport execute_job(const Job& job, const PreparedJob& prepared, const std::st
     }
     Progress progress(progress_on, figures.name);
     PassStage stage(*post, finishing ? csv.get() : nullptr, figures, progress);
+    stage.set_limits(plan.limits, &points_so_far);
     std::unique_ptr<CutSimulator> simulator;
     if (finishing && simulation) {
       SimulationOptions so = *simulation;

@@ -178,12 +178,25 @@ void read_outputs(MapReader& job, JobPlan& plan) {
   m.finish();
 }
 
+void read_limits(MapReader& job, JobPlan& plan) {
+  const auto l = job.optional_child("limits");
+  if (!l) return;
+  MapReader m(*l, job.file(), "limits");
+  const double points = m.positive("max_points", static_cast<double>(plan.limits.max_points));
+  if (points != std::floor(points) || points > 1e15) m.fail("max_points", "limits.max_points must be a whole number of points");
+  plan.limits.max_points = static_cast<long long>(points);
+  plan.limits.max_file_mb = m.positive("max_file_mb", plan.limits.max_file_mb);
+  if (plan.limits.max_file_mb > 1e9) m.fail("max_file_mb", "limits.max_file_mb must be at most 1e9 MB");
+  m.finish();
+}
+
 }  // namespace
 
 std::optional<JobPlan> read_job_plan(MapReader& job, const Aperture& aperture) {
   const bool any = job.has("tool") || job.has("strategy") || job.has("cutting") || job.has("machine");
   if (!any) {
     if (job.has("outputs")) job.fail("outputs", "outputs need tool, strategy, cutting and machine");
+    if (job.has("limits")) job.fail("limits", "limits need tool, strategy, cutting and machine");
     return std::nullopt;
   }
   JobPlan plan;
@@ -192,6 +205,7 @@ std::optional<JobPlan> read_job_plan(MapReader& job, const Aperture& aperture) {
   read_cutting(job, plan);
   plan.machine = job.text("machine");
   read_outputs(job, plan);
+  read_limits(job, plan);
   if (plan.strategy.b_mode == BMode::kFollow) plan.tool.b_mode = BMode::kFollow;
   return plan;
 }

@@ -42,6 +42,12 @@ LensletArray::LensletArray(const LensletArrayOptions& options) : o_(options) {
   // The rim is where lens and base meet: h = base sag − lens sag at D/2 (both coaxial).
   vertex_height_ = sphere_sag(cb, d / 2) - sphere_sag(1 / r, d / 2);
 
+  // The lookup grid below has (2·extent/pitch + 1)² cells: bounded before anything is
+  // allocated (a pitch typo in µm instead of mm would ask for billions).
+  const double side = 2 * o_.extent / o_.pitch + 1;
+  if (!(side * side <= 16e6))
+    throw InputError("pitch", "a pitch of " + mm(o_.pitch) + " over the aperture radius " + mm(o_.extent) +
+                                  " asks for over 16 million lookup cells; give a larger pitch");
   // Centres, keeping lenslets whose footprint lies inside the extent.
   const double reach = o_.extent - d / 2;
   const auto inside = [&](double x, double y) { return std::hypot(x, y) <= reach + 1e-12; };
@@ -117,7 +123,8 @@ double LensletArray::defined_radius() const {
 }
 
 int LensletArray::lenslet_at(double x, double y) const {
-  if (std::abs(x) > o_.extent + cell_ || std::abs(y) > o_.extent + cell_) return -1;
+  // Written so that NaN coordinates (a point off a transformed surface) find no lenslet.
+  if (!(std::abs(x) <= o_.extent + cell_) || !(std::abs(y) <= o_.extent + cell_)) return -1;
   const int a =
       std::clamp(static_cast<int>(std::floor((x + o_.extent) / cell_)), 0, cells_per_side_ - 1);
   const int b =

@@ -42,6 +42,13 @@ struct Outputs {
 };
 
 // The sections a run needs; a job with only name, aperture and surface can be sampled.
+// What a job may produce at most: a typo in a pitch or a tolerance must not fill a
+// shop's disk or DNC link. Exceeded, the run stops and nothing is written.
+struct Limits {
+  long long max_points = 100'000'000;  // cutter locations over all passes
+  double max_file_mb = 2048;           // any one output file (NC program, CL file)
+};
+
 struct JobPlan {
   CompensationOptions tool;
   ToolCheckOptions checks;
@@ -49,6 +56,7 @@ struct JobPlan {
   Cutting cutting;
   std::string machine;  // a machine name or a path to its YAML
   Outputs outputs;
+  Limits limits;
 };
 
 struct Job {

@@ -1,0 +1,96 @@
+#include <doctest/doctest.h>
+
+#include <cmath>
+#include <filesystem>
+#include <limits>
+
+#include "freeturn/core/error.hpp"
+#include "freeturn/job/machine_yaml.hpp"
+#include "freeturn/nc_guard.hpp"
+#include "freeturn/post_program.hpp"
+#include "test_files.hpp"
+
+using namespace freeturn;
+
+namespace {
+
+const std::string kPlugins = FREETURN_PLUGIN_DIR;
+const std::string kMachines = FREETURN_MACHINE_DIR;
+
+// X ∈ [−100, 100], Z ∈ [−50, 50] at 6 decimals, C accumulating (iso-lathe-xzc).
+MachineDescription lathe() { return load_machine(kMachines + "/iso-lathe-xzc.yaml"); }
+
+std::string refusal_of(NcGuard& guard, const std::string& text) {
+  guard.select_file(0, "p.nc");
+  guard.feed(text);
+  guard.end_files();
+  return guard.reason();
+}
+
+long files_in(const std::string& folder) {
+  return std::distance(std::filesystem::directory_iterator(folder), std::filesystem::directory_iterator());
+}
+
+}  // namespace
+
+TEST_SUITE("plugins") {
+  TEST_CASE("the NC guard refuses every record no machine may get, before the plugin sees it") {
+    const auto iso = PostPlugin::load_file(kPlugins + "/libfreeturn_post_iso.so");
+    const double nan = std::numeric_limits<double>::quiet_NaN(), inf = std::numeric_limits<double>::infinity();
+    struct Bad {
+      AxisRecord record;
+      const char* says;
+    };
+    for (const Bad& bad : {Bad{{nan, 0, 0, 0, 0.01}, "X = nan is not a finite number"},
+                           Bad{{1, inf, 0, 0, 0.01}, "Z = inf is not a finite number"},
+                           Bad{{1, 0, -inf, 0, 0.01}, "C = -inf is not a finite number"},
+                           Bad{{100.001, 0, 0, 0, 0.01}, "X = 100.001 is outside its travel"},
+                           Bad{{1, -50.01, 0, 0, 0.01}, "Z = -50.01 is outside its travel"},
+                           Bad{{1, 0, 0, 0, nan}, "block time nan s is not a finite duration"},
+                           Bad{{1, 0, 0, 0, -1}, "block time -1 s"}}) {
+      test::TempDir dir;
+      {
+        PostProgram program(*iso, lathe(), {"job", 100, 0}, dir.file("job.nc"));
+        const AxisRecord good[] = {{1, 0, 0, 0, 0}, {1.5, 0.1, 10, 0, 0.01}};
+        program.write(good);
+        const AxisRecord records[] = {bad.record};
+        CAPTURE(bad.says);
+        CHECK_THROWS_WITH_AS(program.write(records), doctest::Contains(bad.says), InputError);
+        CHECK_THROWS_WITH_AS(program.write(records), doctest::Contains("block 3"), InputError);
+      }
+      CHECK(files_in(dir.path()) == 0);  // abandoned: no NC file, no temporary
+    }
+  }
+
+  TEST_CASE("the NC guard reads back what a plugin wrote: finite, whole numbers inside the travel") {
+    MachineDescription m = lathe();
+    m.c_wrapped = true;  // C then within [0, 360]
+    const auto refused = [&](const std::string& text) {
+      NcGuard guard(m);
+      return refusal_of(guard, text);
+    };
+    CHECK(refused("%\nG21 G18\nG1 X1.000000 Z-2.5 C359.9999\nM30\n%\n").empty());
+    CHECK(refused("G1 X100.0000004 Z0\n").empty());  // within half a unit of 6 decimals
+    CHECK(refused("G1 X100.000001 Z0\n") == "p.nc:1: X100.000001 is outside the machine's range [-100.0000005, 100.0000005]");
+    CHECK(refused("G1 X1\nG1 Xnan Z0\n") == "p.nc:2: a number that is not finite: G1 Xnan Z0");
+    CHECK(refused("G1 X-inf\n").find("not finite") != std::string::npos);
+    CHECK(refused("G1 X1.2.3\n") == "p.nc:1: X1.2.3 is not a number");
+    CHECK(refused("G1 C360.5\n").find("C360.5 is outside") != std::string::npos);
+    CHECK(refused("G1 Z60 (a comment with X999 and nan)\n").find("Z60 is outside") != std::string::npos);
+    CHECK(refused("G1 Z1 ; X999 nan after the semicolon\n").empty());
+    // Out of the work frame: machine coordinates, reference returns, presets.
+    CHECK(refused("G53 Z-180.\nG28 X500\nG92 C0\n").empty());
+    CHECK(refused("G53 Z-inf\n").find("not finite") != std::string::npos);
+    // A last line without its newline is read too; each file keeps its own line count.
+    NcGuard guard(m);
+    guard.select_file(0, "main.nc");
+    guard.feed("G1 X1\nG1 X2\n");
+    guard.select_file(1, "child.nc");
+    guard.feed("G1 X1\n");
+    guard.select_file(0, "");
+    guard.feed("G1 X3\nG1 X200");
+    CHECK(guard.ok());
+    guard.end_files();
+    CHECK(guard.reason() == "main.nc:4: X200 is outside the machine's range [-100.0000005, 100.0000005]");
+  }
+}
