@@ -315,3 +315,36 @@ TEST_SUITE("verify") {
     }
   }
 }
+
+TEST_SUITE("verify") {
+  TEST_CASE("the prediction: chord errors by side, a jump's on both, scallops within the figures' radii") {
+    const EvenAsphere flat(0, 0);
+    SimulationOptions s = ring_grid(8);
+    s.margin = 0.02;  // figures over r ∈ [0.92, 1.08]
+    CutSimulator simulator(flat, 0.5, s);
+    std::vector<CutterLocation> path{block(0.0, 1.0, 0.5, 1.0, 0.5, 0), block(0.1, 1.0, 0.5, 1.0, 0.5, 0),
+                                     block(0.2, 1.0, 0.5, 1.0, 0.5, 0), block(0.3, 1.0, 0.5, 1.0, 0.5, 0),
+                                     block(0.4, 1.09, 0.5, 1.09, 0.5, 0)};
+    path[1].contact.chord_error = 2e-4;  // above
+    path[1].contact.scallop = 5e-5;
+    path[2].contact.chord_error = 3e-4;
+    path[2].contact.chord_below = true;
+    path[3].contact.chord_error = 1e-4;  // a jump: both sides
+    path[3].contact.chord_jump = true;
+    path[4].contact.chord_error = 9e-3;  // outside the figures' radii
+    path[4].contact.scallop = 9e-3;
+    simulator.write(path);
+    const ResidualPrediction p = simulator.finish().predicted;
+    CHECK(p.max_chord_above == 2e-4);
+    CHECK(p.max_chord_below == 3e-4);
+    CHECK(p.max_scallop == 5e-5);
+    CHECK(p.pv() == doctest::Approx(2e-4 + 5e-5 + 3e-4));
+    // A jump larger than either side shows on both.
+    CutSimulator jumped(flat, 0.5, s);
+    path[3].contact.chord_error = 7e-4;
+    jumped.write(path);
+    const ResidualPrediction q = jumped.finish().predicted;
+    CHECK(q.max_chord_above == 7e-4);
+    CHECK(q.max_chord_below == 7e-4);
+  }
+}

@@ -96,6 +96,7 @@ PathSummary plan_profile(const Surface& design, const ProfileOptions& o, Contact
     p.point = s.point;
     p.chord_error = std::abs(error);
     p.chord_below = error < 0;
+    p.chord_jump = jump;
     detail::fill_section(design, p);
     if (jump) {
       summary.jumps++;

@@ -129,6 +129,7 @@ PathSummary plan_spiral(const Surface& design, const BaseSurface& base,
     p.point = s.point;
     p.chord_error = std::abs(error);
     p.chord_below = error < 0;
+    p.chord_jump = jump;
     const double zr = detail::fill_section(design, p);
     // Adjacent turns are p apart along the base's generating curve; on the design they
     // are p / cos β apart, β the angle between the two sections' tangents.

@@ -160,8 +160,12 @@ void CutSimulator::write(std::span<const CutterLocation> chunk) {
     const double r = cl.contact.r;
     if (r >= lo && r <= hi) {
       predicted_.max_scallop = std::max(predicted_.max_scallop, cl.contact.scallop);
-      double& side = cl.contact.chord_below ? predicted_.max_chord_below : predicted_.max_chord_above;
-      side = std::max(side, cl.contact.chord_error);
+      // Across a jump the nose swings over the crease: it cuts into one flank and leaves
+      // the valley, so the jump's error counts on both sides.
+      if (cl.contact.chord_below || cl.contact.chord_jump)
+        predicted_.max_chord_below = std::max(predicted_.max_chord_below, cl.contact.chord_error);
+      if (!cl.contact.chord_below || cl.contact.chord_jump)
+        predicted_.max_chord_above = std::max(predicted_.max_chord_above, cl.contact.chord_error);
     }
     pending_.push_back(cl);
     if (pending_.size() > kBatch) sweep_batch(false);

@@ -22,6 +22,10 @@ struct ContactPoint {
   // Which side of the design that worst deviation lies: below it (the motion cuts into
   // the design) or above (it leaves material, which adds to the scallop).
   bool chord_below = false;
+  // The segment crosses a jump of the nose centre (a crease sharper than the nose,
+  // docs/path.md): the motion swings across the crease and errs on both sides by up to
+  // chord_error.
+  bool chord_jump = false;
   // Pass spacing across adjacent turns along the surface (mm), the curvature of the
   // surface's radial section (1/mm, > 0 concave as seen from the tool), and the scallop
   // height they leave with the tool's nose radius (mm; 0 when no nose radius was given).
