@@ -62,7 +62,7 @@ void run(benchmark::State& state, bool space) {
   o.pitch = 0.05;
   o.points.tolerance = 1e-4;
   o.points.max_angle_step = 0.05;
-  o.nose_radius = nose;
+  o.tool.nose_radius = nose;
   long points = 0;
   for (auto _ : state) {
     CountingSink sink;

@@ -39,7 +39,7 @@ long run(CutterSink& sink) {
   SpiralOptions o;
   o.outer_radius = kOuter;
   o.pitch = kPitch;
-  o.nose_radius = kNose;
+  o.tool.nose_radius = kNose;
   o.points.tolerance = 1e-4;
   CompensationOptions c;
   c.tool.nose_radius = kNose;

@@ -139,6 +139,18 @@ class PassStage final : public CutterSink, public AxisSink {
   long long csv_bytes_ = 0;
 };
 
+// What the machine's axes carry, for the planner's chord error (path/cutter_points.hpp).
+ToolMotion motion_of(const CompensationOptions& c) {
+  ToolMotion m;
+  m.nose_radius = c.tool.nose_radius;
+  m.axis_offset = c.pivot_distance > 0                            ? c.pivot_distance
+                  : c.tool.program_point == ProgramPoint::kTip ? -c.tool.nose_radius
+                                                                  : 0.0;
+  m.b_follows = c.b_mode == BMode::kFollow;
+  m.edge_angle = c.edge_angle;
+  return m;
+}
+
 // Before any work: the fewest points the passes can have (each step is at most the angle
 // cap, or the equal angle; at most the radial cap in profile mode), against the limit, so
 // that a typo in the pitch is refused at once rather than after minutes of planning.
@@ -311,12 +323,7 @@ RunReport execute_job(const Job& job, const PreparedJob& prepared, const std::st
       o.outer_radius = job.aperture.outer_radius;
       o.inner_radius = job.aperture.inner_radius;
       o.centre_to_edge = plan.strategy.centre_to_edge;
-      o.nose_radius = plan.tool.tool.nose_radius;
-      o.axis_offset = compensation.pivot_distance > 0 ? compensation.pivot_distance
-                      : compensation.tool.program_point == ProgramPoint::kTip ? -compensation.tool.nose_radius
-                                                                             : 0.0;
-      o.b_follows = compensation.b_mode == BMode::kFollow;
-      o.edge_angle = compensation.edge_angle;
+      o.tool = motion_of(compensation);
       o.points = plan.strategy.points;
       o.points.interpolation = machine.interpolation;
       summary = plan_spiral(surface, base.base, o, compensator);
@@ -324,12 +331,7 @@ RunReport execute_job(const Job& job, const PreparedJob& prepared, const std::st
       ProfileOptions o;
       o.outer_radius = job.aperture.outer_radius;
       o.inner_radius = job.aperture.inner_radius;
-      o.nose_radius = plan.tool.tool.nose_radius;
-      o.axis_offset = compensation.pivot_distance > 0 ? compensation.pivot_distance
-                      : compensation.tool.program_point == ProgramPoint::kTip ? -compensation.tool.nose_radius
-                                                                             : 0.0;
-      o.b_follows = compensation.b_mode == BMode::kFollow;
-      o.edge_angle = compensation.edge_angle;
+      o.tool = motion_of(compensation);
       o.points = plan.strategy.points;
       o.points.interpolation = machine.interpolation;
       summary = plan_profile(surface, o, compensator);

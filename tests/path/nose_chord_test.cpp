@@ -46,7 +46,7 @@ TEST_SUITE("path") {
     o.outer_radius = 1.0;
     o.inner_radius = 0.5;
     o.pitch = 0.05;
-    o.nose_radius = R;
+    o.tool.nose_radius = R;
     o.points.tolerance = eps;
     o.points.max_angle_step = 1.0;
     const auto cls = compensated(sphere, R, [&](ContactSink& sink) {
@@ -74,7 +74,7 @@ TEST_SUITE("path") {
       // tip the nose cannot follow (the centre check's business).
       o.outer_radius = 5.0;
       o.inner_radius = 0.5;
-      o.nose_radius = R;
+      o.tool.nose_radius = R;
       o.points.tolerance = eps;
       const auto cls = compensated(ring, R, [&](ContactSink& sink) { plan_profile(ring, o, sink); });
       const double nose = test::densest_nose_error(ring, cls, R, 200);
@@ -96,9 +96,9 @@ TEST_SUITE("path") {
     o.outer_radius = 3.0;
     o.inner_radius = 1.0;
     o.pitch = 0.1;
-    o.nose_radius = R;
-    o.axis_offset = L;
-    o.b_follows = true;
+    o.tool.nose_radius = R;
+    o.tool.axis_offset = L;
+    o.tool.b_follows = true;
     o.points.tolerance = eps;
     o.points.max_angle_step = 1.0;
     c.tool.nose_radius = R;
@@ -113,7 +113,7 @@ TEST_SUITE("path") {
     CHECK(pivot >= 0.9 * eps);
     // Planned as if the centre moved linearly, the same tolerance errs more on the pivot.
     SpiralOptions naive = o;
-    naive.axis_offset = 0;
+    naive.tool.axis_offset = 0;
     const auto naive_cls = compensated(plate, R, [&](ContactSink& sink) {
       plan_spiral(plate, BaseSurface::plane(3.0), naive, sink);
     }, c);

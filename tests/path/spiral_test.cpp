@@ -203,7 +203,7 @@ TEST_SUITE("path") {
     SpiralOptions o;
     o.outer_radius = 3;
     o.pitch = pitch;
-    o.nose_radius = nose;
+    o.tool.nose_radius = nose;
     o.points = equal_angle(36);
     ContactCollector flat;
     plan_spiral(EvenAsphere(0, 0), BaseSurface::plane(3), o, flat);

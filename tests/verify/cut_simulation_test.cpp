@@ -82,7 +82,7 @@ OffAxisCut cut_off_axis_sphere(double eps, int threads, double actual_nose = 0.5
   SpiralOptions o;
   o.outer_radius = 1.2;
   o.pitch = f;
-  o.nose_radius = R;
+  o.tool.nose_radius = R;
   o.points.tolerance = eps;
   o.points.max_angle_step = 1.0;  // the tolerance, not the cap, sets the steps
   CompensationOptions c;

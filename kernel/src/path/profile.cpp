@@ -16,7 +16,7 @@ namespace {
 class ProfilePath {
  public:
   ProfilePath(const Surface& design, const ProfileOptions& o)
-      : design_(design), o_(o), nose_(design, ToolMotion{o.nose_radius, o.axis_offset, o.b_follows, o.edge_angle}) {}
+      : design_(design), o_(o), nose_(design, o.tool) {}
 
   double tau_end() const { return o_.outer_radius - o_.inner_radius; }
   double cap() const { return o_.points.max_radial_step; }
@@ -98,16 +98,7 @@ PathSummary plan_profile(const Surface& design, const ProfileOptions& o, Contact
     p.chord_below = error < 0;
     p.chord_jump = jump;
     detail::fill_section(design, p);
-    if (jump) {
-      summary.jumps++;
-      summary.max_jump_error = std::max(summary.max_jump_error, p.chord_error);
-      if (summary.jumps == 1) {
-        summary.first_jump_theta = p.theta;
-        summary.first_jump_r = p.r;
-      }
-    }
-    summary.points++;
-    summary.max_chord_error = std::max(summary.max_chord_error, p.chord_error);
+    summary.add(p.theta, p.r, p.chord_error, jump);
     out.push(p);
   });
   out.flush();

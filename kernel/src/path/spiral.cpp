@@ -22,7 +22,7 @@ std::string where(double theta, double r) {
 class SpiralPath {
  public:
   SpiralPath(const Surface& design, const BaseSurface& base, const SpiralOptions& o)
-      : design_(design), base_(base), o_(o), nose_(design, ToolMotion{o.nose_radius, o.axis_offset, o.b_follows, o.edge_angle}),
+      : design_(design), base_(base), o_(o), nose_(design, o.tool),
         b_(o.pitch / (2 * std::numbers::pi)) {
     s_outer_ = base.arc_length(o.outer_radius);
     s_inner_ = base.arc_length(o.inner_radius);
@@ -137,18 +137,9 @@ PathSummary plan_spiral(const Surface& design, const BaseSurface& base,
     const double cos_beta =
         (1 + bp.slope * zr) / (std::sqrt(1 + bp.slope * bp.slope) * std::sqrt(1 + zr * zr));
     p.pass_spacing = o.pitch / cos_beta;
-    p.scallop = detail::scallop_height(p.pass_spacing, p.section_curvature, o.nose_radius);
-    if (jump) {
-      summary.jumps++;
-      summary.max_jump_error = std::max(summary.max_jump_error, p.chord_error);
-      if (summary.jumps == 1) {
-        summary.first_jump_theta = p.theta;
-        summary.first_jump_r = p.r;
-      }
-    }
-    summary.points++;
+    p.scallop = detail::scallop_height(p.pass_spacing, p.section_curvature, o.tool.nose_radius);
+    summary.add(p.theta, p.r, p.chord_error, jump);
     summary.theta_end = p.theta;
-    summary.max_chord_error = std::max(summary.max_chord_error, p.chord_error);
     summary.max_scallop = std::max(summary.max_scallop, p.scallop);
     summary.max_pass_spacing = std::max(summary.max_pass_spacing, p.pass_spacing);
     out.push(p);

@@ -7,6 +7,7 @@
 // controller moves X, C, Z linearly between blocks, or along cubics in PVT mode), stays
 // at or below ε, which makes the point count close to the lower bound ∫ √(κ / 8ε) ds.
 
+#include <algorithm>
 #include <numbers>
 
 namespace freeturn {
@@ -58,6 +59,19 @@ struct PathSummary {
   long jumps = 0;
   double max_jump_error = 0;  // mm
   double first_jump_theta = 0, first_jump_r = 0;
+
+  // Counts one emitted point with its chord error (mm) and whether its segment jumps.
+  void add(double theta, double r, double chord_error, bool jump) {
+    if (jump) {
+      if (jumps++ == 0) {
+        first_jump_theta = theta;
+        first_jump_r = r;
+      }
+      max_jump_error = std::max(max_jump_error, chord_error);
+    }
+    points++;
+    max_chord_error = std::max(max_chord_error, chord_error);
+  }
 };
 
 }  // namespace freeturn

@@ -13,14 +13,9 @@ struct ProfileOptions {
   double outer_radius = 0, inner_radius = 0;  // mm
   // Refuse a surface whose sag varies around the axis by more than this (mm).
   double symmetry_tolerance = 1e-6;
-  // The tool's nose radius (mm): the chord error is measured on the nose-centre motion
-  // the machine interpolates (0: on the contact path).
-  double nose_radius = 0;
-  // Where the programmed point sits relative to the nose centre, and whether B follows
-  // (ToolMotion; its nose_radius is this nose_radius).
-  double axis_offset = 0;
-  bool b_follows = false;
-  double edge_angle = 0;  // rad
+  // The tool whose programmed point the machine moves (cutter_points.hpp): the chord
+  // error is measured on that motion; tool.nose_radius also gives the scallop.
+  ToolMotion tool;
   CutterPointOptions points;  // kEqualArcLength or kChordError; max_radial_step caps a step
 };
 

@@ -19,14 +19,9 @@ struct SpiralOptions {
   double pitch = 0.01;  // mm per revolution, along the base's generating curve
   double outer_radius = 0, inner_radius = 0;  // aperture (mm), measured on the base
   bool centre_to_edge = false;
-  // The tool's nose radius (mm): the chord error is measured on the nose-centre motion the
-  // machine interpolates, and the scallop is predicted (0: the contact path, no scallop).
-  double nose_radius = 0;
-  // Where the programmed point sits relative to the nose centre, and whether B follows
-  // (ToolMotion; its nose_radius is this nose_radius).
-  double axis_offset = 0;
-  bool b_follows = false;
-  double edge_angle = 0;  // rad
+  // The tool whose programmed point the machine moves (cutter_points.hpp): the chord
+  // error is measured on that motion; tool.nose_radius also gives the scallop.
+  ToolMotion tool;
   CutterPointOptions points;
 };
 
