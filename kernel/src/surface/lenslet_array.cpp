@@ -42,12 +42,17 @@ LensletArray::LensletArray(const LensletArrayOptions& options) : o_(options) {
   // The rim is where lens and base meet: h = base sag − lens sag at D/2 (both coaxial).
   vertex_height_ = sphere_sag(cb, d / 2) - sphere_sag(1 / r, d / 2);
 
-  // The lookup grid below has (2·extent/pitch + 1)² cells: bounded before anything is
-  // allocated (a pitch typo in µm instead of mm would ask for billions).
+  // The lookup grid below has (2·extent/pitch + 1)² cells and about π(extent/pitch)²
+  // lenslets: bounded before anything is allocated (a pitch typo in µm instead of mm would
+  // ask for billions, and a million lenslets take seconds to place; the largest real
+  // arrays, 100 mm across at 0.15 mm pitch, stay inside).
   const double side = 2 * o_.extent / o_.pitch + 1;
-  if (!(side * side <= 16e6))
+  if (!(side * side <= 5e5))
     throw InputError("pitch", "a pitch of " + mm(o_.pitch) + " over the aperture radius " + mm(o_.extent) +
-                                  " asks for over 16 million lookup cells; give a larger pitch");
+                                  " asks for about " + std::to_string(static_cast<long long>(
+                                      std::min(1e15, std::numbers::pi * (o_.extent / o_.pitch) * (o_.extent / o_.pitch)))) +
+                                  " lenslets, over the 400 000 freeturn places (a 500 000-cell lookup grid); "
+                                  "give a larger pitch");
   // Centres, keeping lenslets whose footprint lies inside the extent.
   const double reach = o_.extent - d / 2;
   const auto inside = [&](double x, double y) { return std::hypot(x, y) <= reach + 1e-12; };
