@@ -433,11 +433,18 @@ int run_simulate(const std::vector<std::string>& args) {
     if ((args[i] == "-o" || args[i] == "--output") && value) {
       out_dir = args[++i];
     } else if (args[i] == "--radial-step" && value) {
-      simulation.radial_step = std::atof(args[++i].c_str());
-      if (!(simulation.radial_step > 0)) throw InputError("--radial-step", "must be a length > 0 (mm)");
+      const std::string& text = args[++i];
+      char* end = nullptr;
+      simulation.radial_step = std::strtod(text.c_str(), &end);
+      if (end == text.c_str() || *end != '\0' || !(simulation.radial_step > 0) || !std::isfinite(simulation.radial_step))
+        throw InputError("--radial-step", "must be a length > 0 (mm), not '" + text + "'");
     } else if (args[i] == "--columns" && value) {
-      simulation.columns = std::atoi(args[++i].c_str());
-      if (simulation.columns < 2 || simulation.columns % 2) throw InputError("--columns", "must be an even number ≥ 2");
+      const std::string& text = args[++i];
+      char* end = nullptr;
+      const long columns = std::strtol(text.c_str(), &end, 10);
+      if (end == text.c_str() || *end != '\0' || columns < 2 || columns % 2 || columns > 1'000'000)
+        throw InputError("--columns", "must be an even number from 2 to 1 000 000, not '" + text + "'");
+      simulation.columns = static_cast<int>(columns);
     } else if (args[i] == "--threads" && value) {
       simulation.threads = parse_threads(args[++i]);
     } else if (!args[i].empty() && args[i][0] != '-' && job_path.empty()) {

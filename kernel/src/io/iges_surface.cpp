@@ -2,6 +2,7 @@
 
 #include "number_text.hpp"
 
+#include <charconv>
 #include <cmath>
 #include <fstream>
 #include <map>
@@ -57,8 +58,10 @@ Sections read_sections(const std::string& path) {
 }
 
 // Splits free-format data into fields at `delimiter`, up to `terminator`, honouring
-// Hollerith strings (nH…), which may contain either character.
-std::vector<std::string> split_fields(const std::string& text, char delimiter, char terminator) {
+// Hollerith strings (nH…), which may contain either character. A string that claims more
+// characters than the section holds is an error at `where`.
+std::vector<std::string> split_fields(const std::string& text, char delimiter, char terminator,
+                                      const SourceLocation& where) {
   std::vector<std::string> fields;
   std::string field;
   for (std::size_t i = 0; i < text.size(); ++i) {
@@ -68,7 +71,10 @@ std::vector<std::string> split_fields(const std::string& text, char delimiter, c
       while (digits < field.size() && field[digits] == ' ') ++digits;
       const std::string count = field.substr(digits);
       if (!count.empty() && count.find_first_not_of("0123456789") == std::string::npos) {
-        const std::size_t len = std::stoul(count);
+        std::size_t len = 0;
+        const auto [end, error] = std::from_chars(count.data(), count.data() + count.size(), len);
+        if (error != std::errc() || end != count.data() + count.size() || len > text.size() - i - 1)
+          throw InputError(where, "a Hollerith string of " + count + " characters runs past the end of the section");
         field = text.substr(i + 1, len);
         i += len;
         continue;
@@ -176,7 +182,7 @@ class IgesFile {
       text += sections_.parameter[static_cast<std::size_t>(d.parameter_start - 1 + k)].data.substr(
           0, 64);
     const Record& first = sections_.parameter[static_cast<std::size_t>(d.parameter_start - 1)];
-    return ParameterReader(split_fields(text, delimiter_, terminator_),
+    return ParameterReader(split_fields(text, delimiter_, terminator_, SourceLocation{path_, first.file_line, 0}),
                            SourceLocation{path_, first.file_line, 0}.to_string() + ": entity " +
                                std::to_string(d.type) + " (directory line " +
                                std::to_string(d.line) + ")");
@@ -218,9 +224,10 @@ class IgesFile {
     // Fields 1 and 2 name the delimiters ("1H," and "1H;"), or are empty for the defaults.
     if (text.size() >= 3 && (text[0] == '1') && (text[1] == 'H' || text[1] == 'h'))
       delimiter_ = text[2];
-    const std::vector<std::string> g = split_fields(text, delimiter_, '\0');
+    const SourceLocation at{path_, line, 0};
+    const std::vector<std::string> g = split_fields(text, delimiter_, '\0', at);
     if (g.size() >= 2 && g[1].size() == 1) terminator_ = g[1][0];
-    const std::vector<std::string> fields = split_fields(text, delimiter_, terminator_);
+    const std::vector<std::string> fields = split_fields(text, delimiter_, terminator_, at);
     const auto field = [&](std::size_t k) { return k < fields.size() ? trim(fields[k]) : ""; };
     const std::string scale = field(12), unit = field(13);
     std::string scale_number = scale;
