@@ -112,6 +112,9 @@ class ParameterReader {
       throw InputError(where_, what + " must be a number, not '" + t + "'");
     return value;
   }
+  std::size_t remaining() const { return fields_.size() - index_; }
+  const std::string& where() const { return where_; }
+
   int integer(const std::string& what) {
     const double v = real(what);
     if (v != std::floor(v) || std::abs(v) > 1e9)
@@ -269,6 +272,15 @@ nurbs::NurbsSurface read_entity_128(const IgesFile& file, const Directory& d) {
                          ", M1=" + std::to_string(m1) + ", K2=" + std::to_string(k2) +
                          ", M2=" + std::to_string(m2) + ")");
   for (int k = 1; k <= 5; ++k) p.integer("PROP" + std::to_string(k));
+  // The counts decide the sizes below: they must be backed by that much data before
+  // anything is allocated (a damaged K1 would otherwise ask for gigabytes).
+  const long long needed = (static_cast<long long>(k1) + m1 + 2) + (static_cast<long long>(k2) + m2 + 2) +
+                           4 * (static_cast<long long>(k1) + 1) * (static_cast<long long>(k2) + 1) + 4;
+  if (needed > static_cast<long long>(p.remaining()))
+    throw InputError(p.where(), "entity 128 with K1=" + std::to_string(k1) + ", K2=" + std::to_string(k2) +
+                                    ", M1=" + std::to_string(m1) + ", M2=" + std::to_string(m2) + " needs " +
+                                    std::to_string(needed) + " more parameters; the entity holds " +
+                                    std::to_string(p.remaining()));
   std::vector<double> s(static_cast<std::size_t>(k1 + m1 + 2)), t(static_cast<std::size_t>(k2 + m2 + 2));
   for (std::size_t k = 0; k < s.size(); ++k) s[k] = p.real("knot S(" + std::to_string(k) + ")");
   for (std::size_t k = 0; k < t.size(); ++k) t[k] = p.real("knot T(" + std::to_string(k) + ")");
