@@ -1,7 +1,8 @@
 #pragma once
 // The freeturn command's subcommands. Each takes its arguments (after the subcommand
 // name) and returns the process exit code: 0 ok, 1 a check failed or files differ,
-// 2 bad input or usage. Errors go to stderr.
+// 2 bad input or usage. Errors go to stderr. (A plugin that crashes or hangs ends the
+// process with kExitPluginFault, 3: plugins/plugin_watch.hpp.)
 
 #include <string>
 #include <vector>

@@ -17,6 +17,7 @@
 #include <string>
 #include <vector>
 
+#include "cli_options.hpp"
 #include "commands.hpp"
 #include "freeturn/core/error.hpp"
 #include "freeturn/io/atomic_file.hpp"
@@ -397,11 +398,7 @@ constexpr const char* kSimulateUsage =
     "freeturn simulate JOB.yaml [-o DIR] [--radial-step MM] [--columns N] [--threads N]";
 
 int parse_threads(const std::string& text) {
-  char* end = nullptr;
-  const long n = std::strtol(text.c_str(), &end, 10);
-  if (end == text.c_str() || *end != '\0' || n < 1 || n > 1024)
-    throw InputError("--threads", "must be a whole number from 1 to 1024, not '" + text + "'");
-  return static_cast<int>(n);
+  return static_cast<int>(option_integer("--threads", text, 1, 1024, "a whole number from 1 to 1024"));
 }
 
 }  // namespace
@@ -433,17 +430,12 @@ int run_simulate(const std::vector<std::string>& args) {
     if ((args[i] == "-o" || args[i] == "--output") && value) {
       out_dir = args[++i];
     } else if (args[i] == "--radial-step" && value) {
-      const std::string& text = args[++i];
-      char* end = nullptr;
-      simulation.radial_step = std::strtod(text.c_str(), &end);
-      if (end == text.c_str() || *end != '\0' || !(simulation.radial_step > 0) || !std::isfinite(simulation.radial_step))
-        throw InputError("--radial-step", "must be a length > 0 (mm), not '" + text + "'");
+      simulation.radial_step = option_length("--radial-step", args[++i]);
     } else if (args[i] == "--columns" && value) {
       const std::string& text = args[++i];
-      char* end = nullptr;
-      const long columns = std::strtol(text.c_str(), &end, 10);
-      if (end == text.c_str() || *end != '\0' || columns < 2 || columns % 2 || columns > 1'000'000)
-        throw InputError("--columns", "must be an even number from 2 to 1 000 000, not '" + text + "'");
+      const std::string what = "an even number from 2 to 1 000 000";
+      const long columns = option_integer("--columns", text, 2, 1'000'000, what);
+      if (columns % 2) throw InputError("--columns", "must be " + what + ", not '" + text + "'");
       simulation.columns = static_cast<int>(columns);
     } else if (args[i] == "--threads" && value) {
       simulation.threads = parse_threads(args[++i]);

@@ -7,6 +7,7 @@
 #include <string>
 #include <vector>
 
+#include "cli_options.hpp"
 #include "commands.hpp"
 #include "freeturn/core/error.hpp"
 #include "freeturn/io/surface_samples.hpp"
@@ -23,12 +24,7 @@ int run_sample(const std::vector<std::string>& args) {
     if ((a == "-o" || a == "--output") && has_value) {
       out_dir = args[++i];
     } else if (a == "--grid" && has_value) {
-      const std::string& v = args[++i];
-      char* end = nullptr;
-      const long n = std::strtol(v.c_str(), &end, 10);
-      if (*end != '\0' || n < 2 || n > 20001)
-        throw InputError("--grid", "expected an integer from 2 to 20001, not '" + v + "'");
-      grid = static_cast<int>(n);
+      grid = static_cast<int>(option_integer("--grid", args[++i], 2, 20001, "an integer from 2 to 20001"));
     } else if (!a.empty() && a[0] != '-' && job_path.empty()) {
       job_path = a;
     } else {
