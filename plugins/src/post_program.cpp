@@ -1,9 +1,9 @@
 #include "freeturn/post_program.hpp"
 
-#include <algorithm>
 #include <filesystem>
 
 #include "freeturn/core/error.hpp"
+#include "freeturn/io/program_set.hpp"
 
 namespace freeturn {
 
@@ -101,14 +101,14 @@ std::vector<std::string> PostProgram::finish() {
   guard_.end_files();
   check_output("end");
   if (status != 0) fail("end");
-  // Child files first, the main program last: the program an operator loads appears only
-  // once every file it calls is in place (docs/robustness.md on the window between).
+  // As one set: no moment leaves an earlier main program beside new child files.
+  std::vector<AtomicFile*> set;
   std::vector<std::string> paths;
-  for (std::size_t k = files_.size(); k-- > 0;) {
-    files_[k]->commit();
-    paths.push_back(files_[k]->path());
+  for (const auto& f : files_) {
+    set.push_back(f.get());
+    paths.push_back(f->path());
   }
-  std::reverse(paths.begin(), paths.end());
+  commit_program_set(set);
   return paths;
 }
 

@@ -1,5 +1,6 @@
 #include "freeturn/io/atomic_file.hpp"
 
+#include <fcntl.h>
 #include <signal.h>
 #include <unistd.h>
 
@@ -59,6 +60,17 @@ void release_temporary(int slot) {
 
 }  // namespace
 
+void sync_folder_of(const std::string& path) {
+  const std::filesystem::path target(path);
+  const std::string folder = target.has_parent_path() ? target.parent_path().string() : ".";
+  // A rename is durable only once its folder is; failure here loses nothing written, so
+  // it is not an error (some file systems refuse fsync on a folder).
+  const int fd = ::open(folder.c_str(), O_RDONLY | O_DIRECTORY | O_CLOEXEC);
+  if (fd < 0) return;
+  ::fsync(fd);
+  ::close(fd);
+}
+
 void AtomicFile::remove_all_temporaries() noexcept {
   for (int k = 0; k < kSlots; ++k)
     if (g_slot_used[k].load()) ::unlink(g_temporaries[k]);
@@ -73,31 +85,52 @@ AtomicFile::AtomicFile(std::string path) : path_(std::move(path)) {
 }
 
 AtomicFile::~AtomicFile() {
-  if (file_) {
-    std::fclose(file_);
-    std::remove(temp_path_.c_str());
-  }
+  if (file_) std::fclose(file_);
+  if (file_ || synced_) std::remove(temp_path_.c_str());
   release_temporary(slot_);
 }
 
 void AtomicFile::write(std::string_view bytes) {
+  if (!file_) throw InputError(path_, "written to after it was completed");
   if (std::fwrite(bytes.data(), 1, bytes.size(), file_) != bytes.size())
     throw InputError(path_, std::string("write failed: ") + std::strerror(errno));
 }
 
 void AtomicFile::commit() {
+  sync();
+  publish();
+}
+
+void AtomicFile::sync() {
+  if (!file_) return;  // already synced
   const bool flushed = std::fflush(file_) == 0 && ::fsync(::fileno(file_)) == 0;
   const int saved_errno = errno;
   const bool closed = std::fclose(file_) == 0;
+  const int close_errno = errno;
   file_ = nullptr;
-  const bool renamed = flushed && closed && std::rename(temp_path_.c_str(), path_.c_str()) == 0;
+  if (!flushed || !closed) {
+    std::remove(temp_path_.c_str());
+    release_temporary(slot_);
+    slot_ = -1;
+    synced_ = false;
+    throw InputError(path_, std::string("could not complete the file: ") +
+                                std::strerror(flushed ? close_errno : saved_errno));
+  }
+  synced_ = true;
+}
+
+void AtomicFile::publish() {
+  if (!synced_) throw InputError(path_, "could not complete the file: it was not written whole");
+  synced_ = false;
+  const bool renamed = std::rename(temp_path_.c_str(), path_.c_str()) == 0;
+  const int err = errno;
   release_temporary(slot_);
   slot_ = -1;
   if (!renamed) {
-    const int err = flushed ? errno : saved_errno;
     std::remove(temp_path_.c_str());
     throw InputError(path_, std::string("could not complete the file: ") + std::strerror(err));
   }
+  sync_folder_of(path_);
 }
 
 }  // namespace freeturn

@@ -20,8 +20,15 @@ class AtomicFile {
   AtomicFile& operator=(const AtomicFile&) = delete;
 
   void write(std::string_view bytes);
-  // Flushes, fsyncs and renames to the final path. Throws InputError on an I/O failure.
+  // Flushes, fsyncs and renames to the final path, then fsyncs the folder so the rename
+  // survives a power loss. Throws InputError on an I/O failure (the temporary is removed,
+  // the final name untouched). Equivalent to sync() then publish().
   void commit();
+  // The two halves of commit(), for a set of files that must all be on disk before any
+  // of them takes its final name (io/program_set.hpp). sync() flushes, fsyncs and closes
+  // the temporary; publish() renames it and fsyncs the folder. Each throws InputError.
+  void sync();
+  void publish();
 
   const std::string& path() const { return path_; }
 
@@ -35,6 +42,11 @@ class AtomicFile {
   std::string path_;
   std::string temp_path_;
   std::FILE* file_ = nullptr;
+  bool synced_ = false;  // closed and on disk, not yet renamed
 };
+
+// fsyncs the folder holding `path`, so that a rename into it survives a power loss.
+// Best effort: a folder that cannot be opened or synced is left as it is.
+void sync_folder_of(const std::string& path);
 
 }  // namespace freeturn
