@@ -28,4 +28,20 @@ TEST_SUITE("io") {
     CHECK_THROWS_WITH_AS(read_xyz_points(dir.write("r.csv", "x y z\n")),
                          doctest::Contains("the file has no points"), InputError);
   }
+
+  TEST_CASE("xyz points: every field is a whole finite number, stray bytes included") {
+    freeturn::test::TempDir dir;
+    // A NUL inside a line once ended the line early, and "1 2 3<NUL>junk" read as a point.
+    CHECK_THROWS_WITH_AS(
+        read_xyz_points(dir.write("n.csv", std::string("1 2 3\n4 5 6\0junk\n", 17))),
+        doctest::Contains("n.csv:2:"), InputError);
+    for (const char* bad : {"1 2 3.4.5\n", "1 2 3x\n", "1 2 1e400\n", "1 2 3 4\n", "1 2 0x10\n"}) {
+      CAPTURE(bad);
+      CHECK_THROWS_WITH_AS(read_xyz_points(dir.write("b.csv", std::string("0 0 0\n") + bad)),
+                           doctest::Contains("b.csv:2:"), InputError);
+    }
+    const auto points = read_xyz_points(dir.write("s.csv", "+1.5 -2E+01 .25\n"));
+    REQUIRE(points.size() == 1);
+    CHECK(points[0] == Eigen::Vector3d(1.5, -20, 0.25));
+  }
 }

@@ -1,10 +1,10 @@
 #include "freeturn/io/xyz_points.hpp"
 
-#include <cmath>
-#include <cstdlib>
 #include <fstream>
+#include <string_view>
 
 #include "freeturn/core/error.hpp"
+#include "number_text.hpp"
 
 namespace freeturn {
 
@@ -21,21 +21,24 @@ std::vector<Eigen::Vector3d> read_xyz_points(const std::string& path) {
     for (char& ch : line)
       if (ch == ',' || ch == ';' || ch == '\t' || ch == '\r') ch = ' ';
     if (line.find_first_not_of(' ') == std::string::npos) continue;
+    // Fields parsed whole with from_chars (io/number_text.hpp): locale-free, and a NUL or
+    // any other stray byte makes the line an error instead of ending it early.
     double v[3];
-    const char* p = line.c_str();
     int count = 0;
     bool ok = true;
+    std::string_view rest(line);
     while (true) {
-      while (*p == ' ') ++p;
-      if (*p == '\0') break;
-      char* end = nullptr;
-      const double x = std::strtod(p, &end);
-      if (end == p || !(*end == ' ' || *end == '\0') || !std::isfinite(x) || count == 3) {
+      const std::size_t start = rest.find_first_not_of(' ');
+      if (start == std::string_view::npos) break;
+      rest.remove_prefix(start);
+      const std::string_view field = rest.substr(0, rest.find(' '));
+      rest.remove_prefix(field.size());
+      double x;
+      if (count == 3 || !detail::parse_finite(field, x)) {
         ok = false;
         break;
       }
       v[count++] = x;
-      p = end;
     }
     if (ok && count == 3) {
       points.emplace_back(v[0], v[1], v[2]);
