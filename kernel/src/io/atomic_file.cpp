@@ -15,24 +15,6 @@ namespace freeturn {
 
 namespace {
 
-// Temporaries of this path left by runs that were killed (their process is gone): a
-// SIGKILL gives no chance to remove them, so the next writer of the path does.
-void remove_stale_temporaries(const std::string& path) {
-  namespace fs = std::filesystem;
-  const fs::path target(path);
-  const fs::path folder = target.has_parent_path() ? target.parent_path() : fs::path(".");
-  const std::string prefix = target.filename().string() + ".tmp-";
-  std::error_code ec;
-  for (fs::directory_iterator it(folder, ec), end; !ec && it != end; it.increment(ec)) {
-    const std::string name = it->path().filename().string();
-    if (name.size() <= prefix.size() || name.compare(0, prefix.size(), prefix) != 0) continue;
-    const std::string digits = name.substr(prefix.size());
-    if (digits.find_first_not_of("0123456789") != std::string::npos || digits.size() > 9) continue;
-    const pid_t pid = static_cast<pid_t>(std::stol(digits));
-    if (::kill(pid, 0) == -1 && errno == ESRCH) fs::remove(it->path(), ec);
-  }
-}
-
 // The temporaries in use, for remove_all_temporaries(): fixed slots, so that a signal
 // handler can read them without allocating. A path that finds no free slot (or is too
 // long) is not registered; the next run removes it as stale.
@@ -60,6 +42,24 @@ void release_temporary(int slot) {
 
 }  // namespace
 
+void remove_files_of_ended_runs(const std::string& path, const std::string& marker, bool include_own) {
+  namespace fs = std::filesystem;
+  const fs::path target(path);
+  const fs::path folder = target.has_parent_path() ? target.parent_path() : fs::path(".");
+  const std::string prefix = target.filename().string() + marker;
+  const pid_t self = ::getpid();
+  std::error_code ec;
+  for (fs::directory_iterator it(folder, ec), end; !ec && it != end; it.increment(ec)) {
+    const std::string name = it->path().filename().string();
+    if (name.size() <= prefix.size() || name.compare(0, prefix.size(), prefix) != 0) continue;
+    const std::string digits = name.substr(prefix.size());
+    if (digits.find_first_not_of("0123456789") != std::string::npos || digits.size() > 9) continue;
+    const pid_t pid = static_cast<pid_t>(std::stol(digits));
+    if ((include_own && pid == self) || (pid != self && ::kill(pid, 0) == -1 && errno == ESRCH))
+      fs::remove(it->path(), ec);
+  }
+}
+
 void sync_folder_of(const std::string& path) {
   const std::filesystem::path target(path);
   const std::string folder = target.has_parent_path() ? target.parent_path().string() : ".";
@@ -77,7 +77,8 @@ void AtomicFile::remove_all_temporaries() noexcept {
 }
 
 AtomicFile::AtomicFile(std::string path) : path_(std::move(path)) {
-  remove_stale_temporaries(path_);
+  // A SIGKILL gives a run no chance to remove its temporaries, so the next writer does.
+  remove_files_of_ended_runs(path_, ".tmp-", false);
   temp_path_ = path_ + ".tmp-" + std::to_string(::getpid());
   file_ = std::fopen(temp_path_.c_str(), "wb");
   if (!file_) throw InputError(path_, std::string("cannot write: ") + std::strerror(errno));

@@ -1,6 +1,5 @@
 #include "freeturn/io/program_set.hpp"
 
-#include <signal.h>
 #include <unistd.h>
 
 #include <cerrno>
@@ -15,22 +14,9 @@ namespace freeturn {
 namespace {
 
 // Set-aside main programs of this path whose run is over: ours, once the new set is in
-// place, and those of runs that were killed (their process is gone).
+// place, and those of runs that were killed.
 void remove_replaced_programs(const std::string& main_path) {
-  namespace fs = std::filesystem;
-  const fs::path target(main_path);
-  const fs::path folder = target.has_parent_path() ? target.parent_path() : fs::path(".");
-  const std::string prefix = target.filename().string() + ".replaced-";
-  const pid_t self = ::getpid();
-  std::error_code ec;
-  for (fs::directory_iterator it(folder, ec), end; !ec && it != end; it.increment(ec)) {
-    const std::string name = it->path().filename().string();
-    if (name.size() <= prefix.size() || name.compare(0, prefix.size(), prefix) != 0) continue;
-    const std::string digits = name.substr(prefix.size());
-    if (digits.find_first_not_of("0123456789") != std::string::npos || digits.size() > 9) continue;
-    const pid_t pid = static_cast<pid_t>(std::stol(digits));
-    if (pid == self || (::kill(pid, 0) == -1 && errno == ESRCH)) fs::remove(it->path(), ec);
-  }
+  remove_files_of_ended_runs(main_path, ".replaced-", true);
 }
 
 }  // namespace

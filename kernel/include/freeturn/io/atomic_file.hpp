@@ -45,6 +45,10 @@ class AtomicFile {
   bool synced_ = false;  // closed and on disk, not yet renamed
 };
 
+// Removes the files "<path><marker><pid>" beside `path` whose process is gone (a killed
+// run's), and this process's own when `include_own`.
+void remove_files_of_ended_runs(const std::string& path, const std::string& marker, bool include_own);
+
 // fsyncs the folder holding `path`, so that a rename into it survives a power loss.
 // Best effort: a folder that cannot be opened or synced is left as it is.
 void sync_folder_of(const std::string& path);
