@@ -42,7 +42,8 @@ void release_temporary(int slot) {
 
 }  // namespace
 
-void remove_files_of_ended_runs(const std::string& path, const std::string& marker, bool include_own) {
+void remove_files_of_ended_runs(const std::string& path, const std::string& marker,
+                                bool include_own) {
   namespace fs = std::filesystem;
   const fs::path target(path);
   const fs::path folder = target.has_parent_path() ? target.parent_path() : fs::path(".");

@@ -47,7 +47,8 @@ class AtomicFile {
 
 // Removes the files "<path><marker><pid>" beside `path` whose process is gone (a killed
 // run's), and this process's own when `include_own`.
-void remove_files_of_ended_runs(const std::string& path, const std::string& marker, bool include_own);
+void remove_files_of_ended_runs(const std::string& path, const std::string& marker,
+                                bool include_own);
 
 // fsyncs the folder holding `path`, so that a rename into it survives a power loss.
 // Best effort: a folder that cannot be opened or synced is left as it is.
