@@ -3,7 +3,9 @@
 // The pipeline streams: planner → tool compensation and checks → machine axes and limits
 // → post-processor plugin, chunk by chunk. Each pass (roughing passes, then the finish)
 // is its own program; every output is written under a temporary name and only renamed
-// into place once the whole job has succeeded, so a job that fails midway leaves nothing.
+// into place once the whole job has succeeded, so a job that fails midway leaves nothing,
+// and then all of them as one set (io/output_set.hpp), so a run killed while renaming
+// never leaves a program beside files it was not written with.
 #include <unistd.h>
 
 #include <cmath>
@@ -11,9 +13,9 @@
 #include <cstdlib>
 #include <filesystem>
 #include <fstream>
-#include <sstream>
 #include <memory>
 #include <numbers>
+#include <sstream>
 #include <string>
 #include <vector>
 
@@ -22,6 +24,7 @@
 #include "freeturn/core/error.hpp"
 #include "freeturn/io/atomic_file.hpp"
 #include "freeturn/io/mesh_export.hpp"
+#include "freeturn/io/output_set.hpp"
 #include "freeturn/job/job.hpp"
 #include "freeturn/job/machine_yaml.hpp"
 #include "freeturn/machine/axis_mapper.hpp"
@@ -87,8 +90,9 @@ class PassStage final : public CutterSink, public AxisSink {
         why += std::to_string(limits_.max_points);
         why += " points at r = ";
         why += std::to_string(cls_.back().contact.r);
-        why += " mm and is not done: more than limits.max_points allows (a pitch or tolerance typo?); "
-               "nothing was written";
+        why +=
+            " mm and is not done: more than limits.max_points allows (a pitch or tolerance typo?); "
+            "nothing was written";
         throw InputError("limits.max_points", why);
       }
     }
@@ -109,10 +113,21 @@ class PassStage final : public CutterSink, public AxisSink {
  private:
   void row(const CutterLocation& cl, const AxisRecord& r) {
     line_.clear();
-    const double values[16] = {cl.contact.theta, cl.contact.point.x(), cl.contact.point.y(),
-                               cl.contact.point.z(), cl.contact.normal.x(), cl.contact.normal.y(),
-                               cl.contact.normal.z(), cl.nose_centre.x(), cl.nose_centre.y(),
-                               cl.nose_centre.z(), cl.b * 180 / std::numbers::pi, r.x, r.z, r.c, r.b,
+    const double values[16] = {cl.contact.theta,
+                               cl.contact.point.x(),
+                               cl.contact.point.y(),
+                               cl.contact.point.z(),
+                               cl.contact.normal.x(),
+                               cl.contact.normal.y(),
+                               cl.contact.normal.z(),
+                               cl.nose_centre.x(),
+                               cl.nose_centre.y(),
+                               cl.nose_centre.z(),
+                               cl.b * 180 / std::numbers::pi,
+                               r.x,
+                               r.z,
+                               r.c,
+                               r.b,
                                cl.contact.chord_error};
     for (int i = 0; i < 16; ++i) {
       if (i) line_ += ',';
@@ -122,7 +137,8 @@ class PassStage final : public CutterSink, public AxisSink {
     csv_bytes_ += static_cast<long long>(line_.size());
     if (static_cast<double>(csv_bytes_) > limits_.max_file_mb * 1048576.0)
       throw InputError("limits.max_file_mb", "the CL file would be larger than " +
-                                                 std::to_string(limits_.max_file_mb) + " MB; nothing was written");
+                                                 std::to_string(limits_.max_file_mb) +
+                                                 " MB; nothing was written");
     csv_->write(line_);
   }
 
@@ -144,9 +160,9 @@ class PassStage final : public CutterSink, public AxisSink {
 ToolMotion motion_of(const CompensationOptions& c) {
   ToolMotion m;
   m.nose_radius = c.tool.nose_radius;
-  m.axis_offset = c.pivot_distance > 0                            ? c.pivot_distance
+  m.axis_offset = c.pivot_distance > 0                         ? c.pivot_distance
                   : c.tool.program_point == ProgramPoint::kTip ? -c.tool.nose_radius
-                                                                  : 0.0;
+                                                               : 0.0;
   m.b_follows = c.b_mode == BMode::kFollow;
   m.edge_angle = c.edge_angle;
   return m;
@@ -166,19 +182,20 @@ void check_point_bound(const Job& job, const JobPlan& plan, std::size_t passes) 
                                 ? p.points_per_revolution
                                 : std::ceil(2 * std::numbers::pi / p.max_angle_step);
     per_pass = turns * per_turn;
-    how = std::to_string(turns) + " turns at pitch " + std::to_string(plan.strategy.pitch) + " mm, at least " +
-          std::to_string(per_turn) + " points per turn";
+    how = std::to_string(turns) + " turns at pitch " + std::to_string(plan.strategy.pitch) +
+          " mm, at least " + std::to_string(per_turn) + " points per turn";
   } else {
     per_pass = width / p.max_radial_step;
     how = "steps of at most " + std::to_string(p.max_radial_step) + " mm";
   }
   const double total = per_pass * static_cast<double>(passes);
   if (total > static_cast<double>(plan.limits.max_points))
-    throw InputError(job.file, "the job needs at least " + std::to_string(static_cast<long long>(total)) +
-                                   " points (" + how + ", " + std::to_string(passes) +
-                                   " passes): more than limits.max_points = " +
-                                   std::to_string(plan.limits.max_points) +
-                                   "; check the pitch and tolerance, or raise the limit");
+    throw InputError(
+        job.file,
+        "the job needs at least " + std::to_string(static_cast<long long>(total)) + " points (" +
+            how + ", " + std::to_string(passes) +
+            " passes): more than limits.max_points = " + std::to_string(plan.limits.max_points) +
+            "; check the pitch and tolerance, or raise the limit");
 }
 
 struct PreparedJob {
@@ -194,8 +211,8 @@ MachineDescription machine_for(const Job& job, const std::string& machine_file) 
     throw InputError(job.file, "strategy.mode spiral needs a C axis; machine '" + m.name +
                                    "' has none (use mode: profile, or another machine)");
   if (plan.strategy.b_mode == BMode::kFollow && !m.has(Axis::kB))
-    throw InputError(job.file, "strategy.b_axis: follow needs a B axis; machine '" + m.name +
-                                   "' has none");
+    throw InputError(job.file,
+                     "strategy.b_axis: follow needs a B axis; machine '" + m.name + "' has none");
   if (!spiral) {
     // Profile turning programs X and Z only; the spindle runs at speed.
     std::vector<AxisSpec> xz;
@@ -208,9 +225,11 @@ MachineDescription machine_for(const Job& job, const std::string& machine_file) 
 
 PreparedJob prepare_job(const Job& job) {
   if (!job.plan)
-    throw InputError(job.file, "the job has no tool, strategy, cutting and machine sections to run");
+    throw InputError(job.file,
+                     "the job has no tool, strategy, cutting and machine sections to run");
   std::string machine_ref = job.plan->machine;
-  if (machine_ref.find('/') != std::string::npos && !std::filesystem::path(machine_ref).is_absolute())
+  if (machine_ref.find('/') != std::string::npos &&
+      !std::filesystem::path(machine_ref).is_absolute())
     machine_ref = (std::filesystem::path(job.file).parent_path() / machine_ref).string();
   PreparedJob p;
   p.machine = machine_for(job, find_machine_file(machine_ref));
@@ -231,7 +250,9 @@ RunReport execute_job(const Job& job, const PreparedJob& prepared, const std::st
     std::filesystem::create_directories(out_dir, ec);
     if (ec) throw InputError(out_dir, "cannot create the output folder: " + ec.message());
   }
-  const auto out = [&](const std::string& name) { return (std::filesystem::path(out_dir) / name).string(); };
+  const auto out = [&](const std::string& name) {
+    return (std::filesystem::path(out_dir) / name).string();
+  };
 
   RunReport report;
   report.job = job.name;
@@ -281,7 +302,8 @@ RunReport execute_job(const Job& job, const PreparedJob& prepared, const std::st
     const bool finishing = pass + 1 == stock.size();
     const std::string suffix = finishing ? "" : ".rough-" + std::to_string(pass + 1);
     const RaisedSurface surface(design, stock[pass]);
-    PassFigures& figures = report.add_pass(finishing ? "finish" : "rough-" + std::to_string(pass + 1), stock[pass]);
+    PassFigures& figures =
+        report.add_pass(finishing ? "finish" : "rough-" + std::to_string(pass + 1), stock[pass]);
     AxisCollector discard;
     AxisSink* post = &discard;
     if (write && plan.outputs.nc) {
@@ -310,7 +332,8 @@ RunReport execute_job(const Job& job, const PreparedJob& prepared, const std::st
       if (!(so.radial_step > 0)) so.radial_step = pitch / 8;
       if (!(so.band > 0)) so.band = 3 * pitch;
       if (!(so.margin > 0)) so.margin = pitch;
-      if (!spiral) throw InputError(job.file, "the cut simulation needs a spiral (strategy.mode: spiral)");
+      if (!spiral)
+        throw InputError(job.file, "the cut simulation needs a spiral (strategy.mode: spiral)");
       simulator = std::make_unique<CutSimulator>(surface, plan.tool.tool.nose_radius, so);
       stage.set_simulator(simulator.get());
     }
@@ -351,34 +374,26 @@ RunReport execute_job(const Job& job, const PreparedJob& prepared, const std::st
     }
   }
   if (!write) return report;
-  // Everything succeeded: write the report, then put every file in place.
-  std::vector<std::string> written;
+  // Everything succeeded: write the rest, then put every file in place as one set
+  // (io/output_set.hpp: programs set aside, data files first, programs last).
+  OutputSet outputs;
   if (report.simulation) {
-    const std::string csv_path = out(job.name + ".residual.csv"), ply = out(job.name + ".residual.ply");
-    write_residual_csv(*report.simulation, job.aperture.inner_radius, csv_path);
-    write_residual_ply(*report.simulation, design, job.aperture.inner_radius, ply);
-    written.push_back(csv_path);
-    written.push_back(ply);
+    write_residual_csv(*report.simulation, job.aperture.inner_radius,
+                       outputs.add(out(job.name + ".residual.csv")));
+    write_residual_ply(*report.simulation, design, job.aperture.inner_radius,
+                       outputs.add(out(job.name + ".residual.ply")));
   }
   if (plan.outputs.mesh) {
-    const std::string obj = out(job.name + ".surface.obj"), vtk = out(job.name + ".path.vtk");
-    write_surface_mesh_obj(design, job.aperture.inner_radius, job.aperture.outer_radius, 64, 256, obj);
+    write_surface_mesh_obj(design, job.aperture.inner_radius, job.aperture.outer_radius, 64, 256,
+                           outputs.add(out(job.name + ".surface.obj")));
     std::vector<Eigen::Vector3d> path;
     for (const PlotPoint& p : report.passes.back().samples) path.emplace_back(p.x, p.y, p.z);
-    write_polyline_vtk(path, vtk);
-    written.push_back(obj);
-    written.push_back(vtk);
+    write_polyline_vtk(path, outputs.add(out(job.name + ".path.vtk")));
   }
-  for (auto& p : programs)
-    for (const std::string& f : p->finish()) written.push_back(f);
-  if (csv) {
-    csv->commit();
-    written.push_back(csv->path());
-  }
-  if (write && plan.outputs.report) {
-    for (const std::string& f : write_report(report, out("report.json"), out("report.html")))
-      written.push_back(f);
-  }
+  for (auto& p : programs) p->finish(outputs);
+  if (csv) outputs.adopt(std::move(csv), OutputSet::Role::kData);
+  if (plan.outputs.report) write_report(report, out("report.json"), out("report.html"), outputs);
+  const std::vector<std::string> written = outputs.commit();
   if (!quiet && write) {
     const PassFigures& f = report.passes.back();
     std::printf("%s on %s: %ld points, %.1f revolutions, chord error max %.3f nm, cycle %.1f s\n",
@@ -393,12 +408,14 @@ RunReport execute_job(const Job& job, const PreparedJob& prepared, const std::st
 
 namespace {
 
-constexpr const char* kRunUsage = "freeturn run JOB.yaml [-o DIR] [--quiet] [--simulate] [--threads N]";
+constexpr const char* kRunUsage =
+    "freeturn run JOB.yaml [-o DIR] [--quiet] [--simulate] [--threads N]";
 constexpr const char* kSimulateUsage =
     "freeturn simulate JOB.yaml [-o DIR] [--radial-step MM] [--columns N] [--threads N]";
 
 int parse_threads(const std::string& text) {
-  return static_cast<int>(option_integer("--threads", text, 1, 1024, "a whole number from 1 to 1024"));
+  return static_cast<int>(
+      option_integer("--threads", text, 1, 1024, "a whole number from 1 to 1024"));
 }
 
 }  // namespace
@@ -408,12 +425,18 @@ int run_run(const std::vector<std::string>& args) {
   bool quiet = false, simulate = false;
   SimulationOptions simulation;
   for (std::size_t i = 0; i < args.size(); ++i) {
-    if ((args[i] == "-o" || args[i] == "--output") && i + 1 < args.size()) out_dir = args[++i];
-    else if (args[i] == "--quiet" || args[i] == "-q") quiet = true;
-    else if (args[i] == "--simulate") simulate = true;
-    else if (args[i] == "--threads" && i + 1 < args.size()) simulation.threads = parse_threads(args[++i]);
-    else if (!args[i].empty() && args[i][0] != '-' && job_path.empty()) job_path = args[i];
-    else throw InputError("usage", "unexpected argument '" + args[i] + "'; usage: " + kRunUsage);
+    if ((args[i] == "-o" || args[i] == "--output") && i + 1 < args.size())
+      out_dir = args[++i];
+    else if (args[i] == "--quiet" || args[i] == "-q")
+      quiet = true;
+    else if (args[i] == "--simulate")
+      simulate = true;
+    else if (args[i] == "--threads" && i + 1 < args.size())
+      simulation.threads = parse_threads(args[++i]);
+    else if (!args[i].empty() && args[i][0] != '-' && job_path.empty())
+      job_path = args[i];
+    else
+      throw InputError("usage", "unexpected argument '" + args[i] + "'; usage: " + kRunUsage);
   }
   if (job_path.empty()) throw InputError("usage", kRunUsage);
   const Job job = load_job(job_path);
@@ -450,12 +473,18 @@ int run_simulate(const std::vector<std::string>& args) {
   const PreparedJob prepared = prepare_job(job);
   const RunReport r = execute_job(job, prepared, out_dir, true, true, &simulation);
   const SimulationResult& s = *r.simulation;
-  std::printf("%s: simulated form error PV %.3f nm, RMS %.3f nm (max %+.3f nm at r = %.4f mm, min %+.3f nm at r = %.4f mm); %ld cells not reached\n",
-              job.name.c_str(), s.pv * 1e6, s.rms * 1e6, s.max * 1e6, s.max_r, s.min * 1e6, s.min_r, s.uncut);
+  std::printf(
+      "%s: simulated form error PV %.3f nm, RMS %.3f nm (max %+.3f nm at r = %.4f mm, min %+.3f nm "
+      "at r = %.4f mm); %ld cells not reached\n",
+      job.name.c_str(), s.pv * 1e6, s.rms * 1e6, s.max * 1e6, s.max_r, s.min * 1e6, s.min_r,
+      s.uncut);
   const double ratio = s.pv > 0 ? s.predicted.pv() / s.pv : 0;
-  std::printf("  the planner predicted PV %.3f nm (max %+.3f, min %+.3f nm): %.3f× the simulation, %s\n",
-              s.predicted.pv() * 1e6, s.predicted.max() * 1e6, s.predicted.min() * 1e6, ratio,
-              ratio < 1 ? "NOT an upper bound" : ratio <= 1.1 ? "an upper bound within 10%" : "an upper bound, loose by more than 10%");
+  std::printf(
+      "  the planner predicted PV %.3f nm (max %+.3f, min %+.3f nm): %.3f× the simulation, %s\n",
+      s.predicted.pv() * 1e6, s.predicted.max() * 1e6, s.predicted.min() * 1e6, ratio,
+      ratio < 1      ? "NOT an upper bound"
+      : ratio <= 1.1 ? "an upper bound within 10%"
+                     : "an upper bound, loose by more than 10%");
   for (const ResidualPlace& p : s.worst)
     std::printf("  worst: %+.3f nm at r = %.4f mm, θ = %.2f° (%s)\n", p.residual * 1e6, p.r,
                 p.phi * 180 / std::numbers::pi, to_string(p.cause));
@@ -465,8 +494,10 @@ int run_simulate(const std::vector<std::string>& args) {
 int run_check(const std::vector<std::string>& args) {
   std::string job_path;
   for (const std::string& a : args) {
-    if (!a.empty() && a[0] != '-' && job_path.empty()) job_path = a;
-    else throw InputError("usage", "unexpected argument '" + a + "'; usage: freeturn check JOB.yaml");
+    if (!a.empty() && a[0] != '-' && job_path.empty())
+      job_path = a;
+    else
+      throw InputError("usage", "unexpected argument '" + a + "'; usage: freeturn check JOB.yaml");
   }
   if (job_path.empty()) throw InputError("usage", "freeturn check JOB.yaml");
   // Bad input (the job, the machine, the plugin) is exit 2; a job that would fail is 1.
@@ -475,9 +506,10 @@ int run_check(const std::vector<std::string>& args) {
   try {
     const RunReport r = execute_job(job, prepared, "", true, false);
     const PassFigures& f = r.passes.back();
-    std::printf("PASS: %s on %s: %ld points, chord error max %.3f nm, highest rpm %.4g%s\n",
-                job.name.c_str(), r.machine.c_str(), f.points, f.chord_max * 1e6, f.dynamics.max_rpm,
-                r.alpha_max_deg >= 0 ? (", α_max " + std::to_string(r.alpha_max_deg) + "°").c_str() : "");
+    std::printf(
+        "PASS: %s on %s: %ld points, chord error max %.3f nm, highest rpm %.4g%s\n",
+        job.name.c_str(), r.machine.c_str(), f.points, f.chord_max * 1e6, f.dynamics.max_rpm,
+        r.alpha_max_deg >= 0 ? (", α_max " + std::to_string(r.alpha_max_deg) + "°").c_str() : "");
     for (const std::string& w : r.warnings) std::printf("warning: %s\n", w.c_str());
     return kExitOk;
   } catch (const InputError& e) {

@@ -1,11 +1,11 @@
 #include "run_report.hpp"
 
+#include <algorithm>
 #include <chrono>
-#include <cstdint>
 #include <cmath>
+#include <cstdint>
 #include <cstdio>
 #include <cstdlib>
-#include <algorithm>
 #include <numbers>
 
 #include "freeturn/io/atomic_file.hpp"
@@ -46,10 +46,14 @@ std::string num(double v) {
 std::string html_escape(const std::string& s) {
   std::string out;
   for (char ch : s) {
-    if (ch == '<') out += "&lt;";
-    else if (ch == '>') out += "&gt;";
-    else if (ch == '&') out += "&amp;";
-    else out += ch;
+    if (ch == '<')
+      out += "&lt;";
+    else if (ch == '>')
+      out += "&gt;";
+    else if (ch == '&')
+      out += "&amp;";
+    else
+      out += ch;
   }
   return out;
 }
@@ -62,8 +66,14 @@ std::string bmp_heat_map(const ResidualHeatMap& m, double limit) {
   const int n = m.size, row = (n + 3) / 4 * 4;
   const std::uint32_t offset = 14 + 40 + 1024, image = static_cast<std::uint32_t>(row * n);
   std::string b;
-  const auto u16 = [&](std::uint32_t v) { b += static_cast<char>(v & 255); b += static_cast<char>((v >> 8) & 255); };
-  const auto u32 = [&](std::uint32_t v) { u16(v & 0xffff); u16(v >> 16); };
+  const auto u16 = [&](std::uint32_t v) {
+    b += static_cast<char>(v & 255);
+    b += static_cast<char>((v >> 8) & 255);
+  };
+  const auto u32 = [&](std::uint32_t v) {
+    u16(v & 0xffff);
+    u16(v >> 16);
+  };
   b += "BM";
   u32(offset + image);
   u32(0);
@@ -89,14 +99,18 @@ std::string bmp_heat_map(const ResidualHeatMap& m, double limit) {
   for (int k = 1; k < 256; ++k) {
     const double t = (k - 1) / 254.0 * 2 - 1;  // −1 … 1
     const int fade = static_cast<int>(std::lround(255 * (1 - std::abs(t))));
-    if (t < 0) bgr(255, fade, fade);
-    else bgr(fade, fade, 255);
+    if (t < 0)
+      bgr(255, fade, fade);
+    else
+      bgr(fade, fade, 255);
   }
   for (int y = 0; y < n; ++y) {
     for (int x = 0; x < n; ++x) {
-      const double v = m.mean[static_cast<std::size_t>(y) * static_cast<std::size_t>(n) + static_cast<std::size_t>(x)];
+      const double v = m.mean[static_cast<std::size_t>(y) * static_cast<std::size_t>(n) +
+                              static_cast<std::size_t>(x)];
       int index = 0;
-      if (!std::isnan(v)) index = 1 + static_cast<int>(std::lround((std::clamp(v / limit, -1.0, 1.0) + 1) / 2 * 254));
+      if (!std::isnan(v))
+        index = 1 + static_cast<int>(std::lround((std::clamp(v / limit, -1.0, 1.0) + 1) / 2 * 254));
       b += static_cast<char>(index);
     }
     b.append(static_cast<std::size_t>(row - n), '\0');
@@ -126,22 +140,28 @@ std::string base64(const std::string& in) {
 std::string svg_heat_map(const ResidualHeatMap& m, double max, double min) {
   const double limit = std::max({std::abs(max), std::abs(min), 1e-9});
   const int side = 360, bar_x = side + 30;
-  std::string svg = "<figure><svg xmlns=\"http://www.w3.org/2000/svg\" width=\"" + num(side + 170) +
-                    "\" height=\"" + num(side + 20) + "\"><defs><linearGradient id=\"residual\" x1=\"0\" y1=\"1\" x2=\"0\" y2=\"0\">"
-                    "<stop offset=\"0\" stop-color=\"#0000ff\"/><stop offset=\"0.5\" stop-color=\"#ffffff\"/>"
-                    "<stop offset=\"1\" stop-color=\"#ff0000\"/></linearGradient></defs>";
+  std::string svg =
+      "<figure><svg xmlns=\"http://www.w3.org/2000/svg\" width=\"" + num(side + 170) +
+      "\" height=\"" + num(side + 20) +
+      "\"><defs><linearGradient id=\"residual\" x1=\"0\" y1=\"1\" x2=\"0\" y2=\"0\">"
+      "<stop offset=\"0\" stop-color=\"#0000ff\"/><stop offset=\"0.5\" stop-color=\"#ffffff\"/>"
+      "<stop offset=\"1\" stop-color=\"#ff0000\"/></linearGradient></defs>";
   svg += "<image x=\"10\" y=\"10\" width=\"" + num(side) + "\" height=\"" + num(side) +
-         "\" style=\"image-rendering:pixelated\" href=\"data:image/bmp;base64," + base64(bmp_heat_map(m, limit)) + "\"/>";
+         "\" style=\"image-rendering:pixelated\" href=\"data:image/bmp;base64," +
+         base64(bmp_heat_map(m, limit)) + "\"/>";
   svg += "<rect x=\"" + num(bar_x) + "\" y=\"10\" width=\"16\" height=\"" + num(side) +
          "\" fill=\"url(#residual)\" stroke=\"#ccc\"/>";
   const auto label = [&](double y, double value) {
-    svg += "<text x=\"" + num(bar_x + 22) + "\" y=\"" + num(y + 4) + "\" font-size=\"12\">" + num(value * 1e6) + " nm</text>";
+    svg += "<text x=\"" + num(bar_x + 22) + "\" y=\"" + num(y + 4) + "\" font-size=\"12\">" +
+           num(value * 1e6) + " nm</text>";
   };
   label(10, limit);
   label(10 + side / 2.0, 0);
   label(10 + side, -limit);
-  svg += "</svg><figcaption>Simulated residual seen from above, mean per pixel (" + num(2 * m.half_width / m.size * 1e3) +
-         " µm): red above the design, blue below; colours clipped at the figures' extremes</figcaption></figure>\n";
+  svg += "</svg><figcaption>Simulated residual seen from above, mean per pixel (" +
+         num(2 * m.half_width / m.size * 1e3) +
+         " µm): red above the design, blue below; colours clipped at the figures' "
+         "extremes</figcaption></figure>\n";
   return svg;
 }
 
@@ -175,22 +195,30 @@ std::string svg_plot(const std::vector<std::pair<double, double>>& xy, const std
   }
   std::string svg = "<figure><svg xmlns=\"http://www.w3.org/2000/svg\" width=\"" + num(w) +
                     "\" height=\"" + num(h) + "\" viewBox=\"0 0 " + num(w) + " " + num(h) + "\">";
-  svg += "<rect x=\"0\" y=\"0\" width=\"" + num(w) + "\" height=\"" + num(h) + "\" fill=\"#fff\" stroke=\"#ccc\"/>";
-  svg += scatter ? "<path fill=\"none\" stroke=\"#1f5fa8\" stroke-width=\"2\" stroke-linecap=\"round\" d=\"" + path + "\"/>"
-                 : "<polyline fill=\"none\" stroke=\"#1f5fa8\" stroke-width=\"0.7\" points=\"" + path + "\"/>";
-  svg += "<text x=\"" + num(w / 2) + "\" y=\"" + num(h - 10) + "\" text-anchor=\"middle\" font-size=\"12\">" +
-         html_escape(x_label) + " (" + num(x0) + " … " + num(x1) + ")</text>";
-  svg += "<text x=\"12\" y=\"" + num(h / 2) + "\" font-size=\"12\" transform=\"rotate(-90 12 " + num(h / 2) +
-         ")\" text-anchor=\"middle\">" + html_escape(y_label) + " (" + num(y0) + " … " + num(y1) + ")</text>";
+  svg += "<rect x=\"0\" y=\"0\" width=\"" + num(w) + "\" height=\"" + num(h) +
+         "\" fill=\"#fff\" stroke=\"#ccc\"/>";
+  svg += scatter ? "<path fill=\"none\" stroke=\"#1f5fa8\" stroke-width=\"2\" "
+                   "stroke-linecap=\"round\" d=\"" +
+                       path + "\"/>"
+                 : "<polyline fill=\"none\" stroke=\"#1f5fa8\" stroke-width=\"0.7\" points=\"" +
+                       path + "\"/>";
+  svg += "<text x=\"" + num(w / 2) + "\" y=\"" + num(h - 10) +
+         "\" text-anchor=\"middle\" font-size=\"12\">" + html_escape(x_label) + " (" + num(x0) +
+         " … " + num(x1) + ")</text>";
+  svg += "<text x=\"12\" y=\"" + num(h / 2) + "\" font-size=\"12\" transform=\"rotate(-90 12 " +
+         num(h / 2) + ")\" text-anchor=\"middle\">" + html_escape(y_label) + " (" + num(y0) +
+         " … " + num(y1) + ")</text>";
   svg += "</svg><figcaption>" + html_escape(title) + "</figcaption></figure>\n";
   return svg;
 }
 
 }  // namespace
 
-void PassFigures::add(const CutterLocation& cl, const AxisRecord& record, const AxisRecord& previous) {
+void PassFigures::add(const CutterLocation& cl, const AxisRecord& record,
+                      const AxisRecord& previous) {
   ++points;
-  const std::size_t revolution = static_cast<std::size_t>(std::max(0.0, cl.contact.theta / (2 * std::numbers::pi)));
+  const std::size_t revolution =
+      static_cast<std::size_t>(std::max(0.0, cl.contact.theta / (2 * std::numbers::pi)));
   if (points_per_revolution.size() <= revolution) points_per_revolution.resize(revolution + 1, 0);
   ++points_per_revolution[revolution];
   const double rate = record.time > 0 ? 1 / record.time : 0;
@@ -202,8 +230,9 @@ void PassFigures::add(const CutterLocation& cl, const AxisRecord& record, const 
   chord_sq_ += e * e;
   scallop_sq_ += s * s;
   if ((points - 1) % stride == 0) {
-    samples.push_back({cl.contact.point.x(), cl.contact.point.y(), cl.contact.point.z(), cl.contact.r, e,
-                       (record.x - previous.x) * rate, (record.z - previous.z) * rate, dc * rate});
+    samples.push_back({cl.contact.point.x(), cl.contact.point.y(), cl.contact.point.z(),
+                       cl.contact.r, e, (record.x - previous.x) * rate,
+                       (record.z - previous.z) * rate, dc * rate});
     if (samples.size() >= kMaxSamples) {
       // Keep every other sample and halve the rate: memory stays bounded.
       std::size_t j = 0;
@@ -231,7 +260,8 @@ void PassFigures::finish(const PathSummary& s, const DynamicsReport& d, const To
   }
   if (s.jumps > 0) {
     std::string w = std::to_string(s.jumps);
-    w += " segments where the nose centre jumps (a crease sharper than the nose), the first at θ = ";
+    w +=
+        " segments where the nose centre jumps (a crease sharper than the nose), the first at θ = ";
     w += num(s.first_jump_theta * 180 / std::numbers::pi);
     w += "°, r = ";
     w += num(s.first_jump_r);
@@ -242,29 +272,35 @@ void PassFigures::finish(const PathSummary& s, const DynamicsReport& d, const To
   }
 }
 
-std::vector<std::string> write_report(const RunReport& r, const std::string& json_path,
-                                      const std::string& html_path) {
-  std::string j = "{\n  \"job\": " + json_string(r.job) + ",\n  \"job_file\": " + json_string(r.job_file) +
-                  ",\n  \"job_yaml\": " + json_string(r.job_text) +
-                  ",\n  \"machine\": " + json_string(r.machine) + ",\n  \"plugin\": " + json_string(r.plugin) +
-                  ",\n  \"alpha_max_deg\": " + (r.alpha_max_deg < 0 ? "null" : num(r.alpha_max_deg)) +
-                  ",\n  \"axis_moved\": " + (r.axis_moved ? "true" : "false") + ",\n  \"warnings\": [";
-  for (std::size_t i = 0; i < r.warnings.size(); ++i) j += (i ? ", " : "") + json_string(r.warnings[i]);
+void write_report(const RunReport& r, const std::string& json_path, const std::string& html_path,
+                  OutputSet& outputs) {
+  std::string j =
+      "{\n  \"job\": " + json_string(r.job) + ",\n  \"job_file\": " + json_string(r.job_file) +
+      ",\n  \"job_yaml\": " + json_string(r.job_text) +
+      ",\n  \"machine\": " + json_string(r.machine) + ",\n  \"plugin\": " + json_string(r.plugin) +
+      ",\n  \"alpha_max_deg\": " + (r.alpha_max_deg < 0 ? "null" : num(r.alpha_max_deg)) +
+      ",\n  \"axis_moved\": " + (r.axis_moved ? "true" : "false") + ",\n  \"warnings\": [";
+  for (std::size_t i = 0; i < r.warnings.size(); ++i)
+    j += (i ? ", " : "") + json_string(r.warnings[i]);
   j += "],\n  \"passes\": [";
   static const char* const kAxes[4] = {"X", "Z", "C", "B"};
   for (std::size_t p = 0; p < r.passes.size(); ++p) {
     const PassFigures& f = r.passes[p];
-    j += std::string(p ? "," : "") + "\n    {\"name\": " + json_string(f.name) + ", \"stock_mm\": " + num(f.stock) +
-         ", \"points\": " + std::to_string(f.points) + ", \"revolutions\": " + num(f.revolutions) +
-         ",\n     \"chord_error_mm\": {\"max\": " + num(f.chord_max) + ", \"rms\": " + num(f.chord_rms) +
-         "}, \"scallop_mm\": {\"max\": " + num(f.scallop_max) + ", \"rms\": " + num(f.scallop_rms) +
-         "},\n     \"cycle_time_s\": " + num(f.cycle_time) + ", \"max_rpm\": " + num(f.dynamics.max_rpm) +
-         ", \"max_rpm_limited_by\": " + json_string(f.dynamics.limiting) + ",\n     \"peak_velocity\": {";
+    j += std::string(p ? "," : "") + "\n    {\"name\": " + json_string(f.name) +
+         ", \"stock_mm\": " + num(f.stock) + ", \"points\": " + std::to_string(f.points) +
+         ", \"revolutions\": " + num(f.revolutions) +
+         ",\n     \"chord_error_mm\": {\"max\": " + num(f.chord_max) +
+         ", \"rms\": " + num(f.chord_rms) + "}, \"scallop_mm\": {\"max\": " + num(f.scallop_max) +
+         ", \"rms\": " + num(f.scallop_rms) + "},\n     \"cycle_time_s\": " + num(f.cycle_time) +
+         ", \"max_rpm\": " + num(f.dynamics.max_rpm) +
+         ", \"max_rpm_limited_by\": " + json_string(f.dynamics.limiting) +
+         ",\n     \"peak_velocity\": {";
     for (int a = 0; a < 4; ++a)
       j += std::string(a ? ", " : "") + "\"" + kAxes[a] + "\": " + num(f.dynamics.peak_velocity[a]);
     j += "}, \"peak_acceleration\": {";
     for (int a = 0; a < 4; ++a)
-      j += std::string(a ? ", " : "") + "\"" + kAxes[a] + "\": " + num(f.dynamics.peak_acceleration[a]);
+      j += std::string(a ? ", " : "") + "\"" + kAxes[a] +
+           "\": " + num(f.dynamics.peak_acceleration[a]);
     j += "}, \"peak_block_rate\": " + num(f.dynamics.peak_block_rate) + ",\n     \"checks\": {";
     for (int c = 0; c < kToolCheckCount; ++c) {
       const CheckFinding& k = f.checks.findings[c];
@@ -276,51 +312,66 @@ std::vector<std::string> write_report(const RunReport& r, const std::string& jso
   j += "\n  ]";
   if (r.simulation) {
     const SimulationResult& s = *r.simulation;
-    j += ",\n  \"simulation\": {\"pv_mm\": " + num(s.pv) + ", \"rms_mm\": " + num(s.rms) + ", \"max_mm\": " +
-         num(s.max) + ", \"min_mm\": " + num(s.min) + ", \"max_at_r_mm\": " + num(s.max_r) +
-         ", \"min_at_r_mm\": " + num(s.min_r) + ", \"cells\": " + std::to_string(static_cast<long>(s.rings) * s.columns) +
-         ", \"uncut_cells\": " + std::to_string(s.uncut) + ",\n    \"predicted\": {\"pv_mm\": " + num(s.predicted.pv()) +
+    j += ",\n  \"simulation\": {\"pv_mm\": " + num(s.pv) + ", \"rms_mm\": " + num(s.rms) +
+         ", \"max_mm\": " + num(s.max) + ", \"min_mm\": " + num(s.min) +
+         ", \"max_at_r_mm\": " + num(s.max_r) + ", \"min_at_r_mm\": " + num(s.min_r) +
+         ", \"cells\": " + std::to_string(static_cast<long>(s.rings) * s.columns) +
+         ", \"uncut_cells\": " + std::to_string(s.uncut) +
+         ",\n    \"predicted\": {\"pv_mm\": " + num(s.predicted.pv()) +
          ", \"max_mm\": " + num(s.predicted.max()) + ", \"min_mm\": " + num(s.predicted.min()) +
-         ", \"max_scallop_mm\": " + num(s.predicted.max_scallop) + ", \"max_chord_above_mm\": " +
-         num(s.predicted.max_chord_above) + ", \"max_chord_below_mm\": " + num(s.predicted.max_chord_below) +
+         ", \"max_scallop_mm\": " + num(s.predicted.max_scallop) +
+         ", \"max_chord_above_mm\": " + num(s.predicted.max_chord_above) +
+         ", \"max_chord_below_mm\": " + num(s.predicted.max_chord_below) +
          ", \"pv_ratio\": " + num(s.pv > 0 ? s.predicted.pv() / s.pv : 0) + "},\n    \"worst\": [";
     for (std::size_t k = 0; k < s.worst.size(); ++k)
-      j += std::string(k ? ", " : "") + "{\"r_mm\": " + num(s.worst[k].r) + ", \"theta_deg\": " +
-           num(s.worst[k].phi * 180 / std::numbers::pi) + ", \"residual_mm\": " + num(s.worst[k].residual) +
+      j += std::string(k ? ", " : "") + "{\"r_mm\": " + num(s.worst[k].r) +
+           ", \"theta_deg\": " + num(s.worst[k].phi * 180 / std::numbers::pi) +
+           ", \"residual_mm\": " + num(s.worst[k].residual) +
            ", \"cause\": " + json_string(to_string(s.worst[k].cause)) + "}";
     j += "]}";
   }
   j += "\n}\n";
-  AtomicFile json(json_path);
-  json.write(j);
+  outputs.add(json_path).write(j);
 
-  std::string h = "<!DOCTYPE html>\n<html lang=\"en\"><head><meta charset=\"utf-8\"><title>freeturn: " +
-                  html_escape(r.job) +
-                  "</title><style>body{font-family:sans-serif;max-width:1200px;margin:2em auto;color:#222}"
-                  "table{border-collapse:collapse}td,th{border:1px solid #ccc;padding:4px 8px;text-align:right}"
-                  "th{text-align:left}figure{display:inline-block;margin:8px}.warn{color:#a15c00}</style></head><body>\n";
+  std::string h =
+      "<!DOCTYPE html>\n<html lang=\"en\"><head><meta charset=\"utf-8\"><title>freeturn: " +
+      html_escape(r.job) +
+      "</title><style>body{font-family:sans-serif;max-width:1200px;margin:2em auto;color:#222}"
+      "table{border-collapse:collapse}td,th{border:1px solid #ccc;padding:4px 8px;text-align:right}"
+      "th{text-align:left}figure{display:inline-block;margin:8px}.warn{color:#a15c00}</style></"
+      "head><body>\n";
   h += "<h1>" + html_escape(r.job) + " on " + html_escape(r.machine) + "</h1>\n";
-  if (r.alpha_max_deg >= 0) h += "<p>Quasi-revolution angle on the base: α<sub>max</sub> = " + num(r.alpha_max_deg) + "°</p>\n";
+  if (r.alpha_max_deg >= 0)
+    h += "<p>Quasi-revolution angle on the base: α<sub>max</sub> = " + num(r.alpha_max_deg) +
+         "°</p>\n";
   for (const std::string& w : r.warnings) h += "<p class=\"warn\">" + html_escape(w) + "</p>\n";
-  h += "<table><tr><th>pass</th><th>points</th><th>revolutions</th><th>chord max (nm)</th><th>chord rms (nm)</th>"
+  h += "<table><tr><th>pass</th><th>points</th><th>revolutions</th><th>chord max "
+       "(nm)</th><th>chord rms (nm)</th>"
        "<th>scallop max (nm)</th><th>cycle (s)</th><th>max rpm</th></tr>\n";
   for (const PassFigures& f : r.passes)
-    h += "<tr><th>" + html_escape(f.name) + "</th><td>" + std::to_string(f.points) + "</td><td>" + num(f.revolutions) +
-         "</td><td>" + num(f.chord_max * 1e6) + "</td><td>" + num(f.chord_rms * 1e6) + "</td><td>" +
-         num(f.scallop_max * 1e6) + "</td><td>" + num(f.cycle_time) + "</td><td>" + num(f.dynamics.max_rpm) + "</td></tr>\n";
+    h += "<tr><th>" + html_escape(f.name) + "</th><td>" + std::to_string(f.points) + "</td><td>" +
+         num(f.revolutions) + "</td><td>" + num(f.chord_max * 1e6) + "</td><td>" +
+         num(f.chord_rms * 1e6) + "</td><td>" + num(f.scallop_max * 1e6) + "</td><td>" +
+         num(f.cycle_time) + "</td><td>" + num(f.dynamics.max_rpm) + "</td></tr>\n";
   h += "</table>\n";
   if (r.simulation) {
     const SimulationResult& s = *r.simulation;
     const double ratio = s.pv > 0 ? s.predicted.pv() / s.pv : 0;
-    h += "<h2>Simulated cut</h2>\n<p>Form error of the finishing pass: PV " + num(s.pv * 1e6) + " nm, RMS " +
-         num(s.rms * 1e6) + " nm (residual grid " + std::to_string(s.rings) + " × " + std::to_string(s.columns) +
-         "). The planner predicted PV " + num(s.predicted.pv() * 1e6) + " nm: " + num(ratio) + "× the simulation" +
-         (ratio < 1 ? " (<span class=\"warn\">not an upper bound</span>)" : ratio <= 1.1 ? " (an upper bound within 10%)" : " (an upper bound, loose by more than 10%)") + ".</p>\n";
-    h += "<table><tr><th>worst place</th><th>r (mm)</th><th>θ (°)</th><th>residual (nm)</th><th>cause</th></tr>\n";
+    h += "<h2>Simulated cut</h2>\n<p>Form error of the finishing pass: PV " + num(s.pv * 1e6) +
+         " nm, RMS " + num(s.rms * 1e6) + " nm (residual grid " + std::to_string(s.rings) + " × " +
+         std::to_string(s.columns) + "). The planner predicted PV " + num(s.predicted.pv() * 1e6) +
+         " nm: " + num(ratio) + "× the simulation" +
+         (ratio < 1      ? " (<span class=\"warn\">not an upper bound</span>)"
+          : ratio <= 1.1 ? " (an upper bound within 10%)"
+                         : " (an upper bound, loose by more than 10%)") +
+         ".</p>\n";
+    h += "<table><tr><th>worst place</th><th>r (mm)</th><th>θ (°)</th><th>residual "
+         "(nm)</th><th>cause</th></tr>\n";
     for (std::size_t k = 0; k < s.worst.size(); ++k)
       h += "<tr><th>" + std::to_string(k + 1) + "</th><td>" + num(s.worst[k].r) + "</td><td>" +
-           num(s.worst[k].phi * 180 / std::numbers::pi) + "</td><td>" + num(s.worst[k].residual * 1e6) + "</td><td>" +
-           to_string(s.worst[k].cause) + "</td></tr>\n";
+           num(s.worst[k].phi * 180 / std::numbers::pi) + "</td><td>" +
+           num(s.worst[k].residual * 1e6) + "</td><td>" + to_string(s.worst[k].cause) +
+           "</td></tr>\n";
     h += "</table>\n";
     if (r.heat_map) h += svg_heat_map(*r.heat_map, s.max, s.min);
   }
@@ -330,8 +381,11 @@ std::vector<std::string> write_report(const RunReport& r, const std::string& jso
     top.emplace_back(p.x, p.y);
     error.emplace_back(p.r, p.chord * 1e6);
   }
-  h += svg_plot(top, "The finishing path seen from above (every " + std::to_string(f.stride) + "th point)", "x (mm)", "y (mm)", true);
-  h += svg_plot(error, "Predicted chord error along the radius", "r (mm)", "chord error (nm)", false, true);
+  h += svg_plot(
+      top, "The finishing path seen from above (every " + std::to_string(f.stride) + "th point)",
+      "x (mm)", "y (mm)", true);
+  h += svg_plot(error, "Predicted chord error along the radius", "r (mm)", "chord error (nm)",
+                false, true);
   std::vector<std::pair<double, double>> per_rev, vx, vz;
   for (std::size_t k = 0; k < f.points_per_revolution.size(); ++k)
     per_rev.emplace_back(static_cast<double>(k), static_cast<double>(f.points_per_revolution[k]));
@@ -343,11 +397,7 @@ std::vector<std::string> write_report(const RunReport& r, const std::string& jso
   h += svg_plot(vx, "X velocity along the radius", "r (mm)", "X velocity (mm/s)", false, true);
   h += svg_plot(vz, "Z velocity along the radius", "r (mm)", "Z velocity (mm/s)", false, true);
   h += "</body></html>\n";
-  AtomicFile html(html_path);
-  html.write(h);
-  json.commit();
-  html.commit();
-  return {json_path, html_path};
+  outputs.add(html_path).write(h);
 }
 
 Progress::Progress(bool enabled, std::string label) : enabled_(enabled), label_(std::move(label)) {
@@ -367,8 +417,8 @@ void Progress::update(double, double r, long points) {
   // Area swept grows as 1 − (r/r₀)², which tracks the point count on a spiral better.
   const double fraction = 1 - (1 - done) * (1 - done);
   const double left = fraction > 0.01 ? elapsed * (1 - fraction) / fraction : 0;
-  std::fprintf(stderr, "\r%s: %ld points, %.0f points/s, %3.0f%%, about %.0f s left   ", label_.c_str(),
-               points, points / std::max(elapsed, 1e-9), 100 * fraction, left);
+  std::fprintf(stderr, "\r%s: %ld points, %.0f points/s, %3.0f%%, about %.0f s left   ",
+               label_.c_str(), points, points / std::max(elapsed, 1e-9), 100 * fraction, left);
   std::fflush(stderr);
 }
 

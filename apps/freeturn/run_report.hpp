@@ -7,6 +7,7 @@
 #include <string>
 #include <vector>
 
+#include "freeturn/io/output_set.hpp"
 #include "freeturn/verify/cut_simulation.hpp"
 #include "freeturn/verify/residual_output.hpp"
 
@@ -27,7 +28,7 @@ struct PassFigures {
   long points = 0;
   double revolutions = 0;
   double chord_max = 0, chord_rms = 0, scallop_max = 0, scallop_rms = 0;  // mm
-  double cycle_time = 0;  // s
+  double cycle_time = 0;                                                  // s
   DynamicsReport dynamics;
   ToolCheckReport checks;
   std::vector<std::string> check_warnings;
@@ -61,9 +62,9 @@ struct RunReport {
   }
 };
 
-// Writes both files atomically; returns their paths.
-std::vector<std::string> write_report(const RunReport& r, const std::string& json_path,
-                                      const std::string& html_path);
+// Writes both files into `outputs`, to be put in place with the rest of the run.
+void write_report(const RunReport& r, const std::string& json_path, const std::string& html_path,
+                  OutputSet& outputs);
 
 // A progress line on a terminal: points done, rate, estimated time left (from θ or r).
 class Progress {

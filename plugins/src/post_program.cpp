@@ -3,13 +3,16 @@
 #include <filesystem>
 
 #include "freeturn/core/error.hpp"
-#include "freeturn/io/program_set.hpp"
+#include "freeturn/io/output_set.hpp"
 
 namespace freeturn {
 
 PostProgram::PostProgram(const PostPlugin& plugin, const MachineDescription& machine,
                          const ProgramSettings& settings, const std::string& path)
-    : plugin_(plugin), machine_(machine), settings_(settings), guard_(machine_),
+    : plugin_(plugin),
+      machine_(machine),
+      settings_(settings),
+      guard_(machine_),
       watch_(plugin.post().name) {
   folder_ = std::filesystem::path(path).parent_path().string();
   files_.push_back(std::make_unique<AtomicFile>(path));
@@ -61,25 +64,29 @@ PostProgram::~PostProgram() {
 }
 
 void PostProgram::check_output(const char* stage) {
-  const std::string who = "post-processor '" + std::string(plugin_.post().name) + "' (" + plugin_.path() + ")";
-  if (!refused_.empty()) throw InputError(who, std::string(stage) + ": " + refused_ + "; no NC file was written");
+  const std::string who =
+      "post-processor '" + std::string(plugin_.post().name) + "' (" + plugin_.path() + ")";
+  if (!refused_.empty())
+    throw InputError(who, std::string(stage) + ": " + refused_ + "; no NC file was written");
   if (!guard_.ok())
-    throw InputError(who, std::string(stage) + ": wrote a number no machine may get: " + guard_.reason() +
-                              "; no NC file was written");
+    throw InputError(who, std::string(stage) + ": wrote a number no machine may get: " +
+                              guard_.reason() + "; no NC file was written");
 }
 
 void PostProgram::fail(const char* stage) const {
-  throw InputError("post-processor '" + std::string(plugin_.post().name) + "' (" + plugin_.path() +
-                       ")",
-                   std::string(stage) + ": " + (error_[0] ? error_ : "failed without a message"));
+  throw InputError(
+      "post-processor '" + std::string(plugin_.post().name) + "' (" + plugin_.path() + ")",
+      std::string(stage) + ": " + (error_[0] ? error_ : "failed without a message"));
 }
 
 void PostProgram::write(std::span<const AxisRecord> chunk) {
   blocks_.resize(chunk.size());
   for (std::size_t k = 0; k < chunk.size(); ++k) {
-    const std::string refused = guard_.check_record(chunk[k], blocks_written_ + static_cast<long long>(k) + 1);
+    const std::string refused =
+        guard_.check_record(chunk[k], blocks_written_ + static_cast<long long>(k) + 1);
     if (!refused.empty())
-      throw InputError("NC guard (machine '" + machine_.name + "')", refused + "; no NC file was written");
+      throw InputError("NC guard (machine '" + machine_.name + "')",
+                       refused + "; no NC file was written");
     blocks_[k] = {chunk[k].x, chunk[k].z, chunk[k].c, chunk[k].b, chunk[k].time};
   }
   blocks_written_ += static_cast<long long>(chunk.size());
@@ -92,7 +99,7 @@ void PostProgram::write(std::span<const AxisRecord> chunk) {
   if (status != 0) fail("blocks");
 }
 
-std::vector<std::string> PostProgram::finish() {
+void PostProgram::end_program() {
   int status;
   {
     PluginWatch::Call call(watch_, "end");
@@ -101,15 +108,26 @@ std::vector<std::string> PostProgram::finish() {
   guard_.end_files();
   check_output("end");
   if (status != 0) fail("end");
-  // As one set: no moment leaves an earlier main program beside new child files.
-  std::vector<AtomicFile*> set;
-  std::vector<std::string> paths;
-  for (const auto& f : files_) {
-    set.push_back(f.get());
-    paths.push_back(f->path());
-  }
-  commit_program_set(set);
-  return paths;
+}
+
+std::vector<std::string> PostProgram::finish() {
+  end_program();
+  OutputSet outputs;
+  hand_over(outputs);
+  return outputs.commit();
+}
+
+void PostProgram::finish(OutputSet& outputs) {
+  end_program();
+  hand_over(outputs);
+}
+
+void PostProgram::hand_over(OutputSet& outputs) {
+  for (std::size_t k = 0; k < files_.size(); ++k)
+    outputs.adopt(std::move(files_[k]),
+                  k == 0 ? OutputSet::Role::kProgram : OutputSet::Role::kData);
+  files_.clear();
+  current_ = nullptr;
 }
 
 int PostProgram::write_bytes(void* context, const char* data, size_t size) {
@@ -119,9 +137,11 @@ int PostProgram::write_bytes(void* context, const char* data, size_t size) {
     const std::string_view bytes(data, size);
     self->guard_.feed(bytes);
     if (!self->guard_.ok()) return 1;
-    if (self->settings_.max_file_bytes >= 0 && self->guard_.file_bytes() > self->settings_.max_file_bytes) {
-      self->refused_ = self->current_->path() + " would be larger than limits.max_file_mb = " +
-                       std::to_string(static_cast<double>(self->settings_.max_file_bytes) / (1 << 20)) + " MB";
+    if (self->settings_.max_file_bytes >= 0 &&
+        self->guard_.file_bytes() > self->settings_.max_file_bytes) {
+      self->refused_ =
+          self->current_->path() + " would be larger than limits.max_file_mb = " +
+          std::to_string(static_cast<double>(self->settings_.max_file_bytes) / (1 << 20)) + " MB";
       return 1;
     }
     self->current_->write(bytes);
@@ -156,8 +176,7 @@ int PostProgram::select_main(void* context) {
 std::string find_machine_file(const std::string& name) {
   if (name.find('/') != std::string::npos ||
       (name.size() > 5 && name.compare(name.size() - 5, 5, ".yaml") == 0)) {
-    if (!std::filesystem::exists(name))
-      throw InputError(name, "the machine file does not exist");
+    if (!std::filesystem::exists(name)) throw InputError(name, "the machine file does not exist");
     return name;
   }
   std::string looked;

@@ -33,8 +33,9 @@ void put(AtomicFile& f, const char* format, double a, double b, double c) {
 }  // namespace
 
 MeshSummary write_surface_mesh_obj(const Surface& surface, double inner, double outer, int rings,
-                                   int segments, const std::string& path) {
-  if (rings < 1 || segments < 3) throw InputError(path, "a surface mesh needs rings ≥ 1 and segments ≥ 3");
+                                   int segments, AtomicFile& f) {
+  if (rings < 1 || segments < 3)
+    throw InputError(f.path(), "a surface mesh needs rings ≥ 1 and segments ≥ 3");
   Mesh mesh;
   std::vector<std::vector<Mesh::VertexHandle>> ring_vertices;
   const bool centre = inner == 0;
@@ -65,7 +66,6 @@ MeshSummary write_surface_mesh_obj(const Surface& surface, double inner, double 
       mesh.add_face(ring_vertices[i][j], ring_vertices[i + 1][k], ring_vertices[i][k]);
     }
   mesh.update_normals();
-  AtomicFile f(path);
   f.write("# design surface, written by freeturn (mm)\n");
   for (const auto v : mesh.vertices()) {
     const Mesh::Point& p = mesh.point(v);
@@ -80,18 +80,26 @@ MeshSummary write_surface_mesh_obj(const Surface& surface, double inner, double 
     int n = 1;
     line[0] = 'f';
     for (const auto v : mesh.fv_range(fh))
-      n += std::snprintf(line + n, sizeof line - static_cast<std::size_t>(n), " %d//%d", v.idx() + 1,
-                         v.idx() + 1);
+      n += std::snprintf(line + n, sizeof line - static_cast<std::size_t>(n), " %d//%d",
+                         v.idx() + 1, v.idx() + 1);
     line[n++] = '\n';
     f.write(std::string_view(line, static_cast<std::size_t>(n)));
   }
-  f.commit();
   return {static_cast<long>(mesh.n_vertices()), static_cast<long>(mesh.n_faces())};
 }
 
-void write_polyline_vtk(const std::vector<Eigen::Vector3d>& points, const std::string& path) {
+MeshSummary write_surface_mesh_obj(const Surface& surface, double inner_radius, double outer_radius,
+                                   int rings, int segments, const std::string& path) {
   AtomicFile f(path);
-  std::string head = "# vtk DataFile Version 3.0\nfreeturn tool path (mm)\nASCII\nDATASET POLYDATA\nPOINTS ";
+  const MeshSummary summary =
+      write_surface_mesh_obj(surface, inner_radius, outer_radius, rings, segments, f);
+  f.commit();
+  return summary;
+}
+
+void write_polyline_vtk(const std::vector<Eigen::Vector3d>& points, AtomicFile& f) {
+  std::string head =
+      "# vtk DataFile Version 3.0\nfreeturn tool path (mm)\nASCII\nDATASET POLYDATA\nPOINTS ";
   head += std::to_string(points.size());
   head += " double\n";
   f.write(head);
@@ -106,6 +114,11 @@ void write_polyline_vtk(const std::vector<Eigen::Vector3d>& points, const std::s
   }
   lines += '\n';
   f.write(lines);
+}
+
+void write_polyline_vtk(const std::vector<Eigen::Vector3d>& points, const std::string& path) {
+  AtomicFile f(path);
+  write_polyline_vtk(points, f);
   f.commit();
 }
 

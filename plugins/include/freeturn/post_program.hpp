@@ -1,8 +1,8 @@
 #pragma once
 // One NC program being written by a post-processor plugin: axis records in, the plugin's
 // text out through AtomicFiles (the main program and any child files it opens), all
-// committed together by finish(). Destroyed without finish() — an error anywhere in the
-// pipeline — it leaves no file behind.
+// committed together by finish(), or handed to a run's OutputSet. Destroyed without finish() — an
+// error anywhere in the pipeline — it leaves no file behind.
 //
 // Everything crosses NcGuard both ways (records before the plugin sees them, text after
 // it wrote them), every plugin call runs under PluginWatch (a crash or hang ends the run
@@ -14,10 +14,11 @@
 #include <vector>
 
 #include "freeturn/io/atomic_file.hpp"
-#include "freeturn/nc_guard.hpp"
-#include "freeturn/plugin_watch.hpp"
+#include "freeturn/io/output_set.hpp"
 #include "freeturn/machine/axis_record.hpp"
 #include "freeturn/machine/machine.hpp"
+#include "freeturn/nc_guard.hpp"
+#include "freeturn/plugin_watch.hpp"
 #include "freeturn/post_loader.hpp"
 
 namespace freeturn {
@@ -25,7 +26,7 @@ namespace freeturn {
 struct ProgramSettings {
   std::string name;  // the job's name
   double spindle_rpm = 0, feed = 0;
-  long long block_count = -1;  // −1 when not known in advance
+  long long block_count = -1;     // −1 when not known in advance
   long long max_file_bytes = -1;  // a file growing past this is refused (−1: no limit)
 };
 
@@ -37,14 +38,20 @@ class PostProgram final : public AxisSink {
   ~PostProgram() override;
 
   void write(std::span<const AxisRecord> chunk) override;
-  // Ends the program and renames every file into place. Returns the paths written.
+  // Ends the program and puts its files in place as one set (io/output_set.hpp). Returns
+  // the paths written.
   std::vector<std::string> finish();
+  // Ends the program and hands its files to `outputs` (the main program as a program,
+  // its children as data), to be committed with the rest of a run.
+  void finish(OutputSet& outputs);
 
  private:
   static int write_bytes(void* context, const char* data, size_t size);
   static int open_file(void* context, const char* name);
   static int select_main(void* context);
   [[noreturn]] void fail(const char* stage) const;
+  void end_program();
+  void hand_over(OutputSet& outputs);
   // After a plugin call: what the guard or the size limit refused, as an InputError.
   void check_output(const char* stage);
 

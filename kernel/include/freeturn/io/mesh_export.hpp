@@ -11,6 +11,7 @@
 #include <string>
 #include <vector>
 
+#include "freeturn/io/atomic_file.hpp"
 #include "freeturn/surface/surface.hpp"
 
 namespace freeturn {
@@ -21,12 +22,15 @@ struct MeshSummary {
 
 // A polar grid of `rings` × `segments` over inner ≤ r ≤ outer (a single centre vertex
 // when inner = 0), triangulated and oriented with normals toward the tool (+z side).
-// Written atomically to `path` (OBJ, %.12g).
-MeshSummary write_surface_mesh_obj(const Surface& surface, double inner_radius,
-                                   double outer_radius, int rings, int segments,
-                                   const std::string& path);
+// Written atomically to `path` (OBJ, %.12g), or into `out` for the caller to commit.
+MeshSummary write_surface_mesh_obj(const Surface& surface, double inner_radius, double outer_radius,
+                                   int rings, int segments, const std::string& path);
+MeshSummary write_surface_mesh_obj(const Surface& surface, double inner_radius, double outer_radius,
+                                   int rings, int segments, AtomicFile& out);
 
-// #P points as one polyline, legacy VTK POLYDATA (ParaView), written atomically.
+// #P points as one polyline, legacy VTK POLYDATA (ParaView), written atomically to `path`
+// or into `out` for the caller to commit.
 void write_polyline_vtk(const std::vector<Eigen::Vector3d>& points, const std::string& path);
+void write_polyline_vtk(const std::vector<Eigen::Vector3d>& points, AtomicFile& out);
 
 }  // namespace freeturn

@@ -1,0 +1,78 @@
+#include "freeturn/io/output_set.hpp"
+
+#include <unistd.h>
+
+#include <cerrno>
+#include <cstdio>
+#include <cstring>
+#include <filesystem>
+
+#include "freeturn/core/error.hpp"
+
+namespace freeturn {
+
+std::string replaced_program_path(const std::string& path, long pid) {
+  return path + ".replaced-" + std::to_string(pid);
+}
+
+AtomicFile& OutputSet::add(std::string path, Role role) {
+  entries_.push_back({std::make_unique<AtomicFile>(std::move(path)), role});
+  return *entries_.back().file;
+}
+
+void OutputSet::adopt(std::unique_ptr<AtomicFile> file, Role role) {
+  entries_.push_back({std::move(file), role});
+}
+
+std::vector<std::string> OutputSet::commit(void (*after_step)(int step)) {
+  std::vector<std::string> paths;
+  for (const Entry& e : entries_) paths.push_back(e.file->path());
+  for (const Entry& e : entries_) e.file->sync();
+  int step = 0;
+  const auto done = [&] {
+    if (after_step) after_step(step);
+    ++step;
+  };
+  if (entries_.size() == 1) {
+    entries_.front().file->publish();
+    done();
+    if (entries_.front().role == Role::kProgram)
+      remove_files_of_ended_runs(entries_.front().file->path(), ".replaced-", true);
+    entries_.clear();
+    return paths;
+  }
+  const long pid = static_cast<long>(::getpid());
+  std::string set_aside;  // for the message if a rename fails later
+  for (const Entry& e : entries_) {
+    if (e.role != Role::kProgram) continue;
+    std::error_code ec;
+    if (!std::filesystem::exists(e.file->path(), ec)) continue;
+    const std::string aside = replaced_program_path(e.file->path(), pid);
+    if (std::rename(e.file->path().c_str(), aside.c_str()) != 0)
+      throw InputError(e.file->path(),
+                       std::string("could not set the earlier program aside: ") +
+                           std::strerror(errno) +
+                           (set_aside.empty() ? "" : "\n(set aside before it:" + set_aside + ")"));
+    sync_folder_of(aside);
+    set_aside += "\n  " + aside;
+    done();
+  }
+  try {
+    for (const Role role : {Role::kData, Role::kProgram})
+      for (const Entry& e : entries_)
+        if (e.role == role) {
+          e.file->publish();
+          done();
+        }
+  } catch (const InputError& e) {
+    if (set_aside.empty()) throw;
+    throw InputError(e.where(), e.problem() + "\n(the earlier programs are kept as:" + set_aside +
+                                    "\nsome files they call may already be replaced)");
+  }
+  for (const Entry& e : entries_)
+    if (e.role == Role::kProgram) remove_files_of_ended_runs(e.file->path(), ".replaced-", true);
+  entries_.clear();
+  return paths;
+}
+
+}  // namespace freeturn
