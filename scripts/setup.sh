@@ -75,7 +75,7 @@ build="$root/build/$flavour"
 cmake -S "$root" -B "$build" "${cmake_args[@]}" >/dev/null
 if [[ "$flavour" == fuzz ]]; then
   # The harnesses only: the CLI, posts and plugins are the other flavours' business.
-  cmake --build "$build" --parallel "$(nproc)" --target job_yaml_fuzzer machine_yaml_fuzzer iges_fuzzer nc_parser_fuzzer
+  cmake --build "$build" --parallel "$(nproc)" --target freeturn_fuzzers
 else
   cmake --build "$build" --parallel "$(nproc)"
 fi
