@@ -133,7 +133,8 @@ void PostProgram::hand_over(OutputSet& outputs) {
 int PostProgram::write_bytes(void* context, const char* data, size_t size) {
   auto* self = static_cast<PostProgram*>(context);
   try {
-    if (!self->refused_.empty() || !self->guard_.ok()) return 1;
+    // current_ is null once the files are handed over: a plugin writing from destroy().
+    if (!self->current_ || !self->refused_.empty() || !self->guard_.ok()) return 1;
     const std::string_view bytes(data, size);
     self->guard_.feed(bytes);
     if (!self->guard_.ok()) return 1;
@@ -154,6 +155,7 @@ int PostProgram::write_bytes(void* context, const char* data, size_t size) {
 int PostProgram::open_file(void* context, const char* name) {
   auto* self = static_cast<PostProgram*>(context);
   const std::filesystem::path file(name);
+  if (self->files_.empty()) return 1;  // handed over: the program has ended
   if (file.empty() || file.has_parent_path() || file.is_absolute()) return 1;
   try {
     self->files_.push_back(
@@ -168,6 +170,7 @@ int PostProgram::open_file(void* context, const char* name) {
 
 int PostProgram::select_main(void* context) {
   auto* self = static_cast<PostProgram*>(context);
+  if (self->files_.empty()) return 1;
   self->current_ = self->files_.front().get();
   self->guard_.select_file(0, "");
   return 0;

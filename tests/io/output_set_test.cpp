@@ -175,4 +175,18 @@ TEST_SUITE("io") {
     CHECK(read_file(dir.file("one.nc")) == "NEW\n");
     CHECK(count_files(dir) == 1);
   }
+
+  TEST_CASE("two outputs under one name are refused before anything is renamed") {
+    TempDir dir;
+    write_old_run(dir);
+    OutputSet outputs;
+    outputs.add(dir.file("part.nc"), OutputSet::Role::kProgram).write("NEW main\n");
+    outputs.add(dir.file("part_001.nc")).write("NEW child\n");
+    // A plugin naming its second child like its first: both write one temporary.
+    outputs.add(dir.file("./part_001.nc")).write("NEW other child\n");
+    CHECK_THROWS_WITH_AS(outputs.commit(),
+                         doctest::Contains("two outputs of this run have this name"),
+                         freeturn::InputError);
+    for (const Output& o : kOutputs) CHECK(state_of(dir, o.name) == "OLD");
+  }
 }

@@ -6,6 +6,7 @@
 #include <cstdio>
 #include <cstring>
 #include <filesystem>
+#include <set>
 
 #include "freeturn/core/error.hpp"
 
@@ -27,6 +28,12 @@ void OutputSet::adopt(std::unique_ptr<AtomicFile> file, Role role) {
 std::vector<std::string> OutputSet::commit(void (*after_step)(int step)) {
   std::vector<std::string> paths;
   for (const Entry& e : entries_) paths.push_back(e.file->path());
+  // Two outputs under one name (a plugin naming a child after another file) shared one
+  // temporary: neither can be trusted, and nothing may be renamed.
+  std::set<std::string> names;
+  for (const std::string& p : paths)
+    if (!names.insert(std::filesystem::path(p).lexically_normal().string()).second)
+      throw InputError(p, "two outputs of this run have this name; nothing was written");
   for (const Entry& e : entries_) e.file->sync();
   int step = 0;
   const auto done = [&] {

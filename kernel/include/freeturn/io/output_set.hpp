@@ -38,8 +38,9 @@ class OutputSet {
   // Puts every file in place as above and returns their paths in the order added.
   // after_step, for tests that kill the process there, is called after each rename:
   // steps 0..#set-aside−1 set programs aside, then one per data file, then one per
-  // program. Throws InputError if a file cannot be synced or renamed; past step 2 the
-  // message says where the earlier programs are.
+  // program. Throws InputError, before anything is renamed, if two files share a name;
+  // then if a file cannot be synced or renamed, past step 2 saying where the earlier
+  // programs are.
   std::vector<std::string> commit(void (*after_step)(int step) = nullptr);
 
   bool empty() const { return entries_.empty(); }
