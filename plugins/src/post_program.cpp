@@ -99,7 +99,7 @@ void PostProgram::write(std::span<const AxisRecord> chunk) {
   if (status != 0) fail("blocks");
 }
 
-void PostProgram::end_program() {
+void PostProgram::finish(OutputSet& outputs) {
   int status;
   {
     PluginWatch::Call call(watch_, "end");
@@ -108,26 +108,17 @@ void PostProgram::end_program() {
   guard_.end_files();
   check_output("end");
   if (status != 0) fail("end");
-}
-
-std::vector<std::string> PostProgram::finish() {
-  end_program();
-  OutputSet outputs;
-  hand_over(outputs);
-  return outputs.commit();
-}
-
-void PostProgram::finish(OutputSet& outputs) {
-  end_program();
-  hand_over(outputs);
-}
-
-void PostProgram::hand_over(OutputSet& outputs) {
   for (std::size_t k = 0; k < files_.size(); ++k)
     outputs.adopt(std::move(files_[k]),
                   k == 0 ? OutputSet::Role::kProgram : OutputSet::Role::kData);
   files_.clear();
   current_ = nullptr;
+}
+
+std::vector<std::string> PostProgram::finish() {
+  OutputSet outputs;
+  finish(outputs);
+  return outputs.commit();
 }
 
 int PostProgram::write_bytes(void* context, const char* data, size_t size) {

@@ -111,10 +111,7 @@ void AtomicFile::sync() {
   const int close_errno = errno;
   file_ = nullptr;
   if (!flushed || !closed) {
-    std::remove(temp_path_.c_str());
-    release_temporary(slot_);
-    slot_ = -1;
-    synced_ = false;
+    discard_temporary();
     throw InputError(path_, std::string("could not complete the file: ") +
                                 std::strerror(flushed ? close_errno : saved_errno));
   }
@@ -126,13 +123,19 @@ void AtomicFile::publish() {
   synced_ = false;
   const bool renamed = std::rename(temp_path_.c_str(), path_.c_str()) == 0;
   const int err = errno;
-  release_temporary(slot_);
-  slot_ = -1;
   if (!renamed) {
-    std::remove(temp_path_.c_str());
+    discard_temporary();
     throw InputError(path_, std::string("could not complete the file: ") + std::strerror(err));
   }
+  release_temporary(slot_);
+  slot_ = -1;
   sync_folder_of(path_);
+}
+
+void AtomicFile::discard_temporary() noexcept {
+  std::remove(temp_path_.c_str());
+  release_temporary(slot_);
+  slot_ = -1;
 }
 
 }  // namespace freeturn

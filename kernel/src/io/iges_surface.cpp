@@ -185,8 +185,9 @@ class IgesFile {
       text += sections_.parameter[static_cast<std::size_t>(d.parameter_start - 1 + k)].data.substr(
           0, 64);
     const Record& first = sections_.parameter[static_cast<std::size_t>(d.parameter_start - 1)];
-    return ParameterReader(split_fields(text, delimiter_, terminator_, SourceLocation{path_, first.file_line, 0}),
-                           SourceLocation{path_, first.file_line, 0}.to_string() + ": entity " +
+    const SourceLocation at{path_, first.file_line, 0};
+    return ParameterReader(split_fields(text, delimiter_, terminator_, at),
+                           at.to_string() + ": entity " +
                                std::to_string(d.type) + " (directory line " +
                                std::to_string(d.line) + ")");
   }

@@ -40,18 +40,12 @@ std::vector<std::string> OutputSet::commit(void (*after_step)(int step)) {
     if (after_step) after_step(step);
     ++step;
   };
-  if (entries_.size() == 1) {
-    entries_.front().file->publish();
-    done();
-    if (entries_.front().role == Role::kProgram)
-      remove_files_of_ended_runs(entries_.front().file->path(), ".replaced-", true);
-    entries_.clear();
-    return paths;
-  }
+  // A set of one file is replaced in one atomic rename: nothing to set aside.
+  const bool set_programs_aside = entries_.size() > 1;
   const long pid = static_cast<long>(::getpid());
   std::string set_aside;  // for the message if a rename fails later
   for (const Entry& e : entries_) {
-    if (e.role != Role::kProgram) continue;
+    if (!set_programs_aside || e.role != Role::kProgram) continue;
     std::error_code ec;
     if (!std::filesystem::exists(e.file->path(), ec)) continue;
     const std::string aside = replaced_program_path(e.file->path(), pid);

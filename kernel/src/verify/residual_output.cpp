@@ -70,12 +70,6 @@ void write_residual_csv(const SimulationResult& r, double inner, AtomicFile& f) 
     }
 }
 
-void write_residual_csv(const SimulationResult& r, double inner, const std::string& path) {
-  AtomicFile f(path);
-  write_residual_csv(r, inner, f);
-  f.commit();
-}
-
 void write_residual_ply(const SimulationResult& r, const Surface& design, double inner,
                         AtomicFile& f) {
   const int ring_step = std::max(1, r.rings / 200), column_step = std::max(1, r.columns / 360);
@@ -117,13 +111,6 @@ void write_residual_ply(const SimulationResult& r, const Surface& design, double
                         v01);
       f.write(std::string_view(line, static_cast<std::size_t>(n)));
     }
-}
-
-void write_residual_ply(const SimulationResult& r, const Surface& design, double inner,
-                        const std::string& path) {
-  AtomicFile f(path);
-  write_residual_ply(r, design, inner, f);
-  f.commit();
 }
 
 }  // namespace freeturn

@@ -1,8 +1,8 @@
 #pragma once
 // One NC program being written by a post-processor plugin: axis records in, the plugin's
 // text out through AtomicFiles (the main program and any child files it opens), all
-// committed together by finish(), or handed to a run's OutputSet. Destroyed without finish() — an
-// error anywhere in the pipeline — it leaves no file behind.
+// committed together by finish(), or handed to a run's OutputSet. Destroyed without
+// finish() (an error anywhere in the pipeline), it leaves no file behind.
 //
 // Everything crosses NcGuard both ways (records before the plugin sees them, text after
 // it wrote them), every plugin call runs under PluginWatch (a crash or hang ends the run
@@ -50,8 +50,6 @@ class PostProgram final : public AxisSink {
   static int open_file(void* context, const char* name);
   static int select_main(void* context);
   [[noreturn]] void fail(const char* stage) const;
-  void end_program();
-  void hand_over(OutputSet& outputs);
   // After a plugin call: what the guard or the size limit refused, as an InputError.
   void check_output(const char* stage);
 

@@ -25,7 +25,7 @@ class AtomicFile {
   // the final name untouched). Equivalent to sync() then publish().
   void commit();
   // The two halves of commit(), for a set of files that must all be on disk before any
-  // of them takes its final name (io/program_set.hpp). sync() flushes, fsyncs and closes
+  // of them takes its final name (io/output_set.hpp). sync() flushes, fsyncs and closes
   // the temporary; publish() renames it and fsyncs the folder. Each throws InputError.
   void sync();
   void publish();
@@ -41,6 +41,9 @@ class AtomicFile {
   int slot_ = -1;  // in the registry remove_all_temporaries() reads
   std::string path_;
   std::string temp_path_;
+  // Removes the temporary and frees its registry slot: the file will not be published.
+  void discard_temporary() noexcept;
+
   std::FILE* file_ = nullptr;
   bool synced_ = false;  // closed and on disk, not yet renamed
 };

@@ -25,14 +25,11 @@ struct ResidualHeatMap {
 };
 ResidualHeatMap residual_heat_map(const SimulationResult& r, double inner_radius, int size);
 
-// Each writer comes twice: to a path (committed there), or into an AtomicFile the caller
-// commits (with the rest of a run, io/output_set.hpp).
-void write_residual_csv(const SimulationResult& r, double inner_radius, const std::string& path);
+// Both write into an AtomicFile the caller commits (with the rest of a run,
+// io/output_set.hpp).
 void write_residual_csv(const SimulationResult& r, double inner_radius, AtomicFile& out);
 
 // At most about 200 × 360 vertices: the grid is decimated for viewing.
-void write_residual_ply(const SimulationResult& r, const Surface& design, double inner_radius,
-                        const std::string& path);
 void write_residual_ply(const SimulationResult& r, const Surface& design, double inner_radius,
                         AtomicFile& out);
 
