@@ -28,6 +28,7 @@
 #include "freeturn/job/job.hpp"
 #include "freeturn/job/machine_yaml.hpp"
 #include "freeturn/machine/axis_mapper.hpp"
+#include "freeturn/machine/block_schedule.hpp"
 #include "freeturn/path/profile.hpp"
 #include "freeturn/path/spiral.hpp"
 #include "freeturn/post_format.hpp"
@@ -56,6 +57,9 @@ class RaisedSurface final : public Surface {
   }
   double defined_radius() const override { return s_.defined_radius(); }
   bool has_creases() const override { return s_.has_creases(); }
+  int section_creases(double theta, double lo, double hi, std::span<double> out) const override {
+    return s_.section_creases(theta, lo, hi, out);
+  }
 
  private:
   const Surface& s_;
@@ -198,6 +202,14 @@ void check_point_bound(const Job& job, const JobPlan& plan, std::size_t passes) 
             "; check the pitch and tolerance, or raise the limit");
 }
 
+// Spiral block times are scheduled unless the job asks for one constant speed, turns the
+// machine's limits off, or the dialect writes no time per block.
+bool scheduling(const Job& job, const MachineDescription& machine) {
+  const Cutting& c = job.plan->cutting;
+  return c.enforce_dynamics && c.timing == Cutting::Timing::kScheduled &&
+         !machine.constant_block_time;
+}
+
 struct PreparedJob {
   MachineDescription machine;
   std::unique_ptr<PostPlugin> plugin;
@@ -240,7 +252,8 @@ PreparedJob prepare_job(const Job& job) {
 // simulation: when set, the finishing pass is also cut in simulation and its residual
 // written (grid CSV, coloured PLY) with its figures in the report.
 RunReport execute_job(const Job& job, const PreparedJob& prepared, const std::string& out_dir,
-                      bool quiet, bool write, const SimulationOptions* simulation = nullptr) {
+                      bool quiet, bool write, const SimulationOptions* simulation = nullptr,
+                      double spindle_rpm = 0, bool probe = false) {
   const JobPlan& plan = *job.plan;
   const MachineDescription& machine = prepared.machine;
   const auto& plugin = prepared.plugin;
@@ -287,9 +300,16 @@ RunReport execute_job(const Job& job, const PreparedJob& prepared, const std::st
   checks.b_min = machine.b_min_deg * std::numbers::pi / 180;
   checks.b_max = machine.b_max_deg * std::numbers::pi / 180;
   MotionOptions motion;
-  motion.spindle_rpm = spiral ? plan.cutting.spindle_rpm : 0.0;
+  motion.spindle_rpm = !spiral ? 0.0 : spindle_rpm > 0 ? spindle_rpm : plan.cutting.spindle_rpm;
   motion.feed = plan.cutting.feed;
-  motion.enforce_dynamics = plan.cutting.enforce_dynamics;
+  // A spiral whose program carries a time per block is scheduled: the requested rpm is the
+  // highest speed, and each block slows only where the machine's limits demand it.
+  const bool scheduled = spiral && scheduling(job, machine);
+  motion.enforce_dynamics = plan.cutting.enforce_dynamics && !scheduled && !probe;
+  report.scheduled = scheduled;
+  report.requested_rpm = spiral ? plan.cutting.spindle_rpm : 0.0;
+  report.spindle_rpm = motion.spindle_rpm;
+  report.enforce_dynamics = plan.cutting.enforce_dynamics;
 
   std::vector<double> stock = plan.cutting.roughing_depths;
   check_point_bound(job, plan, stock.size() + 1);
@@ -304,8 +324,10 @@ RunReport execute_job(const Job& job, const PreparedJob& prepared, const std::st
     const RaisedSurface surface(design, stock[pass]);
     PassFigures& figures =
         report.add_pass(finishing ? "finish" : "rough-" + std::to_string(pass + 1), stock[pass]);
+    figures.band_width = (job.aperture.outer_radius - job.aperture.inner_radius) / 64;
     AxisCollector discard;
     AxisSink* post = &discard;
+    std::unique_ptr<BlockScheduler> scheduler;
     if (write && plan.outputs.nc) {
       programs.push_back(std::make_unique<PostProgram>(
           *plugin, machine,
@@ -317,6 +339,10 @@ RunReport execute_job(const Job& job, const PreparedJob& prepared, const std::st
     if (write && finishing && plan.outputs.cl_csv) {
       csv = std::make_unique<AtomicFile>(out(job.name + ".cl.csv"));
       PassStage::header(*csv);
+    }
+    if (scheduled) {
+      scheduler = std::make_unique<BlockScheduler>(machine, *post);
+      post = scheduler.get();
     }
     Progress progress(progress_on, figures.name);
     PassStage stage(*post, finishing ? csv.get() : nullptr, figures, progress);
@@ -360,8 +386,10 @@ RunReport execute_job(const Job& job, const PreparedJob& prepared, const std::st
       o.points.interpolation = machine.interpolation;
       summary = plan_profile(surface, o, compensator);
     }
+    if (scheduler) scheduler->finish();
     progress.done();
     figures.finish(summary, mapper.report(), compensator.report());
+    if (scheduler) figures.take_schedule(scheduler->report());
     if (simulator) {
       report.simulation = std::make_shared<SimulationResult>(simulator->finish());
       report.heat_map = std::make_shared<ResidualHeatMap>(
@@ -373,6 +401,7 @@ RunReport execute_job(const Job& job, const PreparedJob& prepared, const std::st
       if (!quiet) std::fprintf(stderr, "warning: %s: %s\n", figures.name.c_str(), w.c_str());
     }
   }
+  judge(report);
   if (!write) return report;
   // Everything succeeded: write the rest, then put every file in place as one set
   // (io/output_set.hpp: programs set aside, data files first, programs last).
@@ -396,12 +425,42 @@ RunReport execute_job(const Job& job, const PreparedJob& prepared, const std::st
   const std::vector<std::string> written = outputs.commit();
   if (!quiet && write) {
     const PassFigures& f = report.passes.back();
-    std::printf("%s on %s: %ld points, %.1f revolutions, chord error max %.3f nm, cycle %.1f s\n",
+    std::printf("%s on %s: %ld points, %.1f revolutions, chord error max %.3f nm, cycle %.1f s",
                 job.name.c_str(), machine.name.c_str(), f.points, f.revolutions, f.chord_max * 1e6,
                 f.cycle_time);
+    if (f.scheduled)
+      std::printf(" (scheduled; at one constant speed, %.4g rpm, %.1f s)", f.dynamics.max_rpm,
+                  f.constant_rpm_cycle_time);
+    if (f.held_points > 0)
+      std::printf(", uncut at creases max %.1f nm", f.uncut_max * 1e6);
+    std::printf("\n");
     for (const std::string& w : written) std::printf("  %s\n", w.c_str());
   }
   return report;
+}
+
+// A constant-speed spiral (timing: constant_rpm, or a dialect without block times) runs at
+// the highest speed every block allows, up to the job's: found by planning once without
+// writing (velocity scales with the rpm, acceleration with its square), then written.
+RunReport run_job(const Job& job, const PreparedJob& prepared, const std::string& out_dir,
+                  bool quiet, bool write, const SimulationOptions* simulation = nullptr) {
+  const JobPlan& plan = *job.plan;
+  const double requested = plan.cutting.spindle_rpm;
+  if (plan.strategy.mode == Strategy::Mode::kSpiral && plan.cutting.enforce_dynamics &&
+      !scheduling(job, prepared.machine)) {
+    RunReport probe = execute_job(job, prepared, out_dir, true, false, nullptr, requested, true);
+    double rpm = requested;
+    for (const PassFigures& f : probe.passes) rpm = std::min(rpm, f.dynamics.max_rpm);
+    RunReport r = execute_job(job, prepared, out_dir, quiet, write, simulation, rpm);
+    return r;
+  }
+  return execute_job(job, prepared, out_dir, quiet, write, simulation);
+}
+
+// Prints the verdict's reasons on stderr; true when the program is unsafe.
+bool say_unsafe(const RunReport& r) {
+  for (const std::string& u : r.unsafe) std::fprintf(stderr, "UNSAFE: %s\n", u.c_str());
+  return !r.unsafe.empty();
 }
 
 }  // namespace
@@ -441,8 +500,9 @@ int run_run(const std::vector<std::string>& args) {
   if (job_path.empty()) throw InputError("usage", kRunUsage);
   const Job job = load_job(job_path);
   const PreparedJob prepared = prepare_job(job);
-  execute_job(job, prepared, out_dir, quiet, true, simulate ? &simulation : nullptr);
-  return kExitOk;
+  const RunReport r = run_job(job, prepared, out_dir, quiet, true, simulate ? &simulation : nullptr);
+  // Written, because the job downgraded a check or turned the limits off; not safe to cut.
+  return say_unsafe(r) ? kExitCheckFailed : kExitOk;
 }
 
 int run_simulate(const std::vector<std::string>& args) {
@@ -471,7 +531,7 @@ int run_simulate(const std::vector<std::string>& args) {
   if (job_path.empty()) throw InputError("usage", kSimulateUsage);
   const Job job = load_job(job_path);
   const PreparedJob prepared = prepare_job(job);
-  const RunReport r = execute_job(job, prepared, out_dir, true, true, &simulation);
+  const RunReport r = run_job(job, prepared, out_dir, true, true, &simulation);
   const SimulationResult& s = *r.simulation;
   std::printf(
       "%s: simulated form error PV %.3f nm, RMS %.3f nm (max %+.3f nm at r = %.4f mm, min %+.3f nm "
@@ -488,7 +548,7 @@ int run_simulate(const std::vector<std::string>& args) {
   for (const ResidualPlace& p : s.worst)
     std::printf("  worst: %+.3f nm at r = %.4f mm, θ = %.2f° (%s)\n", p.residual * 1e6, p.r,
                 p.phi * 180 / std::numbers::pi, to_string(p.cause));
-  return kExitOk;
+  return say_unsafe(r) ? kExitCheckFailed : kExitOk;
 }
 
 int run_check(const std::vector<std::string>& args) {
@@ -504,8 +564,12 @@ int run_check(const std::vector<std::string>& args) {
   const Job job = load_job(job_path);
   const PreparedJob prepared = prepare_job(job);
   try {
-    const RunReport r = execute_job(job, prepared, "", true, false);
+    const RunReport r = run_job(job, prepared, "", true, false);
     const PassFigures& f = r.passes.back();
+    if (!r.unsafe.empty()) {
+      for (const std::string& u : r.unsafe) std::printf("UNSAFE: %s\n", u.c_str());
+      return kExitCheckFailed;
+    }
     std::printf(
         "PASS: %s on %s: %ld points, chord error max %.3f nm, highest rpm %.4g%s\n",
         job.name.c_str(), r.machine.c_str(), f.points, f.chord_max * 1e6, f.dynamics.max_rpm,

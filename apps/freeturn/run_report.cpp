@@ -224,6 +224,21 @@ void PassFigures::add(const CutterLocation& cl, const AxisRecord& record,
   const double rate = record.time > 0 ? 1 / record.time : 0;
   // C velocity from the unwrapped step (a wrapped C jumps by 360° once a turn).
   const double dc = std::remainder(record.c - previous.c, 360.0);
+  if (cl.contact.uncut_residual > 0) {
+    ++held_points;
+    if (cl.contact.uncut_residual > uncut_max) {
+      uncut_max = cl.contact.uncut_residual;
+      uncut_theta = cl.contact.theta;
+      uncut_r = cl.contact.r;
+    }
+    if (band_width > 0) {
+      const std::size_t band = static_cast<std::size_t>(std::max(0.0, cl.contact.r / band_width));
+      if (band < 4096) {
+        if (uncut_by_band.size() <= band) uncut_by_band.resize(band + 1, 0.0);
+        uncut_by_band[band] = std::max(uncut_by_band[band], cl.contact.uncut_residual);
+      }
+    }
+  }
   const double e = cl.contact.chord_error, s = cl.contact.scallop;
   chord_max = std::max(chord_max, e);
   scallop_max = std::max(scallop_max, s);
@@ -249,6 +264,7 @@ void PassFigures::finish(const PathSummary& s, const DynamicsReport& d, const To
   scallop_rms = points > 0 ? std::sqrt(scallop_sq_ / static_cast<double>(points)) : 0.0;
   dynamics = d;
   cycle_time = d.cycle_time;
+  constant_rpm_cycle_time = d.max_rpm > 0 && std::isfinite(d.max_rpm) ? 60 * d.turns / d.max_rpm : 0.0;
   checks = c;
   const std::string summary = c.summary();
   std::size_t start = 0;
@@ -272,6 +288,31 @@ void PassFigures::finish(const PathSummary& s, const DynamicsReport& d, const To
   }
 }
 
+void PassFigures::take_schedule(const ScheduleReport& s) {
+  scheduled = true;
+  cycle_time = s.cycle_time;
+  slowed_blocks = s.slowed_blocks;
+  for (int a = 0; a < 4; ++a) {
+    dynamics.peak_velocity[a] = s.peak_velocity[a];
+    dynamics.peak_acceleration[a] = s.peak_acceleration[a];
+  }
+  dynamics.peak_block_rate = s.peak_block_rate;
+  dynamics.cycle_time = s.cycle_time;
+}
+
+void judge(RunReport& r) {
+  r.unsafe.clear();
+  for (const PassFigures& f : r.passes) {
+    // Every check that found something was downgraded (an error would have stopped the run).
+    for (const std::string& w : f.check_warnings) r.unsafe.push_back(f.name + ": " + w);
+    if (!f.scheduled && r.spindle_rpm > 0 && f.dynamics.max_rpm < r.spindle_rpm * (1 - 1e-12))
+      r.unsafe.push_back(f.name + ": at " + num(r.spindle_rpm) +
+                         " rpm the program exceeds the machine's limits (enforce_dynamics: "
+                         "false): the highest feasible constant speed is " +
+                         num(f.dynamics.max_rpm) + " rpm, set by " + f.dynamics.limiting);
+  }
+}
+
 void write_report(const RunReport& r, const std::string& json_path, const std::string& html_path,
                   OutputSet& outputs) {
   std::string j =
@@ -279,7 +320,13 @@ void write_report(const RunReport& r, const std::string& json_path, const std::s
       ",\n  \"job_yaml\": " + json_string(r.job_text) +
       ",\n  \"machine\": " + json_string(r.machine) + ",\n  \"plugin\": " + json_string(r.plugin) +
       ",\n  \"alpha_max_deg\": " + (r.alpha_max_deg < 0 ? "null" : num(r.alpha_max_deg)) +
-      ",\n  \"axis_moved\": " + (r.axis_moved ? "true" : "false") + ",\n  \"warnings\": [";
+      ",\n  \"axis_moved\": " + (r.axis_moved ? "true" : "false") +
+      ",\n  \"verdict\": " + (r.unsafe.empty() ? "\"PASS\"" : "\"UNSAFE\"") + ", \"unsafe\": [";
+  for (std::size_t i = 0; i < r.unsafe.size(); ++i) j += (i ? ", " : "") + json_string(r.unsafe[i]);
+  j += "],\n  \"timing\": {\"scheduled\": " + std::string(r.scheduled ? "true" : "false") +
+       ", \"spindle_rpm\": " + num(r.spindle_rpm) + ", \"requested_rpm\": " + num(r.requested_rpm) +
+       ", \"enforce_dynamics\": " + (r.enforce_dynamics ? "true" : "false") + "}" +
+       ",\n  \"warnings\": [";
   for (std::size_t i = 0; i < r.warnings.size(); ++i)
     j += (i ? ", " : "") + json_string(r.warnings[i]);
   j += "],\n  \"passes\": [";
@@ -294,6 +341,18 @@ void write_report(const RunReport& r, const std::string& json_path, const std::s
          ", \"rms\": " + num(f.scallop_rms) + "},\n     \"cycle_time_s\": " + num(f.cycle_time) +
          ", \"max_rpm\": " + num(f.dynamics.max_rpm) +
          ", \"max_rpm_limited_by\": " + json_string(f.dynamics.limiting) +
+         ", \"constant_rpm_cycle_time_s\": " + num(f.constant_rpm_cycle_time) +
+         ", \"slowed_blocks\": " + std::to_string(f.slowed_blocks) +
+         ",\n     \"uncut_residual\": {\"held_points\": " + std::to_string(f.held_points) +
+         ", \"max_mm\": " + num(f.uncut_max) + ", \"at_theta_deg\": " +
+         num(f.uncut_theta * 180 / std::numbers::pi) + ", \"at_r_mm\": " + num(f.uncut_r) +
+         ", \"band_width_mm\": " + num(f.band_width) + ", \"max_by_band_mm\": [" +
+         [&] {
+           std::string b;
+           for (std::size_t k = 0; k < f.uncut_by_band.size(); ++k)
+             b += (k ? ", " : "") + num(f.uncut_by_band[k]);
+           return b;
+         }() + "]}" +
          ",\n     \"peak_velocity\": {";
     for (int a = 0; a < 4; ++a)
       j += std::string(a ? ", " : "") + "\"" + kAxes[a] + "\": " + num(f.dynamics.peak_velocity[a]);
@@ -338,21 +397,31 @@ void write_report(const RunReport& r, const std::string& json_path, const std::s
       html_escape(r.job) +
       "</title><style>body{font-family:sans-serif;max-width:1200px;margin:2em auto;color:#222}"
       "table{border-collapse:collapse}td,th{border:1px solid #ccc;padding:4px 8px;text-align:right}"
-      "th{text-align:left}figure{display:inline-block;margin:8px}.warn{color:#a15c00}</style></"
+      "th{text-align:left}figure{display:inline-block;margin:8px}.warn{color:#a15c00}.unsafe{color:#b00020}.pass{color:#1b7a1b}</style></"
       "head><body>\n";
   h += "<h1>" + html_escape(r.job) + " on " + html_escape(r.machine) + "</h1>\n";
   if (r.alpha_max_deg >= 0)
     h += "<p>Quasi-revolution angle on the base: α<sub>max</sub> = " + num(r.alpha_max_deg) +
          "°</p>\n";
+  if (r.unsafe.empty()) {
+    h += "<p class=\"pass\"><b>PASS</b>: every check passed; the program stays within the "
+         "machine's limits.</p>\n";
+  } else {
+    h += "<p class=\"unsafe\"><b>UNSAFE</b>: do not cut this program as it is.</p>\n<ul>";
+    for (const std::string& u : r.unsafe) h += "<li class=\"unsafe\">" + html_escape(u) + "</li>";
+    h += "</ul>\n";
+  }
   for (const std::string& w : r.warnings) h += "<p class=\"warn\">" + html_escape(w) + "</p>\n";
   h += "<table><tr><th>pass</th><th>points</th><th>revolutions</th><th>chord max "
        "(nm)</th><th>chord rms (nm)</th>"
-       "<th>scallop max (nm)</th><th>cycle (s)</th><th>max rpm</th></tr>\n";
+       "<th>scallop max (nm)</th><th>uncut at creases, max (nm)</th><th>cycle as programmed "
+       "(s)</th><th>cycle at one constant rpm (s)</th><th>max constant rpm</th></tr>\n";
   for (const PassFigures& f : r.passes)
     h += "<tr><th>" + html_escape(f.name) + "</th><td>" + std::to_string(f.points) + "</td><td>" +
          num(f.revolutions) + "</td><td>" + num(f.chord_max * 1e6) + "</td><td>" +
          num(f.chord_rms * 1e6) + "</td><td>" + num(f.scallop_max * 1e6) + "</td><td>" +
-         num(f.cycle_time) + "</td><td>" + num(f.dynamics.max_rpm) + "</td></tr>\n";
+         num(f.uncut_max * 1e6) + "</td><td>" + num(f.cycle_time) + "</td><td>" +
+         num(f.constant_rpm_cycle_time) + "</td><td>" + num(f.dynamics.max_rpm) + "</td></tr>\n";
   h += "</table>\n";
   if (r.simulation) {
     const SimulationResult& s = *r.simulation;

@@ -44,16 +44,24 @@ namespace freeturn::test {
 // scaled to the normal by 1/√(1 + |∇f|²). Returns the largest |overlap|. With `axes`, the
 // programmed axes X, Z, B are interpolated instead and the centre found from them (a B
 // pivot swinging the nose on an arc).
-inline double densest_nose_error(const Surface& s, const std::vector<CutterLocation>& path,
-                                 double R, int samples = 50, int grid = 400,
-                                 const CompensationOptions* axes = nullptr) {
-  double worst = 0;
+struct DenseNoseFigures {
+  double worst = 0;  // the largest |overlap| (mm, normal): the chord error
+  double gouge = 0;  // the largest overlap > 0 (mm, normal): how deep the nose cuts into the design
+};
+
+inline DenseNoseFigures dense_nose_figures(const Surface& s, const std::vector<CutterLocation>& path,
+                                           double R, int samples = 50, int grid = 400,
+                                           const CompensationOptions* axes = nullptr) {
+  DenseNoseFigures figures;
   const auto radial = [](const Eigen::Vector3d& p, double c) { return p.x() * std::cos(c) + p.y() * std::sin(c); };
   for (std::size_t k = 1; k < path.size(); ++k) {
     const CutterLocation &a = path[k - 1], &b = path[k];
     const double ca = a.contact.theta, cb = b.contact.theta;
     const double ra = radial(a.nose_centre, ca), rb = radial(b.nose_centre, cb);
-    for (int j = 1; j < samples; ++j) {
+    // The blocks themselves too (j = 0, and the last block): the nose must clear the
+    // design there as well as between them.
+    const int last = k + 1 == path.size() ? samples : samples - 1;
+    for (int j = 0; j <= last; ++j) {
       const double t = static_cast<double>(j) / samples;
       const double c = ca + t * (cb - ca);
       double cr = ra + t * (rb - ra), cz = a.nose_centre.z() + t * (b.nose_centre.z() - a.nose_centre.z());
@@ -83,10 +91,18 @@ inline double densest_nose_error(const Surface& s, const std::vector<CutterLocat
       const double rho = 0.5 * (lo + hi);
       double f, fx, fy;
       s.sag_gradient(rho * ct, rho * st, f, fx, fy);
-      worst = std::max(worst, std::abs(overlap(rho)) / std::sqrt(1 + fx * fx + fy * fy));
+      const double normal = overlap(rho) / std::sqrt(1 + fx * fx + fy * fy);
+      figures.worst = std::max(figures.worst, std::abs(normal));
+      figures.gouge = std::max(figures.gouge, normal);
     }
   }
-  return worst;
+  return figures;
+}
+
+inline double densest_nose_error(const Surface& s, const std::vector<CutterLocation>& path,
+                                 double R, int samples = 50, int grid = 400,
+                                 const CompensationOptions* axes = nullptr) {
+  return dense_nose_figures(s, path, R, samples, grid, axes).worst;
 }
 
 }  // namespace freeturn::test

@@ -158,6 +158,12 @@ void read_cutting(MapReader& job, JobPlan& plan) {
     if (!YAML::convert<bool>::decode(*e, cut.enforce_dynamics))
       throw InputError(location_of(*e, job.file()), "enforce_dynamics must be true or false");
   }
+  if (c.has("timing")) {
+    const std::string t = c.text("timing");
+    if (t != "scheduled" && t != "constant_rpm")
+      c.fail("timing", "timing must be scheduled or constant_rpm, not '" + t + "'");
+    cut.timing = t == "constant_rpm" ? Cutting::Timing::kConstantRpm : Cutting::Timing::kScheduled;
+  }
   c.finish();
 }
 

@@ -84,6 +84,12 @@ MachineDescription load_machine(const std::string& path) {
       map.fail("feed_mode", "feed_mode per_minute cannot time C-axis moves: use inverse_time");
     m.feed_per_minute = f == "per_minute";
   }
+  if (map.has("block_times")) {
+    const std::string b = map.text("block_times");
+    if (b != "varying" && b != "constant")
+      map.fail("block_times", "block_times must be varying or constant, not '" + b + "'");
+    m.constant_block_time = b == "constant";
+  }
   if (const auto dialect = map.optional_child(m.plugin)) {
     // Plugins take a flat map of scalars, handed over as "key: value" lines with line
     // breaks and backslashes escaped (\n, \\), so a template can span lines.

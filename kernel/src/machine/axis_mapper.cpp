@@ -111,21 +111,26 @@ void AxisMapper::write(std::span<const CutterLocation> chunk) {
         }
       };
       if (std::isfinite(machine_.max_block_rate))
-        limit_by(motion_.spindle_rpm * machine_.max_block_rate / rate, "block rate");
+        limit_by(motion_.spindle_rpm * motion_.margin * machine_.max_block_rate / rate, "block rate");
+      // Acceleration as a program is read back: the change of velocity over the shorter of
+      // the two blocks' times (from rest before the first block).
+      const double faster = std::max(rate, previous_rate_);
       for (const AxisSpec& s : machine_.axes) {
         const int i = static_cast<int>(s.axis);
         const double velocity = (now[i] - before[i]) * rate;
-        const double acceleration = report_.blocks > 1 ? (velocity - previous_velocity_[i]) * rate : 0.0;
+        const double acceleration = (velocity - previous_velocity_[i]) * faster;
         previous_velocity_[i] = velocity;
         report_.peak_velocity[i] = std::max(report_.peak_velocity[i], std::abs(velocity));
         report_.peak_acceleration[i] = std::max(report_.peak_acceleration[i], std::abs(acceleration));
+        const double m = motion_.margin;
         if (std::abs(velocity) > 0 && std::isfinite(s.max_velocity))
-          limit_by(motion_.spindle_rpm * s.max_velocity / std::abs(velocity),
+          limit_by(motion_.spindle_rpm * m * s.max_velocity / std::abs(velocity),
                    std::string(axis_letter(s.axis)) + " velocity");
         if (std::abs(acceleration) > 0 && std::isfinite(s.max_acceleration))
-          limit_by(motion_.spindle_rpm * std::sqrt(s.max_acceleration / std::abs(acceleration)),
+          limit_by(motion_.spindle_rpm * std::sqrt(m * s.max_acceleration / std::abs(acceleration)),
                    std::string(axis_letter(s.axis)) + " acceleration");
       }
+      previous_rate_ = rate;
       if (spiral && rpm_limit < report_.max_rpm) {
         report_.max_rpm = rpm_limit;
         report_.limiting = limiting + " at " + where(cl);
@@ -135,6 +140,7 @@ void AxisMapper::write(std::span<const CutterLocation> chunk) {
                                         number(motion_.spindle_rpm) + " rpm; this block allows at most " +
                                         number(rpm_limit) + " rpm");
       report_.cycle_time += r.time;
+      report_.turns += (cl.contact.theta - previous_theta_) / (2 * std::numbers::pi);
     }
     report_.blocks++;
     previous_ = r;

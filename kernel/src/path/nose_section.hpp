@@ -18,6 +18,7 @@
 #include <limits>
 
 #include "freeturn/path/cutter_points.hpp"
+#include "freeturn/path/section_envelope.hpp"
 #include "freeturn/surface/surface.hpp"
 
 namespace freeturn::detail {
@@ -33,12 +34,11 @@ class NoseSection {
   bool b_follows() const { return b_follows_; }
 
   // The axes of the point that touches the design at signed radius contact_r in the radial
-  // plane at angle c, height z, with sag gradient (fx, fy): the centre c = p + R·n̂_p, n̂_p
-  // the section normal (−f_r, 1)/√(1 + f_r²) (as compensate() places it, tool/compensation).
+  // plane, height z, with section slope f_r = dz/dρ: the centre c = p + R·n̂_p, n̂_p the
+  // section normal (−f_r, 1)/√(1 + f_r²) (as compensate() places it, tool/compensation).
   // B (rad) is ψ − edge_angle when it follows, else 0 (a fixed B drops out).
-  void axes(double contact_r, double c, double z, double fx, double fy, double& x_axis,
-            double& z_axis, double& b) const {
-    const double f_r = fx * std::cos(c) + fy * std::sin(c);
+  void axes(double contact_r, double z, double f_r, double& x_axis, double& z_axis,
+            double& b) const {
     b = b_follows_ ? std::atan2(-f_r, 1.0) - edge_angle_ : 0.0;
     if (R_ == 0) {
       x_axis = contact_r;
@@ -50,6 +50,21 @@ class NoseSection {
     }
     x_axis += offset_ * std::sin(b);
     z_axis += offset_ * std::cos(b);
+  }
+
+  // Where the nose touches for the contact (contact_r, z) with section slope f_r at angle
+  // c: the contact itself, or, where the nose would overhang a crease, the touch on the
+  // contact's flank of the nose held at that crease (path/section_envelope.hpp). With B
+  // following the normal the nose is not held (its edge point is fixed, not its centre).
+  NoseTouch touch(double c, double contact_r, double z, double f_r) const {
+    if (R_ == 0 || b_follows_) {
+      NoseTouch t;
+      t.rho = contact_r;
+      t.z = z;
+      t.slope = f_r;
+      return t;
+    }
+    return nose_touch(design_, c, R_, contact_r, z, f_r);
   }
 
   // The distance (mm, along the design normal) between the design and the tool placed at
@@ -65,29 +80,12 @@ class NoseSection {
       design_.sag_gradient(x_axis * ct, x_axis * st, f, fx, fy);
       return (z_axis - f) / std::sqrt(1 + fx * fx + fy * fy);
     }
-    // The nose's lower arc is z_c − s(r), s = √(R² − (r − x_c)²). Where the tool clears the
-    // design, g(r) = f(r) − (z_c − s) is ≤ 0; its largest value is the gap (< 0: material
-    // left) or the overlap (> 0: a cut into the design). g' = f_r − (r − x_c)/s and
-    // g'' = f_rr − R²/s³. One Newton step from the hint, with the arc's −R²/s³ for g''
-    // (f_rr unknown), and the larger g of the two points: a value of g, so never more
-    // than its maximum, and short of it by ½|g''|δr², δr the step's miss, which is
-    // f_rr/(f_rr − R²/s³) of the hint's: small unless the design curves like the nose.
-    const double reach = 0.999 * R_;
-    double best = -std::numeric_limits<double>::infinity(), slope_sq = 0;
-    double r = hint_r;
-    for (int it = 0; it < 2; ++it) {
-      design_.sag_gradient(r * ct, r * st, f, fx, fy);
-      const double d = std::clamp(r - x_axis, -reach, reach);
-      const double s = std::sqrt(R_ * R_ - d * d);
-      const double g = f - z_axis + s;
-      if (g > best) {
-        best = g;
-        slope_sq = fx * fx + fy * fy;
-      }
-      const double gp = (fx * ct + fy * st) - d / s;
-      r = std::clamp(r + gp * s * s * s / (R_ * R_), x_axis - reach, x_axis + reach);
-    }
-    return -best / std::sqrt(1 + slope_sq);
+    // The largest height of the design's section above the nose's lower arc, from a
+    // Newton search at the hint and at each crease under the nose (section_envelope.hpp):
+    // a value of the overlap, so never more than the true one, and short of it by a
+    // fourth-order term on a smooth piece.
+    const NoseOverlap o = nose_overlap(design_, c, x_axis, z_axis, R_, hint_r);
+    return -o.height / std::sqrt(1 + o.slope * o.slope);
   }
 
  private:

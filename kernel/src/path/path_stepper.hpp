@@ -31,6 +31,7 @@ struct AxisState {
   double contact_r = 0;             // the contact's signed radius in the radial plane at C
   double dx = 0, dz = 0, db = 0;    // dX/dτ, dZ/dτ, dB/dτ (cubic interpolation only)
   Eigen::Vector3d point = Eigen::Vector3d::Zero();
+  double uncut = 0;  // mm: material the nose, held at a crease, leaves (section_envelope.hpp)
   double warm = 0;  // the path's warm start for the next point (a projection distance)
 };
 

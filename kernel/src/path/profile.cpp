@@ -5,6 +5,7 @@
 #include <string>
 
 #include "freeturn/core/error.hpp"
+#include "freeturn/path/section_envelope.hpp"
 #include "nose_section.hpp"
 #include "path_stepper.hpp"
 #include "section_prediction.hpp"
@@ -29,33 +30,34 @@ class ProfilePath {
 
   void at(double tau, detail::AxisState& s) const {
     const double r = tau >= tau_end() ? o_.inner_radius : o_.outer_radius - tau;
-    double z, zx, zy;
-    design_.sag_gradient(r, 0.0, z, zx, zy);
     s.tau = tau;
-    s.contact_r = r;
     s.c = 0;
-    nose_.axes(r, 0.0, z, zx, zy, s.x_axis, s.z, s.b);
-    s.point = {r, 0.0, z};
+    place(r, s);
     // d/dτ = −d/dr. With a nose the centre rides the offset curve, whose speed differs
     // from the contact's by 1 + Rκ: differences of the centre's axes give it.
-    if (nose_.nose_radius() == 0 && !nose_.b_follows()) {
-      s.dx = -1.0;
-      s.dz = -zx;
-      return;
-    }
     const double d = 1e-6;
-    double x_lo, z_lo, b_lo, x_hi, z_hi, b_hi, f, fx, fy;
-    design_.sag_gradient(r - d, 0.0, f, fx, fy);
-    nose_.axes(r - d, 0.0, f, fx, fy, x_lo, z_lo, b_lo);
-    design_.sag_gradient(r + d, 0.0, f, fx, fy);
-    nose_.axes(r + d, 0.0, f, fx, fy, x_hi, z_hi, b_hi);
-    s.dx = -(x_hi - x_lo) / (2 * d);
-    s.dz = -(z_hi - z_lo) / (2 * d);
-    s.db = -(b_hi - b_lo) / (2 * d);
+    detail::AxisState lo, hi;
+    place(r - d, lo);
+    place(r + d, hi);
+    s.dx = -(hi.x_axis - lo.x_axis) / (2 * d);
+    s.dz = -(hi.z - lo.z) / (2 * d);
+    s.db = -(hi.b - lo.b) / (2 * d);
   }
   void commit(const detail::AxisState&) {}
 
  private:
+  // The contact at radius r, the nose's touch (held at a crease where it would overhang
+  // one) and the axes.
+  void place(double r, detail::AxisState& s) const {
+    double z, zx, zy;
+    design_.sag_gradient(r, 0.0, z, zx, zy);
+    const NoseTouch touch = nose_.touch(0.0, r, z, zx);
+    s.contact_r = touch.rho;
+    s.point = {touch.rho, 0.0, touch.z};
+    s.uncut = touch.held ? touch.uncut : 0.0;
+    nose_.axes(touch.rho, touch.z, touch.slope, s.x_axis, s.z, s.b);
+  }
+
   const Surface& design_;
   const ProfileOptions& o_;
   detail::NoseSection nose_;
@@ -97,6 +99,7 @@ PathSummary plan_profile(const Surface& design, const ProfileOptions& o, Contact
     p.chord_error = std::abs(error);
     p.chord_below = error < 0;
     p.chord_jump = jump;
+    p.uncut_residual = s.uncut;
     detail::fill_section(design, p);
     summary.add(p.theta, p.r, p.chord_error, jump);
     out.push(p);

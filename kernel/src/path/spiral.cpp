@@ -5,6 +5,7 @@
 #include <string>
 
 #include "freeturn/core/error.hpp"
+#include "freeturn/path/section_envelope.hpp"
 #include "freeturn/surface/height_field_queries.hpp"
 #include "nose_section.hpp"
 #include "path_stepper.hpp"
@@ -68,35 +69,40 @@ class SpiralPath {
     s.tau = theta;
     s.c = theta;
     const double c = std::cos(theta), sn = std::sin(theta);
+    double contact_r, z, zx, zy;
     if (base_.is_plane()) {
-      const double x = bp.rho * c, y = bp.rho * sn;
-      double z, zx, zy;
-      design_.sag_gradient(x, y, z, zx, zy);
+      contact_r = bp.rho;
+      design_.sag_gradient(contact_r * c, contact_r * sn, z, zx, zy);
       if (!std::isfinite(z))
         throw InputError(where(theta, bp.rho), "the design surface is undefined here");
-      s.point = {x, y, z};
-      s.contact_r = bp.rho;
-      nose_.axes(s.contact_r, theta, z, zx, zy, s.x_axis, s.z, s.b);
-      return;
+    } else {
+      const Eigen::Vector3d origin = BaseSurface::point(bp, theta);
+      const Eigen::Vector3d direction = BaseSurface::normal(bp, theta);
+      const HeightFieldHit hit = intersect_ray(design_, origin, direction, lambda_);
+      if (hit.status != Status::kOk || !hit.point.allFinite())
+        throw InputError(where(theta, bp.rho),
+                         "the projection along the base normal misses the design surface");
+      s.warm = hit.t;
+      // The base normal lies in the radial plane at θ, so the contact does too.
+      contact_r = std::max(0.0, hit.point.x() * c + hit.point.y() * sn);
+      z = hit.point.z();
+      if (nose_.nose_radius() == 0 && !nose_.b_follows()) {
+        s.contact_r = contact_r;
+        s.point = hit.point;
+        s.x_axis = contact_r;
+        s.z = z;
+        s.uncut = 0;
+        return;
+      }
+      double sag;
+      design_.sag_gradient(hit.point.x(), hit.point.y(), sag, zx, zy);
     }
-    const Eigen::Vector3d origin = BaseSurface::point(bp, theta);
-    const Eigen::Vector3d direction = BaseSurface::normal(bp, theta);
-    const HeightFieldHit hit = intersect_ray(design_, origin, direction, lambda_);
-    if (hit.status != Status::kOk || !hit.point.allFinite())
-      throw InputError(where(theta, bp.rho),
-                       "the projection along the base normal misses the design surface");
-    s.warm = hit.t;
-    s.point = hit.point;
-    // The base normal lies in the radial plane at θ, so the contact does too.
-    s.contact_r = std::max(0.0, hit.point.x() * c + hit.point.y() * sn);
-    if (nose_.nose_radius() == 0 && !nose_.b_follows()) {
-      s.x_axis = s.contact_r;
-      s.z = hit.point.z();
-      return;
-    }
-    double z, zx, zy;
-    design_.sag_gradient(hit.point.x(), hit.point.y(), z, zx, zy);
-    nose_.axes(s.contact_r, theta, hit.point.z(), zx, zy, s.x_axis, s.z, s.b);
+    // Where a crease is under the nose, the nose may be held touching both its flanks.
+    const NoseTouch touch = nose_.touch(theta, contact_r, z, zx * c + zy * sn);
+    s.contact_r = touch.rho;
+    s.point = {touch.rho * c, touch.rho * sn, touch.z};
+    s.uncut = touch.held ? touch.uncut : 0.0;
+    nose_.axes(touch.rho, touch.z, touch.slope, s.x_axis, s.z, s.b);
   }
 
   const Surface& design_;
@@ -130,6 +136,7 @@ PathSummary plan_spiral(const Surface& design, const BaseSurface& base,
     p.chord_error = std::abs(error);
     p.chord_below = error < 0;
     p.chord_jump = jump;
+    p.uncut_residual = s.uncut;
     const double zr = detail::fill_section(design, p);
     // Adjacent turns are p apart along the base's generating curve; on the design they
     // are p / cos β apart, β the angle between the two sections' tangents.

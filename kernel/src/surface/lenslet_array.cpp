@@ -165,6 +165,60 @@ HeightDerivatives LensletArray::evaluate(double x, double y) const {
   return {z.v, z.dx, z.dy, z.dxx, z.dxy, z.dyy};
 }
 
+int LensletArray::section_creases(double theta, double rho_lo, double rho_hi,
+                                  std::span<double> out) const {
+  if (!(rho_lo <= rho_hi) || !std::isfinite(rho_lo) || !std::isfinite(rho_hi)) return 0;
+  const double ct = std::cos(theta), st = std::sin(theta);
+  const double half = 0.5 * o_.lens_diameter, cb = o_.base_curvature;
+  // The cells the segment's bounding box meets list every lenslet whose rim it can cross.
+  const auto cell_of = [&](double v) {
+    return std::clamp(static_cast<int>(std::floor((v + o_.extent) / cell_)), 0,
+                      cells_per_side_ - 1);
+  };
+  const double x0 = rho_lo * ct, x1 = rho_hi * ct, y0 = rho_lo * st, y1 = rho_hi * st;
+  const int a_lo = cell_of(std::min(x0, x1)), a_hi = cell_of(std::max(x0, x1));
+  const int b_lo = cell_of(std::min(y0, y1)), b_hi = cell_of(std::max(y0, y1));
+  int count = 0;
+  const auto add = [&](double rho) {
+    if (!(rho >= rho_lo && rho <= rho_hi)) return;
+    for (int k = 0; k < count; ++k)
+      if (std::abs(out[k] - rho) <= 1e-12) return;  // a lenslet listed in two cells
+    if (count < static_cast<int>(out.size())) out[count++] = rho;
+  };
+  for (int b = b_lo; b <= b_hi; ++b)
+    for (int a = a_lo; a <= a_hi; ++a) {
+      const int k = b * cells_per_side_ + a;
+      for (int idx = cell_start_[k]; idx < cell_start_[k + 1]; ++idx) {
+        const Eigen::Vector3d& c = lenslets_[cell_items_[idx]].base_point;
+        const double along = c.x() * ct + c.y() * st;  // the centre's projection on the line
+        if (cb == 0) {
+          // |ρ e_r − c|² = (D/2)²: ρ² − 2ρ·along + |c|² − (D/2)² = 0.
+          const double disc = along * along - (c.x() * c.x() + c.y() * c.y()) + half * half;
+          if (disc < 0) continue;
+          add(along - std::sqrt(disc));
+          add(along + std::sqrt(disc));
+          continue;
+        }
+        // On the sphere (centre O on the axis, radius R_b) the rim is where the angle at O
+        // between the point and c is α, sin α = (D/2)/R_b: with ρ = R_b sin φ,
+        //   along·sin φ + √(R_b² − |c_xy|²)·cos φ = R_b cos α.
+        const double rb = 1 / std::abs(cb);
+        const double lateral_sq = c.x() * c.x() + c.y() * c.y();
+        const double bc = std::sqrt(std::max(0.0, rb * rb - lateral_sq));
+        const double m = std::hypot(along, bc);
+        const double q = std::sqrt(std::max(0.0, rb * rb - half * half)) / m;
+        if (!(q <= 1)) continue;
+        const double beta = std::atan2(bc, along);
+        for (const double phi_plus_beta : {std::asin(q), std::numbers::pi - std::asin(q)}) {
+          const double phi = phi_plus_beta - beta;
+          if (std::abs(phi) <= 0.5 * std::numbers::pi) add(rb * std::sin(phi));
+        }
+      }
+    }
+  std::sort(out.begin(), out.begin() + count);
+  return count;
+}
+
 void LensletArray::sag_gradient(double x, double y, double& z, double& zx, double& zy) const {
   const HeightDerivatives h = evaluate<1>(x, y);
   z = h.z;

@@ -5,6 +5,7 @@
 #include <numbers>
 
 #include "freeturn/core/error.hpp"
+#include "freeturn/path/section_envelope.hpp"
 
 namespace freeturn {
 namespace {
@@ -113,7 +114,10 @@ double ToolChecker::global_gouge_depth(const CutterLocation& cl) const {
     if (!std::isfinite(zs)) continue;
     deepest = std::max(deepest, zs - arc_z);
   }
-  return deepest;
+  // The sampled arc can step over the sharp peak a crease makes; the envelope's search
+  // evaluates the section at every crease under the nose and refines near the contact.
+  const NoseOverlap exact = nose_overlap(design_, cl.contact.theta, c_r, c_z, R, cl.contact.r);
+  return std::max(deepest, exact.height);
 }
 
 void ToolChecker::check(const CutterLocation& cl) {
@@ -143,14 +147,10 @@ void ToolChecker::check(const CutterLocation& cl) {
       found(ToolCheck::kGlobalGouge, depth, options_.gouge_tolerance, cl);
   }
   if (enabled(ToolCheck::kCentre)) {
-    const double ct = std::cos(p.theta), st = std::sin(p.theta);
-    const double c_r = cl.nose_centre.x() * ct + cl.nose_centre.y() * st;
-    // The nose centre crossing the axis while the contact has not, or a centre height
-    // that keeps the edge from reaching this radius.
-    if (!std::isfinite(cl.x))
-      found(ToolCheck::kCentre, std::abs(tool.centre_height), 0.0, cl);
-    else if (c_r < -options_.gouge_tolerance && p.r >= 0)
-      found(ToolCheck::kCentre, -c_r, 0.0, cl);
+    // A centre height that keeps the edge from reaching this radius. The nose centre may
+    // cross the axis (X through zero): whether the nose then reaches below the design on
+    // the other side is the global gouge check's question, in the signed section.
+    if (!std::isfinite(cl.x)) found(ToolCheck::kCentre, std::abs(tool.centre_height), 0.0, cl);
   }
 }
 

@@ -33,7 +33,13 @@ struct Cutting {
   double spindle_rpm = 0;  // spiral
   double feed = 0;         // mm/min, profile
   std::vector<double> roughing_depths;  // mm of stock left by each roughing pass, descending
+  // false: the program runs at spindle_rpm whatever the machine's limits (said explicitly;
+  // the verdict is then UNSAFE where it exceeds them).
   bool enforce_dynamics = true;
+  // How block times are set on a spiral: `scheduled`, each block as fast as the machine's
+  // limits allow up to spindle_rpm (machine/block_schedule.hpp); `constant_rpm`, one
+  // spindle speed for the whole program, the highest the limits allow up to spindle_rpm.
+  enum class Timing { kScheduled, kConstantRpm } timing = Timing::kScheduled;
 };
 
 struct Outputs {

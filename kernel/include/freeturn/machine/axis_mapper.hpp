@@ -20,7 +20,11 @@ namespace freeturn {
 struct MotionOptions {
   double spindle_rpm = 0;  // spiral modes: block time = Δθ / (2π rpm / 60)
   double feed = 0;         // mm/min, profile mode (used when spindle_rpm is 0)
-  bool enforce_dynamics = true;  // a dynamics violation is an error (else only reported)
+  // A dynamics violation at the constant spindle speed is an error (else only reported).
+  // Off when a BlockScheduler follows the mapper: it sets the block times instead.
+  bool enforce_dynamics = true;
+  // The share of each limit the highest constant rpm may use (block_schedule.hpp's margin).
+  double margin = 0.98;
 };
 
 struct DynamicsReport {
@@ -28,7 +32,8 @@ struct DynamicsReport {
   double peak_acceleration[4] = {0, 0, 0, 0};  // per Axis, per second²
   double peak_block_rate = 0;                  // blocks per second
   double max_rpm = 0;  // the highest spindle speed every block can follow (spiral modes)
-  double cycle_time = 0;  // s
+  double cycle_time = 0;  // s, at the requested speed (a scheduler's report has the real one)
+  double turns = 0;       // spindle revolutions of the path: its cycle at max_rpm is 60·turns/max_rpm
   long blocks = 0;
   std::string limiting;  // what sets max_rpm ("X velocity at θ = …")
 };
@@ -60,6 +65,7 @@ class AxisMapper final : public CutterSink {
   bool has_previous_ = false;
   AxisRecord previous_;
   double previous_theta_ = 0, previous_velocity_[4] = {0, 0, 0, 0};
+  double previous_rate_ = 0;  // 1/s of the block before (0: the program starts at rest)
   double previous_c_unwrapped_ = 0;
   Eigen::Vector3d previous_point_ = Eigen::Vector3d::Zero();
 };

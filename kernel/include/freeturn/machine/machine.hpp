@@ -39,6 +39,9 @@ struct MachineDescription {
   // How the program states speed: inverse time (each block's duration: G93) or feed per
   // minute (G94; X-Z profile programs only, where it is the path feed).
   bool feed_per_minute = false;
+  // The dialect writes no time per block (one block time for the whole program, stated in
+  // its header): spirals then run at one constant spindle speed, never a schedule.
+  bool constant_block_time = false;
   std::string dialect_settings;  // the YAML text under the dialect's key, for the plugin
 
   bool has(Axis axis) const;

@@ -26,6 +26,10 @@ struct ContactPoint {
   // docs/path.md): the motion swings across the crease and errs on both sides by up to
   // chord_error.
   bool chord_jump = false;
+  // Where the nose is held at a concave crease sharper than itself (path/section_envelope.hpp):
+  // the depth of material it leaves above the crease (mm, vertical), 0 elsewhere. `point`
+  // is then the nose's touch on this flank, not the spiral's own contact.
+  double uncut_residual = 0;
   // Pass spacing across adjacent turns along the surface (mm), the curvature of the
   // surface's radial section (1/mm, > 0 concave as seen from the tool), and the scallop
   // height they leave with the tool's nose radius (mm; 0 when no nose radius was given).

@@ -39,6 +39,10 @@ class LensletArray final : public Surface {
   HeightDerivatives height_derivatives(double x, double y) const override;
   double defined_radius() const override;
   bool has_creases() const override { return true; }
+  // Where the radial line crosses the lenslets' rims, in closed form (a circle on a plane
+  // base; on a sphere, a cone about the lenslet's axis through the sphere's centre).
+  int section_creases(double theta, double rho_lo, double rho_hi,
+                      std::span<double> out) const override;
 
   int lenslet_count() const { return static_cast<int>(lenslets_.size()); }
   // Index of the lenslet whose footprint holds (x, y), or −1 on the base.

@@ -7,6 +7,7 @@
 #include <Eigen/Core>
 #include <Eigen/Geometry>
 #include <limits>
+#include <span>
 
 namespace freeturn {
 
@@ -36,6 +37,14 @@ class Surface {
   // True when the surface has creases (slope discontinuities: lenslet rims, a cone's
   // vertex). Chord errors across a crease peak sharply, so they are sampled more densely.
   virtual bool has_creases() const { return false; }
+
+  // The creases met along the radial section at angle θ, as signed radii ρ in [rho_lo,
+  // rho_hi] (ρ < 0 lies at θ + π), ascending; writes at most out.size() of them and returns
+  // how many it wrote. The nose's envelope (path/section_envelope.hpp) is exact only at
+  // creases it is told of. The default, for a surface with creases, is the vertex (ρ = 0):
+  // where a cone's section folds; a lenslet array finds its rims.
+  virtual int section_creases(double theta, double rho_lo, double rho_hi,
+                              std::span<double> out) const;
 
   double sag(double x, double y) const;
   // (x, y, z(x, y)).

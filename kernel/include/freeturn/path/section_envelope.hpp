@@ -1,0 +1,70 @@
+#pragma once
+// The nose against the design's radial section, where the surface creases (docs/tool.md,
+// "The envelope").
+//
+// In the radial plane at θ the design is the section g(ρ) = f(ρ cos θ, ρ sin θ) over signed
+// ρ (ρ < 0 lies at θ + π, so the section runs through the axis), and the nose is a circle
+// of radius R about its centre (x_c, z_c). The tool is safe where the section stays under
+// the nose's lower arc, z_c − √(R² − (ρ − x_c)²), across the arc's footprint.
+//
+// Along a smooth section the nose tangent at the contact p, its centre p + R·n̂_p, is safe
+// wherever the concave curvature stays below 1/R. At a concave crease (a lenslet rim, a
+// cone's vertex) it is not: for contacts within about R·tan(δ/2) of a crease of angle δ the
+// nose on one flank overhangs the other. There the nose is held where it touches both
+// flanks, at the intersection of the two flanks' offsets: its centre moves continuously
+// from one offset to the other through that point, never below the design, and the
+// material between the two touches is left (the uncut residual).
+
+#include <array>
+
+#include "freeturn/surface/surface.hpp"
+
+namespace freeturn {
+
+// Creases along one radial section (Surface::section_creases), in a fixed buffer.
+struct SectionCreases {
+  static constexpr int kCapacity = 32;
+  std::array<double, kCapacity> rho{};
+  int count = 0;
+  // Those in [lo, hi] on the radial line at θ.
+  void find(const Surface& design, double theta, double lo, double hi) {
+    count = design.section_creases(theta, lo, hi, rho);
+  }
+};
+
+// How far the section reaches above the nose's lower arc.
+struct NoseOverlap {
+  double height = -1e300;  // mm, vertical: > 0 the nose is below the design (a gouge)
+  double rho = 0;          // where (signed radius)
+  double slope = 0;        // the section's slope dg/dρ there
+};
+
+// The largest height of the section above the lower arc of the nose centred at (x_c, z_c)
+// (radius R > 0) in the radial plane at θ: from a local search started at hint_rho (the
+// contact nearby) and, on each side of every crease under the nose, from the crease. Each
+// search takes Newton steps on h(ρ) = g(ρ) − z_c + √(R² − (ρ − x_c)²) with the arc's
+// −R²/s³ standing in for h'', keeps the largest value it meets (a value of h, so never
+// more than the true maximum), and stays on its side of the crease. No allocation.
+NoseOverlap nose_overlap(const Surface& design, double theta, double x_c, double z_c, double R,
+                         double hint_rho);
+
+// Where the nose touches the section for the contact at signed radius rho_p.
+struct NoseTouch {
+  double rho = 0, z = 0, slope = 0;  // the touch on the contact's own flank, and dg/dρ there
+  double centre_x = 0, centre_z = 0;  // the nose centre in the radial plane
+  bool held = false;     // held at a crease: touching both flanks, the contact not reached
+  double crease_rho = 0;  // the crease it is held at (held only)
+  double far_rho = 0;     // the touch on the other flank (held only)
+  double uncut = 0;       // mm: material left above the crease, vertical (held only)
+};
+
+// The ordinary offset p + R·n̂_p of the contact (rho_p, z_p) with section slope slope_p, or,
+// where the nose there would overhang a crease's other flank by more than `tolerance`
+// (mm), the nose held at that crease: its centre at the intersection of the two flanks'
+// offsets, found as the point of the contact's own flank whose offset lies exactly R
+// from the other flank (Illinois regula falsi on R − distance, the distance by
+// Gauss–Newton on the foot point). No allocation.
+NoseTouch nose_touch(const Surface& design, double theta, double R, double rho_p, double z_p,
+                     double slope_p, double tolerance = 1e-10);
+
+}  // namespace freeturn

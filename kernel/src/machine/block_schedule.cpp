@@ -1,0 +1,183 @@
+#include "freeturn/machine/block_schedule.hpp"
+
+#include <algorithm>
+#include <cmath>
+#include <cstdio>
+#include <limits>
+
+#include "freeturn/core/error.hpp"
+
+namespace freeturn {
+namespace {
+
+constexpr double kInfinity = std::numeric_limits<double>::infinity();
+
+// The largest speed s ≤ cap for which ok(s) holds: cap itself, or a descent by factors of
+// 0.8 to a feasible speed, then bisection up to the boundary. 0 when none is found.
+template <class Ok>
+double largest_feasible(double cap, Ok&& ok) {
+  if (ok(cap)) return cap;
+  double hi = cap, lo = cap;
+  for (int it = 0;; ++it) {
+    if (it == 160) return 0.0;  // 0.8^160 ≈ 3e-16 of the cap
+    hi = lo;
+    lo *= 0.8;
+    if (ok(lo)) break;
+  }
+  for (int it = 0; it < 48 && hi - lo > 1e-13 * hi; ++it) {
+    const double mid = 0.5 * (lo + hi);
+    if (ok(mid)) lo = mid;
+    else hi = mid;
+  }
+  return lo;
+}
+
+std::string place_of(const AxisRecord& r) {
+  char buf[128];
+  std::snprintf(buf, sizeof buf, "the block to X %.6f Z %.6f C %.5f", r.x, r.z, r.c);
+  return buf;
+}
+
+}  // namespace
+
+BlockScheduler::BlockScheduler(const MachineDescription& machine, AxisSink& out,
+                               ScheduleOptions options)
+    : machine_(machine), out_(out), options_(options) {
+  for (int a = 0; a < 4; ++a) velocity_limit_[a] = acceleration_limit_[a] = kInfinity;
+  for (const AxisSpec& s : machine.axes) {
+    const int a = static_cast<int>(s.axis);
+    present_[a] = true;
+    velocity_limit_[a] = options_.margin * s.max_velocity;
+    acceleration_limit_[a] = options_.margin * s.max_acceleration;
+  }
+  options_.window = std::max<std::size_t>(options_.window, 16);
+  pending_.reserve(options_.window);
+  buffer_.reserve(options_.window);
+}
+
+bool BlockScheduler::pair_ok(const double* d1, double s1, const double* d2, double s2) const {
+  const double faster = std::max(s1, s2);
+  for (int a = 0; a < 4; ++a) {
+    if (!present_[a] || !std::isfinite(acceleration_limit_[a])) continue;
+    if (std::abs(d2[a] * s2 - d1[a] * s1) * faster > acceleration_limit_[a]) return false;
+  }
+  return true;
+}
+
+void BlockScheduler::write(std::span<const AxisRecord> chunk) {
+  for (const AxisRecord& r : chunk) {
+    if (!started_) {
+      // The program's first position: reached by the approach, no duration.
+      started_ = true;
+      last_in_ = r;
+      buffer_.clear();
+      buffer_.push_back(r);
+      buffer_.back().time = 0;
+      out_.write(buffer_);
+      continue;
+    }
+    Block b;
+    b.record = r;
+    b.d[static_cast<int>(Axis::kX)] = r.x - last_in_.x;
+    b.d[static_cast<int>(Axis::kZ)] = r.z - last_in_.z;
+    b.d[static_cast<int>(Axis::kC)] =
+        machine_.c_wrapped ? std::remainder(r.c - last_in_.c, 360.0) : r.c - last_in_.c;
+    b.d[static_cast<int>(Axis::kB)] = r.b - last_in_.b;
+    b.nominal = r.time;
+    double upper = r.time > 0 ? 1 / r.time : kInfinity;
+    for (int a = 0; a < 4; ++a)
+      if (present_[a] && b.d[a] != 0 && std::isfinite(velocity_limit_[a]))
+        upper = std::min(upper, velocity_limit_[a] / std::abs(b.d[a]));
+    if (std::isfinite(machine_.max_block_rate))
+      upper = std::min(upper, options_.margin * machine_.max_block_rate);
+    if (!(upper > 0) || !std::isfinite(upper))
+      throw InputError(place_of(r), "the block has no time the machine's limits allow");
+    b.upper = upper;
+    pending_.push_back(b);
+    last_in_ = r;
+    if (pending_.size() >= options_.window) {
+      plan(false);
+      send(options_.window / 2);
+    }
+  }
+}
+
+void BlockScheduler::plan(bool /*final*/) {
+  // Backward: the window's end is taken as a stop, which the blocks sent later can always
+  // be brought to, so what is sent now never depends on blocks not yet seen.
+  static const double kRest[4] = {0, 0, 0, 0};
+  const double* next_d = kRest;
+  double next_s = 0;
+  for (std::size_t k = pending_.size(); k-- > 0;) {
+    Block& b = pending_[k];
+    double s = largest_feasible(b.upper, [&](double v) { return pair_ok(b.d, v, next_d, next_s); });
+    // No speed of this block reaches the next at its speed: slow the next one down (a
+    // slower pair is closer to rest, which every block can leave or reach).
+    for (int it = 0; !(s > 0) && it < 200 && k + 1 < pending_.size(); ++it) {
+      next_s *= 0.5;
+      pending_[k + 1].speed = next_s;
+      s = largest_feasible(b.upper, [&](double v) { return pair_ok(b.d, v, next_d, next_s); });
+    }
+    if (!(s > 0)) throw InputError(place_of(b.record), "no block time lets the machine follow it");
+    b.speed = s;
+    next_d = b.d;
+    next_s = s;
+  }
+  // Forward: from the last block sent (or rest), each block as fast as the one before allows.
+  const double* prev_d = sent_d_;
+  double prev_s = sent_speed_;
+  for (Block& b : pending_) {
+    const double s =
+        largest_feasible(b.speed, [&](double v) { return pair_ok(prev_d, prev_s, b.d, v); });
+    if (!(s > 0)) throw InputError(place_of(b.record), "no block time lets the machine follow it");
+    b.speed = s;
+    prev_d = b.d;
+    prev_s = s;
+  }
+}
+
+void BlockScheduler::send(std::size_t count) {
+  count = std::min(count, pending_.size());
+  buffer_.clear();
+  for (std::size_t k = 0; k < count; ++k) {
+    const Block& b = pending_[k];
+    // Whole microseconds, as the posts write a block's time (6 decimals): the program's
+    // cycle is then the sum of the written times. Rounding up only slows the block, by at
+    // most 1 µs, which the margin covers.
+    const double t = std::ceil(1e6 / b.speed - 1e-6) * 1e-6;
+    buffer_.push_back(b.record);
+    buffer_.back().time = t;
+    const double shorter = report_.blocks > 0 ? std::min(t, sent_time_) : t;
+    for (int a = 0; a < 4; ++a) {
+      if (!present_[a]) continue;
+      const double v = b.d[a] / t;
+      report_.peak_velocity[a] = std::max(report_.peak_velocity[a], std::abs(v));
+      report_.peak_acceleration[a] =
+          std::max(report_.peak_acceleration[a], std::abs(v - sent_velocity_[a]) / shorter);
+      sent_velocity_[a] = v;
+      sent_d_[a] = b.d[a];
+    }
+    report_.peak_block_rate = std::max(report_.peak_block_rate, 1 / t);
+    report_.cycle_time += t;
+    report_.nominal_cycle_time += b.nominal;
+    if (t > b.nominal * (1 + 1e-12)) report_.slowed_blocks++;
+    report_.blocks++;
+    sent_speed_ = 1 / t;
+    sent_time_ = t;
+  }
+  pending_.erase(pending_.begin(), pending_.begin() + static_cast<std::ptrdiff_t>(count));
+  if (!buffer_.empty()) out_.write(buffer_);
+}
+
+void BlockScheduler::finish() {
+  if (pending_.empty()) return;
+  plan(true);
+  send(pending_.size());
+  // The stop after the last block.
+  for (int a = 0; a < 4; ++a)
+    if (present_[a])
+      report_.peak_acceleration[a] =
+          std::max(report_.peak_acceleration[a], std::abs(sent_velocity_[a]) / sent_time_);
+}
+
+}  // namespace freeturn

@@ -1,0 +1,281 @@
+// The nose held at a concave crease (path/section_envelope.hpp): the centre against the
+// closed-form intersection of the two flanks' offsets, the uncut residual against its
+// closed form, and no point of the nose below the design, checked by brute force.
+#include "freeturn/path/section_envelope.hpp"
+
+#include <doctest/doctest.h>
+
+#include <cmath>
+#include <numbers>
+#include <vector>
+
+#include "dense_check.hpp"
+#include "fixtures.hpp"
+#include "freeturn/path/base_surface_fit.hpp"
+#include "freeturn/path/spiral.hpp"
+#include "freeturn/surface/lenslet_array.hpp"
+#include "freeturn/surface/sinusoidal.hpp"
+#include "freeturn/tool/compensation.hpp"
+
+namespace freeturn {
+namespace {
+
+// Two convex spherical domes meeting at the crease line x = x_k: dome A (radius RA, its
+// centre e_A before the crease) for x < x_k, dome B (radius RB, e_B beyond it) for x ≥ x_k,
+// their heights matched on the radial section θ = 0. In that section the crease is concave
+// with an angle δ = atan(e_A/√(RA² − e_A²)) + atan(e_B/√(RB² − e_B²)).
+class TwoDomes final : public Surface {
+ public:
+  static constexpr double kCrease = 2.0, kRA = 5.0, kEA = 0.45, kRB = 3.0, kEB = 0.2;
+  static double height_a() { return 0.0; }
+  static double height_b() {
+    return std::sqrt(kRA * kRA - kEA * kEA) - std::sqrt(kRB * kRB - kEB * kEB);
+  }
+  const char* type() const override { return "two_domes"; }
+  bool has_creases() const override { return true; }
+  int section_creases(double theta, double lo, double hi, std::span<double> out) const override {
+    const double c = std::cos(theta);
+    if (std::abs(c) < 1e-12) return 0;
+    const double rho = kCrease / c;
+    if (!(rho >= lo && rho <= hi) || out.empty()) return 0;
+    out[0] = rho;
+    return 1;
+  }
+  void sag_gradient(double x, double y, double& z, double& zx, double& zy) const override {
+    const HeightDerivatives h = height_derivatives(x, y);
+    z = h.z;
+    zx = h.zx;
+    zy = h.zy;
+  }
+  HeightDerivatives height_derivatives(double x, double y) const override {
+    const bool a = x < kCrease;
+    const double R = a ? kRA : kRB, u = x - (a ? kCrease - kEA : kCrease + kEB);
+    const double w = std::sqrt(R * R - u * u - y * y), w3 = w * w * w;
+    HeightDerivatives h;
+    h.z = (a ? height_a() : height_b()) + w;
+    h.zx = -u / w;
+    h.zy = -y / w;
+    h.zxx = -(R * R - y * y) / w3;
+    h.zyy = -(R * R - u * u) / w3;
+    h.zxy = -u * y / w3;
+    return h;
+  }
+};
+
+// The upper intersection of two circles (centre, radius).
+Eigen::Vector2d upper_intersection(Eigen::Vector2d a, double ra, Eigen::Vector2d b, double rb) {
+  const double d = (b - a).norm(), along = (ra * ra - rb * rb + d * d) / (2 * d);
+  const double h = std::sqrt(ra * ra - along * along);
+  const Eigen::Vector2d u = (b - a) / d, mid = a + along * u, perp(-u.y(), u.x());
+  const Eigen::Vector2d p = mid + h * perp, q = mid - h * perp;
+  return p.y() > q.y() ? p : q;
+}
+
+// The largest height of the section g(ρ) at θ = 0 above the lower arc of the nose at
+// (x, z), by brute force: 20 000 values of ρ across the nose, then ternary search.
+double brute_overlap(const Surface& s, double x, double z, double R) {
+  const auto h = [&](double rho) {
+    const double d = rho - x;
+    return s.sag(rho, 0) - (z - std::sqrt(std::max(0.0, R * R - d * d)));
+  };
+  double best = -1e300, at = x;
+  const int n = 20000;
+  for (int i = 0; i <= n; ++i) {
+    const double rho = x - 0.999 * R + 1.998 * R * i / n;
+    if (h(rho) > best) best = h(rho), at = rho;
+  }
+  double lo = at - 1.998 * R / n, hi = at + 1.998 * R / n;
+  for (int it = 0; it < 80; ++it) {
+    const double m1 = lo + (hi - lo) / 3, m2 = hi - (hi - lo) / 3;
+    if (h(m1) > h(m2)) hi = m2;
+    else lo = m1;
+  }
+  return std::max(best, h(0.5 * (lo + hi)));
+}
+
+NoseTouch touch_at(const Surface& s, double rho, double R) {
+  double z, zx, zy;
+  s.sag_gradient(rho, 0, z, zx, zy);
+  return nose_touch(s, 0.0, R, rho, z, zx);
+}
+
+}  // namespace
+
+TEST_SUITE("path") {
+  TEST_CASE("a concave crease: the nose held at the intersection of the two offsets, exactly") {
+    const TwoDomes s;
+    const double R = 0.2;
+    const double xk = TwoDomes::kCrease;
+    const Eigen::Vector2d oa(xk - TwoDomes::kEA, TwoDomes::height_a()),
+        ob(xk + TwoDomes::kEB, TwoDomes::height_b());
+    // Convex domes: each flank's offset is the concentric circle of radius R_dome + R.
+    const Eigen::Vector2d K = upper_intersection(oa, TwoDomes::kRA + R, ob, TwoDomes::kRB + R);
+    const Eigen::Vector2d touch_a = oa + TwoDomes::kRA * (K - oa).normalized();
+    const Eigen::Vector2d touch_b = ob + TwoDomes::kRB * (K - ob).normalized();
+    const double d = xk - K.x();
+    const double uncut = K.y() - std::sqrt(R * R - d * d) - s.sag(xk, 0);
+
+    for (const double rho : {xk - 0.012, xk - 0.004, xk - 1e-7, xk + 1e-7, xk + 0.003, xk + 0.009}) {
+      CAPTURE(rho);
+      const NoseTouch t = touch_at(s, rho, R);
+      REQUIRE(t.held);
+      CHECK(std::abs(t.centre_x - K.x()) < 1e-9);
+      CHECK(std::abs(t.centre_z - K.y()) < 1e-9);
+      const Eigen::Vector2d own = rho < xk ? touch_a : touch_b;
+      const Eigen::Vector2d other = rho < xk ? touch_b : touch_a;
+      CHECK(std::abs(t.rho - own.x()) < 1e-9);
+      CHECK(std::abs(t.z - own.y()) < 1e-9);
+      CHECK(std::abs(t.far_rho - other.x()) < 1e-8);
+      CHECK(t.crease_rho == xk);
+      CHECK(std::abs(t.uncut - uncut) < 1e-9);
+      // Touching both flanks, below neither.
+      CHECK(brute_overlap(s, t.centre_x, t.centre_z, R) <= 1e-9);
+      CHECK(brute_overlap(s, t.centre_x, t.centre_z, R) >= -1e-9);
+    }
+    // Away from the crease the ordinary offset p + R·n̂ is safe and kept.
+    for (const double rho : {xk - 0.05, xk - 0.02, xk + 0.02, xk + 0.3}) {
+      CAPTURE(rho);
+      const NoseTouch t = touch_at(s, rho, R);
+      CHECK_FALSE(t.held);
+      double z, zx, zy;
+      s.sag_gradient(rho, 0, z, zx, zy);
+      const double l = std::sqrt(1 + zx * zx);
+      CHECK(t.centre_x == doctest::Approx(rho - R * zx / l).epsilon(1e-14));
+      CHECK(t.centre_z == doctest::Approx(z + R / l).epsilon(1e-14));
+      CHECK(brute_overlap(s, t.centre_x, t.centre_z, R) <= 1e-9);
+    }
+    // In the limit of flat flanks the residual is R(1/cos(δ/2) − 1); with these domes'
+    // curvature it is a little less.
+    const double delta = std::atan(TwoDomes::kEA / std::sqrt(TwoDomes::kRA * TwoDomes::kRA - TwoDomes::kEA * TwoDomes::kEA)) +
+                         std::atan(TwoDomes::kEB / std::sqrt(TwoDomes::kRB * TwoDomes::kRB - TwoDomes::kEB * TwoDomes::kEB));
+    CHECK(uncut > 0.5 * R * (1 / std::cos(delta / 2) - 1));
+    CHECK(uncut < 1.01 * R * (1 / std::cos(delta / 2) - 1) + 1e-6);
+  }
+
+  TEST_CASE("across a concave crease the nose centre moves continuously and forward, never below") {
+    const TwoDomes s;
+    const double R = 0.2, xk = TwoDomes::kCrease;
+    double previous_x = -1e300, previous_z = 0;
+    int held = 0;
+    for (int i = 0; i <= 800; ++i) {
+      const double rho = xk - 0.04 + 0.0001 * i;
+      const NoseTouch t = touch_at(s, rho, R);
+      held += t.held;
+      CHECK(brute_overlap(s, t.centre_x, t.centre_z, R) <= 1e-9);
+      if (i > 0) {
+        CHECK(t.centre_x >= previous_x - 1e-12);
+        // No jump: a step of 0.1 µm in the contact moves the centre at most a few times as far.
+        CHECK(std::hypot(t.centre_x - previous_x, t.centre_z - previous_z) <= 1e-3);
+      }
+      previous_x = t.centre_x;
+      previous_z = t.centre_z;
+    }
+    CHECK(held > 100);  // about R·tan(δ/2) on each side, 0.1 µm apart
+  }
+
+  TEST_CASE("the overlap finds a crease's sharp peak that a sampled arc steps over") {
+    const TwoDomes s;
+    const double R = 0.2, xk = TwoDomes::kCrease;
+    // The ordinary offset just before the crease overhangs the other flank.
+    double z, zx, zy;
+    const double rho = xk - 0.002;
+    s.sag_gradient(rho, 0, z, zx, zy);
+    const double l = std::sqrt(1 + zx * zx);
+    const double cx = rho - R * zx / l, cz = z + R / l;
+    const NoseOverlap o = nose_overlap(s, 0.0, cx, cz, R, rho);
+    const double brute = brute_overlap(s, cx, cz, R);
+    CHECK(brute > 1e-4);
+    CHECK(o.height == doctest::Approx(brute).epsilon(1e-7));
+  }
+
+  TEST_CASE("compound eye, space spiral with a nose: no point of the nose below the design") {
+    const LensletArray eye(test::compound_eye_options(2.2));
+    const double R = 0.2;
+    SpiralOptions o;
+    o.outer_radius = 1.6;
+    o.pitch = 0.05;
+    o.points.tolerance = 2e-4;
+    o.points.max_angle_step = 4 * std::numbers::pi / 180;
+    o.tool.nose_radius = R;
+    ContactCollector out;
+    const PathSummary summary =
+        plan_spiral(eye, fit_base_least_squares(sample_aperture(eye, 0, 1.6)), o, out);
+    CHECK(summary.jumps == 0);
+    CompensationOptions c;
+    c.tool.nose_radius = R;
+    std::vector<CutterLocation> cls;
+    long held = 0;
+    double worst_uncut = 0;
+    for (const ContactPoint& p : out.points) {
+      cls.push_back(compensate(p, c));
+      held += p.uncut_residual > 0;
+      worst_uncut = std::max(worst_uncut, p.uncut_residual);
+    }
+    const test::DenseNoseFigures f = test::dense_nose_figures(eye, cls, R, 12, 240);
+    MESSAGE("points ", cls.size(), ", held ", held, ", deepest ", f.gouge * 1e6, " nm, chord ",
+            f.worst * 1e6, " nm, uncut ", worst_uncut * 1e6, " nm");
+    CHECK(f.gouge <= 10e-6);
+    CHECK(f.worst <= 2e-4 * 1.02);
+    CHECK(held > 0);
+    // The rims' angle in the radial section is at most the 3D crease angle (about 6.5°):
+    // the residual stays under R(1/cos(δ/2) − 1) for δ = 7°.
+    CHECK(worst_uncut < R * (1 / std::cos(3.5 * std::numbers::pi / 180) - 1));
+  }
+
+  TEST_CASE("microlens array on a plane, traditional spiral with a nose: no gouge at the rims") {
+    LensletArrayOptions lo;
+    lo.lens_radius = -2.0;
+    lo.lens_diameter = 0.5;
+    lo.pitch = 0.6;
+    lo.pattern = LensletArrayOptions::Pattern::kHexagonal;
+    lo.extent = 1.5;
+    const LensletArray mla(lo);
+    const double R = 0.1;
+    SpiralOptions o;
+    o.outer_radius = 1.2;
+    o.pitch = 0.04;
+    o.points.tolerance = 2e-4;
+    o.tool.nose_radius = R;
+    ContactCollector out;
+    const PathSummary summary = plan_spiral(mla, BaseSurface::plane(1.5), o, out);
+    CHECK(summary.jumps == 0);
+    CompensationOptions c;
+    c.tool.nose_radius = R;
+    std::vector<CutterLocation> cls;
+    for (const ContactPoint& p : out.points) cls.push_back(compensate(p, c));
+    const test::DenseNoseFigures f = test::dense_nose_figures(mla, cls, R, 12, 240);
+    MESSAGE("points ", cls.size(), ", deepest ", f.gouge * 1e6, " nm, chord ", f.worst * 1e6, " nm");
+    CHECK(f.gouge <= 10e-6);
+    CHECK(f.worst <= 2e-4 * 1.02);
+  }
+
+  TEST_CASE("sinusoidal ring as a spiral through its cone point: no gouge at the apex") {
+    // z = A sin(ωr): the section through the axis folds at r = 0 with slope ±Aω.
+    const double A = 0.005, w = 2 * std::numbers::pi / 2.5;
+    const SinusoidalRing ring(A, w, 0.0);
+    const double R = 0.5;
+    SpiralOptions o;
+    o.outer_radius = 1.0;
+    o.pitch = 0.02;
+    o.points.tolerance = 1e-4;
+    o.tool.nose_radius = R;
+    ContactCollector out;
+    plan_spiral(ring, BaseSurface::plane(1.0), o, out);
+    CompensationOptions c;
+    c.tool.nose_radius = R;
+    std::vector<CutterLocation> cls;
+    for (const ContactPoint& p : out.points) cls.push_back(compensate(p, c));
+    // The last contact is held where the nose touches both sides of the cone: its centre on
+    // the axis at R/cos ψ above the vertex, ψ = atan(Aω), and the residual R(1/cos ψ − 1).
+    const double psi = std::atan(A * w);
+    REQUIRE(out.points.back().uncut_residual > 0);
+    CHECK(std::abs(cls.back().nose_centre.x()) < 1e-9);
+    CHECK(cls.back().nose_centre.z() == doctest::Approx(R / std::cos(psi)).epsilon(1e-9));
+    CHECK(out.points.back().uncut_residual == doctest::Approx(R / std::cos(psi) - R).epsilon(1e-6));
+    const test::DenseNoseFigures f = test::dense_nose_figures(ring, cls, R, 20, 400);
+    MESSAGE("points ", cls.size(), ", deepest ", f.gouge * 1e6, " nm, chord ", f.worst * 1e6, " nm");
+    CHECK(f.gouge <= 10e-6);
+  }
+}
+
+}  // namespace freeturn
