@@ -25,12 +25,15 @@ namespace freeturn::detail {
 
 class NoseSection {
  public:
-  NoseSection(const Surface& design, const ToolMotion& motion)
-      : design_(design), R_(motion.nose_radius),
+  // stand_off: how far the programmed nose stands off the design along the section normal
+  // (half the chord tolerance: cutter_points.hpp, "one-sided band").
+  NoseSection(const Surface& design, const ToolMotion& motion, double stand_off)
+      : design_(design), R_(motion.nose_radius), stand_off_(stand_off),
         offset_(motion.b_follows ? motion.axis_offset : 0.0), b_follows_(motion.b_follows),
         edge_angle_(motion.edge_angle) {}
 
   double nose_radius() const { return R_; }
+  double stand_off() const { return stand_off_; }
   bool b_follows() const { return b_follows_; }
 
   // The axes of the point that touches the design at signed radius contact_r in the radial
@@ -40,13 +43,14 @@ class NoseSection {
   void axes(double contact_r, double z, double f_r, double& x_axis, double& z_axis,
             double& b) const {
     b = b_follows_ ? std::atan2(-f_r, 1.0) - edge_angle_ : 0.0;
-    if (R_ == 0) {
+    const double offset = R_ + stand_off_;
+    if (offset == 0) {
       x_axis = contact_r;
       z_axis = z;
     } else {
       const double length = std::sqrt(1 + f_r * f_r);
-      x_axis = contact_r - R_ * f_r / length;
-      z_axis = z + R_ / length;
+      x_axis = contact_r - offset * f_r / length;
+      z_axis = z + offset / length;
     }
     x_axis += offset_ * std::sin(b);
     z_axis += offset_ * std::cos(b);
@@ -64,7 +68,7 @@ class NoseSection {
       t.slope = f_r;
       return t;
     }
-    return nose_touch(design_, c, R_, contact_r, z, f_r);
+    return nose_touch(design_, c, R_, contact_r, z, f_r, stand_off_);
   }
 
   // The distance (mm, along the design normal) between the design and the tool placed at
@@ -90,7 +94,7 @@ class NoseSection {
 
  private:
   const Surface& design_;
-  double R_, offset_;
+  double R_, stand_off_, offset_;
   bool b_follows_;
   double edge_angle_;
 };

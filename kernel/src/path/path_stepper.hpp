@@ -13,6 +13,8 @@
 //                                           // design; hint_r: the contact radius nearby
 //   double angle_per_tau() const;           // dC/dτ (1 on a spiral, 0 in profile mode)
 //   bool creased() const;                   // the design has creases (Surface::has_creases)
+//   double stand_off() const;               // where the blocks stand off the design (mm):
+//                                           // the centre of the tolerance band
 
 #include <algorithm>
 #include <cmath>
@@ -55,9 +57,9 @@ inline void interpolate(const AxisState& a, const AxisState& b, double t, Interp
   c = h00 * a.c + h10 * h * angle_per_tau + h01 * b.c + h11 * h * angle_per_tau;
 }
 
-// The largest distance of the interpolated motion from the design over one segment,
-// signed (> 0: the tool passes above the design and leaves material; < 0: it cuts into
-// it): samples (8 intervals; 32 on a surface with creases, where the peak is a sharp tent
+// The largest distance of the interpolated motion from the band's centre (the design
+// raised by the path's stand-off) over one segment, signed (> 0: above it; < 0: below,
+// and below the design itself where it passes the stand-off): samples (8 intervals; 32 on a surface with creases, where the peak is a sharp tent
 // at the crease), then a parabola through the largest and its neighbours. Where the
 // parabola mispredicts the value at its own vertex, the deviation is not smooth there and
 // a golden-section search of the bracket finds the peak instead.
@@ -71,7 +73,8 @@ double segment_error(const Path& path, const AxisState& a, const AxisState& b,
   const auto deviation_at = [&](double t) {
     double x, c, z, bb;
     interpolate(a, b, t, mode, k, x, c, z, bb);
-    const double d = path.deviation(x, c, z, bb, a.contact_r + t * (b.contact_r - a.contact_r));
+    const double d = path.deviation(x, c, z, bb, a.contact_r + t * (b.contact_r - a.contact_r)) -
+                     path.stand_off();
     if (std::abs(d) > std::abs(signed_worst)) signed_worst = d;
     return std::abs(d);
   };
@@ -131,7 +134,9 @@ void distribute(Path& path, const CutterPointOptions& o, Emit&& emit) {
   emit(current, 0.0, false);
   if (!(end > 0)) return;
   const double order = o.interpolation == Interpolation::kLinear ? 2.0 : 4.0;
-  const double target = 0.97 * o.tolerance;  // margin for the sampled maximum
+  // The band is [0, ε] above the design, its centre the blocks' stand-off: each segment
+  // may bend ε − stand_off either way from it (margin for the sampled maximum).
+  const double target = 0.97 * (o.tolerance - path.stand_off());
   const double min_step = 1e-12 * std::max(1.0, end);
   double step = std::min(path.cap(), end);
   while (current.tau < end) {

@@ -17,12 +17,13 @@ namespace {
 class ProfilePath {
  public:
   ProfilePath(const Surface& design, const ProfileOptions& o)
-      : design_(design), o_(o), nose_(design, o.tool) {}
+      : design_(design), o_(o), nose_(design, o.tool, stand_off_for(o.points, o.tool.nose_radius)) {}
 
   double tau_end() const { return o_.outer_radius - o_.inner_radius; }
   double cap() const { return o_.points.max_radial_step; }
   double angle_per_tau() const { return 0.0; }
   bool creased() const { return design_.has_creases(); }
+  double stand_off() const { return nose_.stand_off(); }
 
   double deviation(double x_axis, double, double z, double b, double hint_r) const {
     return nose_.deviation(x_axis, 0.0, z, b, hint_r);
@@ -96,8 +97,10 @@ PathSummary plan_profile(const Surface& design, const ProfileOptions& o, Contact
     p.theta = 0;
     p.r = s.contact_r;
     p.point = s.point;
-    p.chord_error = std::abs(error);
-    p.chord_below = error < 0;
+    // error is measured from the band's centre, the blocks' stand-off above the design.
+    p.stand_off = path.stand_off();
+    p.chord_error = p.stand_off + std::abs(error);
+    p.chord_below = error < -p.stand_off;
     p.chord_jump = jump;
     p.uncut_residual = s.uncut;
     detail::fill_section(design, p);

@@ -80,8 +80,9 @@ NoseOverlap nose_overlap(const Surface& design, double theta, double x_c, double
   return best;
 }
 
-NoseTouch nose_touch(const Surface& design, double theta, double R, double rho_p, double z_p,
-                     double slope_p, double tolerance) {
+NoseTouch nose_touch(const Surface& design, double theta, double nose_radius, double rho_p,
+                     double z_p, double slope_p, double stand_off, double tolerance) {
+  const double R = nose_radius + stand_off;  // the envelope's radius
   NoseTouch t;
   t.rho = rho_p;
   t.z = z_p;
@@ -183,7 +184,7 @@ NoseTouch nose_touch(const Surface& design, double theta, double R, double rho_p
   double g_crease, s_crease;
   section.at(crease, g_crease, s_crease);
   const double d = crease - centre_x;
-  t.uncut = centre_z - std::sqrt(std::max(R * R - d * d, 0.0)) - g_crease;
+  t.uncut = centre_z - std::sqrt(std::max(nose_radius * nose_radius - d * d, 0.0)) - g_crease;
   return t;
 }
 

@@ -23,7 +23,7 @@ std::string where(double theta, double r) {
 class SpiralPath {
  public:
   SpiralPath(const Surface& design, const BaseSurface& base, const SpiralOptions& o)
-      : design_(design), base_(base), o_(o), nose_(design, o.tool),
+      : design_(design), base_(base), o_(o), nose_(design, o.tool, stand_off_for(o.points, o.tool.nose_radius)),
         b_(o.pitch / (2 * std::numbers::pi)) {
     s_outer_ = base.arc_length(o.outer_radius);
     s_inner_ = base.arc_length(o.inner_radius);
@@ -34,6 +34,7 @@ class SpiralPath {
   double cap() const { return o_.points.max_angle_step; }
   double angle_per_tau() const { return 1.0; }
   bool creased() const { return design_.has_creases(); }
+  double stand_off() const { return nose_.stand_off(); }
   double pitch() const { return o_.pitch; }
 
   double deviation(double x_axis, double c, double z, double b, double hint_r) const {
@@ -86,7 +87,7 @@ class SpiralPath {
       // The base normal lies in the radial plane at θ, so the contact does too.
       contact_r = std::max(0.0, hit.point.x() * c + hit.point.y() * sn);
       z = hit.point.z();
-      if (nose_.nose_radius() == 0 && !nose_.b_follows()) {
+      if (nose_.nose_radius() + nose_.stand_off() == 0 && !nose_.b_follows()) {
         s.contact_r = contact_r;
         s.point = hit.point;
         s.x_axis = contact_r;
@@ -133,8 +134,10 @@ PathSummary plan_spiral(const Surface& design, const BaseSurface& base,
     p.theta = s.c;
     p.r = s.contact_r;
     p.point = s.point;
-    p.chord_error = std::abs(error);
-    p.chord_below = error < 0;
+    // error is measured from the band's centre, the blocks' stand-off above the design.
+    p.stand_off = path.stand_off();
+    p.chord_error = p.stand_off + std::abs(error);
+    p.chord_below = error < -p.stand_off;
     p.chord_jump = jump;
     p.uncut_residual = s.uncut;
     const double zr = detail::fill_section(design, p);

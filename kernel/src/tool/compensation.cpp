@@ -15,7 +15,8 @@ CutterLocation compensate(const ContactPoint& contact, const CompensationOptions
   const double u_r = n_r / length, u_z = n_z / length;  // n̂_p in (ρ, z)
   cl.psi = std::atan2(n_r, n_z);
   cl.b = o.b_mode == BMode::kFollow ? cl.psi - o.edge_angle : o.b_fixed;
-  const double radius = o.tool.nose_radius + o.tool.waviness_at(cl.psi - cl.b);
+  const double radius =
+      o.tool.nose_radius + o.tool.waviness_at(cl.psi - cl.b) + contact.stand_off;
   // In the radial plane: the contact's ρ is its signed distance along e_r.
   const double p_r = contact.point.x() * ct + contact.point.y() * st;
   const double c_r = p_r + radius * u_r, c_z = contact.point.z() + radius * u_z;

@@ -30,6 +30,10 @@ struct ContactPoint {
   // the depth of material it leaves above the crease (mm, vertical), 0 elsewhere. `point`
   // is then the nose's touch on this flank, not the spiral's own contact.
   double uncut_residual = 0;
+  // How far the programmed tool stands off the design along the section normal here (mm):
+  // half the chord tolerance under the chord rule (cutter_points.hpp, stand_off_for), so
+  // that the interpolated motion never dips below the design. Compensation adds it to R.
+  double stand_off = 0;
   // Pass spacing across adjacent turns along the surface (mm), the curvature of the
   // surface's radial section (1/mm, > 0 concave as seen from the tool), and the scallop
   // height they leave with the tool's nose radius (mm; 0 when no nose radius was given).

@@ -46,6 +46,17 @@ struct ToolMotion {
   double edge_angle = 0;  // rad
 };
 
+// The one-sided band. A chord between two blocks on a convex stretch passes below them, so
+// blocks placed on the design would let the tool cut into it between them. Under the
+// chord rule every block stands off the design by ε/2 along the section normal and each
+// segment may bend ε/2 either way from there: the motion stays within [0, ε] above the
+// design, never below it. Other rules place blocks on the design (stand-off 0) and report
+// what their segments do. Without a nose (R = 0: the contact path itself, as paper 001
+// distributes it) the band stays two-sided, ±ε about the design.
+inline double stand_off_for(const CutterPointOptions& o, double nose_radius) {
+  return o.rule == CutterPointRule::kChordError && nose_radius > 0 ? 0.5 * o.tolerance : 0.0;
+}
+
 // What a planner reports once the path is complete.
 struct PathSummary {
   long points = 0;

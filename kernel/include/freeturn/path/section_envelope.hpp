@@ -64,7 +64,12 @@ struct NoseTouch {
 // offsets, found as the point of the contact's own flank whose offset lies exactly R
 // from the other flank (Illinois regula falsi on R − distance, the distance by
 // Gauss–Newton on the foot point). No allocation.
+//
+// With a stand-off h > 0 the nose of radius R is placed as the envelope of a nose of
+// radius R + h (its centre p + (R + h)·n̂_p, held where that larger nose would overhang),
+// so every point of it stays at least h above the design; `uncut` is still measured
+// under the real nose.
 NoseTouch nose_touch(const Surface& design, double theta, double R, double rho_p, double z_p,
-                     double slope_p, double tolerance = 1e-10);
+                     double slope_p, double stand_off = 0, double tolerance = 1e-10);
 
 }  // namespace freeturn
