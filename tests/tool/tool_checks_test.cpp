@@ -8,6 +8,7 @@
 #include "freeturn/path/spiral.hpp"
 #include "freeturn/surface/lenslet_array.hpp"
 #include "freeturn/surface/sinusoidal.hpp"
+#include "freeturn/surface/xy_polynomial.hpp"
 #include "freeturn/tool/tool_compensator.hpp"
 
 using namespace freeturn;
@@ -113,17 +114,40 @@ TEST_SUITE("tool") {
     CHECK(g.worst > 1e-3);
   }
 
-  TEST_CASE("centre: a cone at the vertex pushes the nose centre across the axis") {
-    const SinusoidalRing ring(0.05, 2 * std::numbers::pi, 0);  // slope 0.314 at r = 0
+  TEST_CASE("centre: the nose centre may cross the axis; the global gouge check judges the other side") {
     CompensationOptions c;
     c.tool.nose_radius = 0.5;
     c.tool.included_angle = 2.5;
     ToolCheckOptions checks = warn_all(2);
     checks.policy[static_cast<int>(ToolCheck::kCentre)] = CheckPolicy::kError;
     checks.policy[static_cast<int>(ToolCheck::kLocalGouge)] = CheckPolicy::kOff;
-    checks.policy[static_cast<int>(ToolCheck::kGlobalGouge)] = CheckPolicy::kOff;
-    CHECK_THROWS_WITH_AS(spiral_report(ring, 2, c, checks), doctest::Contains("centre check"),
-                         InputError);
+    {
+      // A sphere tilted by a linear term (a slope of 0.1 through the axis, as coma or an
+      // off-axis segment has): smooth, so the offset of its section crosses the axis
+      // without the nose reaching below the design on the other side.
+      const XyPolynomial tilted(1 / 50.0, 0, 1.0, {0.1});
+      std::vector<CutterLocation> cls;
+      const ToolCheckReport r = spiral_report(tilted, 2, c, checks, &cls);
+      CHECK(r[ToolCheck::kCentre].count == 0);
+      CHECK(r[ToolCheck::kGlobalGouge].count == 0);
+      double least = 1e300;
+      for (const CutterLocation& cl : cls) least = std::min(least, cl.x);
+      CHECK(least < -0.04);  // X passes through zero by about R·0.1
+    }
+    {
+      // A cone at the vertex (slope s = Aω = 0.314): the plain offset of a contact at the
+      // axis puts the nose over the other flank, R(1 − cos 2ψ)·√(1 + s²) deep along the
+      // vertical for a straight cone, ψ = atan s (less for the sine, which bends down).
+      const SinusoidalRing ring(0.05, 2 * std::numbers::pi, 0);
+      const ToolCheckReport r = spiral_report(ring, 2, c, checks);
+      const CheckFinding& g = r[ToolCheck::kGlobalGouge];
+      REQUIRE(g.count > 0);
+      const double s = 0.05 * 2 * std::numbers::pi, psi = std::atan(s);
+      CHECK(g.r < 0.01);
+      CHECK(g.worst <= 0.5 * (1 - std::cos(2 * psi)) * std::sqrt(1 + s * s));
+      CHECK(g.worst > 0.6 * 0.5 * (1 - std::cos(2 * psi)) * std::sqrt(1 + s * s));
+      CHECK(r[ToolCheck::kCentre].count == 0);
+    }
   }
 
   TEST_CASE("B limits: a B that would leave its range is refused, never clamped") {

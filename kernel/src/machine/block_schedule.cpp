@@ -32,6 +32,21 @@ double largest_feasible(double cap, Ok&& ok) {
   return lo;
 }
 
+// The same, knowing a feasible speed `known` ≤ cap (0: none known): bisection between it
+// and the cap when the cap is not feasible.
+template <class Ok>
+double largest_feasible_from(double known, double cap, Ok&& ok) {
+  if (!(known > 0) || !(known <= cap) || !ok(known)) return largest_feasible(cap, ok);
+  if (ok(cap)) return cap;
+  double lo = known, hi = cap;
+  for (int it = 0; it < 48 && hi - lo > 1e-13 * hi; ++it) {
+    const double mid = 0.5 * (lo + hi);
+    if (ok(mid)) lo = mid;
+    else hi = mid;
+  }
+  return lo;
+}
+
 std::string place_of(const AxisRecord& r) {
   char buf[128];
   std::snprintf(buf, sizeof buf, "the block to X %.6f Z %.6f C %.5f", r.x, r.z, r.c);
@@ -120,6 +135,10 @@ void BlockScheduler::plan(bool /*final*/) {
     }
     if (!(s > 0)) throw InputError(place_of(b.record), "no block time lets the machine follow it");
     b.speed = s;
+    if (k + 1 < pending_.size()) {
+      pending_[k + 1].ref_prev = s;
+      pending_[k + 1].ref_self = next_s;
+    }
     next_d = b.d;
     next_s = s;
   }
@@ -127,10 +146,14 @@ void BlockScheduler::plan(bool /*final*/) {
   const double* prev_d = sent_d_;
   double prev_s = sent_speed_;
   for (Block& b : pending_) {
-    const double s =
-        largest_feasible(b.speed, [&](double v) { return pair_ok(prev_d, prev_s, b.d, v); });
+    const double known =
+        b.ref_prev > 0 && prev_s <= b.ref_prev ? b.ref_self * prev_s / b.ref_prev : 0.0;
+    const double s = largest_feasible_from(
+        known, b.speed, [&](double v) { return pair_ok(prev_d, prev_s, b.d, v); });
     if (!(s > 0)) throw InputError(place_of(b.record), "no block time lets the machine follow it");
     b.speed = s;
+    b.ref_prev = prev_s;
+    b.ref_self = s;
     prev_d = b.d;
     prev_s = s;
   }

@@ -62,6 +62,11 @@ class BlockScheduler final : public AxisSink {
     double nominal = 0;          // s
     double upper = 0;            // the highest speed (1/s) velocity, rate and nominal allow
     double speed = 0;            // 1/s, planned
+    // A pair of speeds (the block before, this one) known to satisfy the acceleration
+    // limit between them. Scaling both by λ ≤ 1 keeps it (|Δv|·max(s) scales by λ²), so
+    // when the block before ends up slower, this block's speed scaled alike is a feasible
+    // start for the forward pass's search.
+    double ref_prev = 0, ref_self = 0;
   };
   bool pair_ok(const double* d1, double s1, const double* d2, double s2) const;
   void plan(bool final);

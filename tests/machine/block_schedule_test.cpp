@@ -1,0 +1,159 @@
+// Block times the machine can follow: every figure is read back from the scheduled records
+// alone, the way a program is read (velocity Δq/t, acceleration |Δv|/min(t1, t2), from
+// and to rest), and compared with the machine's limits.
+#include "freeturn/machine/block_schedule.hpp"
+
+#include <doctest/doctest.h>
+
+#include <algorithm>
+#include <cmath>
+#include <random>
+#include <vector>
+
+using namespace freeturn;
+
+namespace {
+
+MachineDescription machine() {
+  MachineDescription m;
+  m.name = "test";
+  m.axes = {{Axis::kX, 1, 0, -100, 100, 6, 25, 500},
+            {Axis::kZ, 1, 0, -100, 100, 6, 25, 2000},
+            {Axis::kC, 1, 0, -1e300, 1e300, 5, 3000, 30000}};
+  m.c_wrapped = true;
+  m.max_block_rate = 2000;
+  return m;
+}
+
+struct Figures {
+  double velocity[3] = {0, 0, 0}, acceleration[3] = {0, 0, 0}, rate = 0, total = 0;
+};
+
+// Read back as from a program: the first record is the start, at rest.
+Figures read_back(const std::vector<AxisRecord>& r) {
+  Figures f;
+  double v_prev[3] = {0, 0, 0}, t_prev = 0;
+  for (std::size_t k = 1; k < r.size(); ++k) {
+    const double t = r[k].time;
+    REQUIRE(t > 0);
+    f.total += t;
+    f.rate = std::max(f.rate, 1 / t);
+    const double d[3] = {r[k].x - r[k - 1].x, r[k].z - r[k - 1].z,
+                         std::remainder(r[k].c - r[k - 1].c, 360.0)};
+    const double shorter = k == 1 ? t : std::min(t, t_prev);
+    for (int a = 0; a < 3; ++a) {
+      const double v = d[a] / t;
+      f.velocity[a] = std::max(f.velocity[a], std::abs(v));
+      f.acceleration[a] = std::max(f.acceleration[a], std::abs(v - v_prev[a]) / shorter);
+      v_prev[a] = v;
+    }
+    t_prev = t;
+  }
+  for (int a = 0; a < 3; ++a) f.acceleration[a] = std::max(f.acceleration[a], std::abs(v_prev[a]) / t_prev);
+  return f;
+}
+
+void check_within(const Figures& f, const MachineDescription& m) {
+  for (int a = 0; a < 3; ++a) {
+    CAPTURE(a);
+    CHECK(f.velocity[a] <= m.axes[a].max_velocity);
+    CHECK(f.acceleration[a] <= m.axes[a].max_acceleration);
+  }
+  CHECK(f.rate <= m.max_block_rate);
+}
+
+std::vector<AxisRecord> schedule(const MachineDescription& m, const std::vector<AxisRecord>& in,
+                                 std::size_t chunk, ScheduleOptions o, ScheduleReport* report) {
+  AxisCollector out;
+  BlockScheduler s(m, out, o);
+  for (std::size_t k = 0; k < in.size(); k += chunk)
+    s.write(std::span<const AxisRecord>(in.data() + k, std::min(chunk, in.size() - k)));
+  s.finish();
+  if (report) *report = s.report();
+  return out.records;
+}
+
+}  // namespace
+
+TEST_SUITE("machine") {
+  TEST_CASE("schedule: blocks the machine can follow keep their nominal time (to the µs above)") {
+    // A spiral at 30 rpm: 3.6° in 0.02 s, X creeping 1 µm per block.
+    std::vector<AxisRecord> in;
+    for (int k = 0; k <= 2000; ++k)
+      in.push_back({4 - 1e-3 * k, 1.0, std::fmod(3.6 * k, 360.0), 0, k ? 0.02 : 0.0});
+    ScheduleReport report;
+    const auto out = schedule(machine(), in, 4096, {}, &report);
+    REQUIRE(out.size() == in.size());
+    // The first block starts from rest: C reaches 180°/s in one block at 9000°/s² < 30000.
+    for (std::size_t k = 1; k < out.size(); ++k) CHECK(out[k].time == doctest::Approx(0.02).epsilon(1e-12));
+    CHECK(report.slowed_blocks == 0);
+    const Figures f = read_back(out);
+    check_within(f, machine());
+    CHECK(report.cycle_time == doctest::Approx(f.total).epsilon(1e-12));
+    CHECK(report.cycle_time == doctest::Approx(40.0).epsilon(1e-12));
+  }
+
+  TEST_CASE("schedule: a burst of fast X motion is slowed there only, within every limit") {
+    // 2000 blocks at 0.01 s; blocks 900-1100 move X by ±0.4 mm (a 40 mm/s request,
+    // alternating: the hardest case for acceleration).
+    std::vector<AxisRecord> in;
+    double x = 0;
+    for (int k = 0; k <= 2000; ++k) {
+      if (k >= 900 && k < 1100) x += (k % 2 ? 0.4 : -0.4);
+      else x += 1e-4;
+      in.push_back({x, 0.0, std::fmod(1.8 * k, 360.0), 0, k ? 0.01 : 0.0});
+    }
+    ScheduleReport report;
+    const auto out = schedule(machine(), in, 1000, {}, &report);
+    const Figures f = read_back(out);
+    check_within(f, machine());
+    CHECK(report.cycle_time == doctest::Approx(f.total).epsilon(1e-12));
+    // Reversing 0.4 mm each block: two blocks of equal time t would need 0.8/t ≤ 490·t, so
+    // a pair of blocks takes at least 2·√(0.8/490) (blocks of unequal times take longer).
+    for (int k = 901; k < 1098; k += 2)
+      CHECK(out[k].time + out[k + 1].time >= 2 * std::sqrt(0.8 / 490) * (1 - 1e-9));
+    // Far from the burst the nominal time holds.
+    for (int k = 1; k < 700; ++k) CHECK(out[k].time == doctest::Approx(0.01).epsilon(1e-12));
+    for (int k = 1400; k <= 2000; ++k) CHECK(out[k].time == doctest::Approx(0.01).epsilon(1e-12));
+    CHECK(report.slowed_blocks > 200);
+    CHECK(report.slowed_blocks < 600);
+  }
+
+  TEST_CASE("schedule: random motion stays within the limits, the same for any chunking and window") {
+    std::mt19937 rng(7);
+    std::uniform_real_distribution<double> step(-0.05, 0.05), angle(0.5, 4.0), time(0.001, 0.02);
+    std::vector<AxisRecord> in;
+    AxisRecord r{1, 0, 0, 0, 0};
+    for (int k = 0; k <= 30000; ++k) {
+      if (k) {
+        r.x += step(rng);
+        r.z += 0.3 * step(rng);
+        r.c = std::fmod(r.c + angle(rng), 360.0);
+        r.time = time(rng);
+      }
+      in.push_back(r);
+    }
+    ScheduleReport a, b;
+    const auto one = schedule(machine(), in, 4096, {}, &a);
+    const auto two = schedule(machine(), in, 777, {}, &b);
+    REQUIRE(one.size() == two.size());
+    bool same = true;
+    for (std::size_t k = 0; k < one.size(); ++k) same = same && one[k].time == two[k].time;
+    CHECK(same);
+    check_within(read_back(one), machine());
+    // A small window is as safe: the stops it plans for are nearer.
+    ScheduleOptions small;
+    small.window = 64;
+    ScheduleReport c;
+    const auto three = schedule(machine(), in, 4096, small, &c);
+    check_within(read_back(three), machine());
+    CHECK(c.cycle_time == doctest::Approx(a.cycle_time).epsilon(0.05));
+    // No block is faster than its own velocity and rate limits allow.
+    double lower = 0;
+    for (std::size_t k = 1; k < in.size(); ++k)
+      lower += std::max({in[k].time, std::abs(in[k].x - in[k - 1].x) / 25.0,
+                         std::abs(in[k].z - in[k - 1].z) / 25.0, 1 / 2000.0});
+    CHECK(a.cycle_time >= lower);
+    MESSAGE("random: scheduled ", a.cycle_time, " s against a lower bound of ", lower, " s");
+  }
+}
