@@ -20,6 +20,8 @@ packages=(
   cmake g++ make pkg-config
   libeigen3-dev libopenmesh-dev coinor-libipopt-dev libyaml-cpp-dev doctest-dev
   libbenchmark-dev
+  # The tests' independent NC reader (tests/jobs/nc_dynamics.py).
+  python3
 )
 # Extra packages a caller (CI) wants too, e.g. FREETURN_EXTRA_PACKAGES="linuxcnc-uspace".
 read -r -a extra <<< "${FREETURN_EXTRA_PACKAGES:-}"

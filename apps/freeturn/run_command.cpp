@@ -140,9 +140,9 @@ class PassStage final : public CutterSink, public AxisSink {
     line_ += '\n';
     csv_bytes_ += static_cast<long long>(line_.size());
     if (static_cast<double>(csv_bytes_) > limits_.max_file_mb * 1048576.0)
-      throw InputError("limits.max_file_mb", "the CL file would be larger than " +
-                                                 std::to_string(limits_.max_file_mb) +
-                                                 " MB; nothing was written");
+      throw InputError("limits.max_file_mb",
+                       "the CL file would be larger than limits.max_file_mb = " +
+                           std::to_string(limits_.max_file_mb) + " MB; nothing was written");
     csv_->write(line_);
   }
 

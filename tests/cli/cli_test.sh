@@ -63,15 +63,45 @@ echo "hello, world" > "$tmp/d.txt"
 contains "iso post listed" "$tmp/stdout" "libfreeturn_post_iso.so)  ok"
 contains "iso machine listed" "$tmp/stdout" "iso-lathe-xzcb           axes XZCB  C accumulating, B -60…60°"
 
-# run and check: a job whose spindle is too fast for the machine fails midway; run exits 2
-# and leaves no file behind, check says FAIL and exits 1; at a speed the machine follows,
-# check passes (0).
+# run and check at a spindle speed the machine cannot follow (100 000 rpm on the iso lathe):
+# - scheduled (the default), each block slows to what the limits allow: the program is
+#   written and passes, its cycle far above 60·turns/100000 s;
+# - timing: constant_rpm, the program runs at the highest speed every block allows;
+# - enforce_dynamics: false, it is written at 100 000 rpm, but run exits 1 and says UNSAFE
+#   with the limit, and check says UNSAFE (never PASS) and exits 1.
 sed 's/spindle_rpm: 20/spindle_rpm: 100000/' "$src/configs/jobs/oap_segment.yaml" > "$tmp/fast.yaml"
-"$freeturn" run "$tmp/fast.yaml" -o "$tmp/fast" > /dev/null 2> "$tmp/err"; expect "run too fast" 2 $?
-contains "run names the limit" "$tmp/err" "exceeds the machine's limit at 100000 rpm"
-[[ -z "$(ls -A "$tmp/fast" 2> /dev/null)" ]] || { echo "FAIL: a failed run left files:"; ls "$tmp/fast"; fail=1; }
-"$freeturn" check "$tmp/fast.yaml" > "$tmp/stdout"; expect "check too fast" 1 $?
-contains "check verdict" "$tmp/stdout" "FAIL: "
+"$freeturn" run "$tmp/fast.yaml" -o "$tmp/fast" > "$tmp/stdout" 2> "$tmp/err"; expect "run too fast, scheduled" 0 $?
+contains "scheduled run passes" "$tmp/fast/report.json" '"verdict": "PASS"'
+contains "scheduled run says so" "$tmp/fast/report.json" '"scheduled": true'
+"$freeturn" check "$tmp/fast.yaml" > "$tmp/stdout"; expect "check too fast, scheduled" 0 $?
+contains "check pass" "$tmp/stdout" "PASS: "
+sed 's/spindle_rpm: 100000/spindle_rpm: 100000\n  timing: constant_rpm/' "$tmp/fast.yaml" > "$tmp/constant.yaml"
+"$freeturn" run "$tmp/constant.yaml" -o "$tmp/constant" > /dev/null 2> "$tmp/err"; expect "constant rpm" 0 $?
+rpm=$(sed -n 's/.*"spindle_rpm": \([0-9.e+-]*\).*/\1/p' "$tmp/constant/report.json")
+max=$(sed -n 's/.*"max_rpm": \([0-9.e+-]*\).*/\1/p' "$tmp/constant/report.json" | tail -1)
+awk -v a="$rpm" -v b="$max" 'BEGIN { exit !(a > 0 && a < 100000 && a == b) }' ||
+  { echo "FAIL: constant rpm: programmed $rpm rpm, highest feasible $max"; fail=1; }
+sed 's/spindle_rpm: 100000/spindle_rpm: 100000\n  enforce_dynamics: false/' "$tmp/fast.yaml" > "$tmp/unsafe.yaml"
+"$freeturn" run "$tmp/unsafe.yaml" -o "$tmp/unsafe" > /dev/null 2> "$tmp/err"; expect "run over the limits" 1 $?
+contains "run says UNSAFE with the limit" "$tmp/err" "UNSAFE: finish: at 100000 rpm the program exceeds the machine's limits"
+contains "the unsafe report says so" "$tmp/unsafe/report.json" '"verdict": "UNSAFE"'
+"$freeturn" check "$tmp/unsafe.yaml" > "$tmp/stdout"; expect "check over the limits" 1 $?
+contains "check verdict" "$tmp/stdout" "UNSAFE: finish: at 100000 rpm"
+if grep -q "^PASS" "$tmp/stdout"; then echo "FAIL: check printed PASS for an unsafe program"; fail=1; fi
+# A downgraded check still marks the program UNSAFE: a sinusoidal ring whose troughs
+# (concave radius 1/(Aω²) = 0.507 mm) are tighter than a 0.6 mm nose, with the gouge
+# checks set to warning, is written, but run exits 1 and both commands name the worst place.
+sed -e 's/amplitude: 0.005 /amplitude: 0.05 /' -e 's/period: 2.5 /period: 1.0 /' \
+    -e 's/nose_radius: 0.5/nose_radius: 0.6\n  checks: {gouge: warning, global_gouge: warning}/' \
+    "$src/configs/jobs/sinusoidal_ring.yaml" > "$tmp/gouge.yaml"
+"$freeturn" run "$tmp/gouge.yaml" -o "$tmp/gouge" > /dev/null 2> "$tmp/err"; expect "run with a downgraded gouge" 1 $?
+contains "run says UNSAFE at the gouge" "$tmp/err" "UNSAFE: finish: gouge: "
+contains "run names where" "$tmp/err" "at θ = "
+[[ -f "$tmp/gouge/sinusoidal_ring.precitech-nanoform-250.nc" ]] || { echo "FAIL: a warning-only job wrote no program"; fail=1; }
+contains "the report says UNSAFE" "$tmp/gouge/report.json" '"verdict": "UNSAFE"'
+"$freeturn" check "$tmp/gouge.yaml" > "$tmp/stdout"; expect "check with a downgraded gouge" 1 $?
+contains "check says UNSAFE" "$tmp/stdout" "UNSAFE: finish: gouge: "
+if grep -q "^PASS" "$tmp/stdout"; then echo "FAIL: check printed PASS for a gouging program"; fail=1; fi
 "$freeturn" check "$src/configs/jobs/oap_segment.yaml" > "$tmp/stdout"; expect "check ok" 0 $?
 contains "check pass" "$tmp/stdout" "PASS: oap_segment on iso-lathe-xzc"
 "$freeturn" check "$tmp/bad.yaml" > /dev/null 2>&1; expect "check bad job" 2 $?

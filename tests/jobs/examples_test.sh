@@ -33,6 +33,22 @@ for golden_dir in "$src"/tests/golden/*/; do
     grep -qF "$field" "$tmp/$job/report.json" || { echo "FAIL: $job report.json lacks $field"; failed=$((failed + 1)); }
   done
   grep -q '<svg' "$tmp/$job/report.html" || { echo "FAIL: $job report.html has no plot"; failed=$((failed + 1)); }
+  # Every example runs with default checks and is safe to cut.
+  grep -qF '"verdict": "PASS"' "$tmp/$job/report.json" || { echo "FAIL: $job is not PASS"; failed=$((failed + 1)); }
+  # Inverse-time programs: the axes' velocities and accelerations read back from the NC
+  # alone stay within the machine YAML's limits, and the report's cycle is their sum.
+  machine=$(sed -n 's/^machine: *\([^ #]*\).*/\1/p' "$src/configs/jobs/$job.yaml")
+  yaml=$(ls "$src"/postprocessors/*/machines/"$machine".yaml)
+  plugin=$(sed -n 's/^plugin: *\([^ #]*\).*/\1/p' "$yaml")
+  main="$tmp/$job/$job.$machine.nc"
+  if [[ "$plugin" == moore || "$plugin" == iso ]] && grep -q G93 "$main" "$tmp/$job"/*.nc; then
+    cycle=$(sed -n 's/.*"cycle_time_s": \([0-9.e+-]*\).*/\1/p' "$tmp/$job/report.json" | tail -1)
+    if python3 "$src/tests/jobs/nc_dynamics.py" "$main" "$yaml" "$plugin" --cycle "$cycle" > "$tmp/dyn.txt"; then
+      passed=$((passed + 1))
+    else
+      echo "FAIL: $job's program exceeds its machine or its cycle time:"; cat "$tmp/dyn.txt"; failed=$((failed + 1))
+    fi
+  fi
 done
 echo "$passed passed, $failed failed"
 [[ $failed == 0 ]]
