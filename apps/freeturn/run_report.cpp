@@ -224,6 +224,7 @@ void PassFigures::add(const CutterLocation& cl, const AxisRecord& record,
   const double rate = record.time > 0 ? 1 / record.time : 0;
   // C velocity from the unwrapped step (a wrapped C jumps by 360° once a turn).
   const double dc = std::remainder(record.c - previous.c, 360.0);
+  if (cl.contact.chord_below) chord_below_max = std::max(chord_below_max, cl.contact.chord_error);
   if (cl.contact.uncut_residual > 0) {
     ++held_points;
     if (cl.contact.uncut_residual > uncut_max) {
@@ -305,6 +306,13 @@ void judge(RunReport& r) {
   for (const PassFigures& f : r.passes) {
     // Every check that found something was downgraded (an error would have stopped the run).
     for (const std::string& w : f.check_warnings) r.unsafe.push_back(f.name + ": " + w);
+    // The motion between blocks cuts into the design (blocks on the design, chords below
+    // them): more than 10 nm is a gouge.
+    if (f.chord_below_max > 1e-5)
+      r.unsafe.push_back(f.name + ": the motion between blocks cuts up to " +
+                         num(f.chord_below_max * 1e6) +
+                         " nm into the design (equal-angle or equal-arc points sit on the "
+                         "design and their chords dip below it; use points: chord)");
     if (!f.scheduled && r.spindle_rpm > 0 && f.dynamics.max_rpm < r.spindle_rpm * (1 - 1e-12))
       r.unsafe.push_back(f.name + ": at " + num(r.spindle_rpm) +
                          " rpm the program exceeds the machine's limits (enforce_dynamics: "

@@ -37,6 +37,9 @@ struct PassFigures {
   DynamicsReport dynamics;  // peaks of the program as written; max_rpm at one constant speed
   // Where the nose is held at a concave crease (path/section_envelope.hpp): points held,
   // the largest uncut residual (mm) and where, and its largest value per radial band.
+  // The deepest the interpolated motion dips below the design between blocks (mm): 0 under
+  // the chord rule's one-sided band; equal-angle and equal-arc points may have some.
+  double chord_below_max = 0;
   long held_points = 0;
   double uncut_max = 0, uncut_theta = 0, uncut_r = 0;
   double band_width = 0;           // mm

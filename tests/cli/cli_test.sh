@@ -88,6 +88,19 @@ contains "the unsafe report says so" "$tmp/unsafe/report.json" '"verdict": "UNSA
 "$freeturn" check "$tmp/unsafe.yaml" > "$tmp/stdout"; expect "check over the limits" 1 $?
 contains "check verdict" "$tmp/stdout" "UNSAFE: finish: at 100000 rpm"
 if grep -q "^PASS" "$tmp/stdout"; then echo "FAIL: check printed PASS for an unsafe program"; fail=1; fi
+# The CL data is written round-trip exact: each contact's θ is atan2(y, x) of its own point
+# to 1e-12 mm along the arc (nine fixed decimals were 2.5 nm off at r = 5 mm).
+python3 - "$tmp/fast/oap_segment.cl.csv" <<'PY' || { echo "FAIL: CL data not exact"; fail=1; }
+import csv, math, sys
+worst = 0.0
+for row in csv.DictReader(open(sys.argv[1])):
+    t, x, y = float(row["theta"]), float(row["x"]), float(row["y"])
+    r = math.hypot(x, y)
+    if r > 0:
+        worst = max(worst, abs(math.remainder(math.atan2(y, x) - t, 2 * math.pi)) * r)
+sys.exit(0 if worst < 1e-12 else 1)
+PY
+
 # A downgraded check still marks the program UNSAFE: a sinusoidal ring whose troughs
 # (concave radius 1/(Aω²) = 0.507 mm) are tighter than a 0.6 mm nose, with the gouge
 # checks set to warning, is written, but run exits 1 and both commands name the worst place.

@@ -271,4 +271,30 @@ TEST_SUITE("path") {
     }
     CHECK(test::densest_chord_error(eye, p) <= 2e-4);
   }
+
+  TEST_CASE("space spiral on a hexagonal compound eye: the first contact on the outer radius to 1e-9 mm") {
+    LensletArrayOptions lo = test::compound_eye_options(3.5);
+    lo.pattern = LensletArrayOptions::Pattern::kHexagonal;
+    const LensletArray eye(lo);
+    for (const bool centre_to_edge : {false, true}) {
+      CAPTURE(centre_to_edge);
+      SpiralOptions o;
+      o.outer_radius = 3;
+      o.pitch = 0.05;
+      o.points.tolerance = 2e-4;
+      o.centre_to_edge = centre_to_edge;
+      ContactCollector out;
+      plan_spiral(eye, fit_base_least_squares(sample_aperture(eye, 0, 3)), o, out);
+      const ContactPoint& outer = centre_to_edge ? out.points.back() : out.points.front();
+      const ContactPoint& inner = centre_to_edge ? out.points.front() : out.points.back();
+      CHECK(std::abs(std::hypot(outer.point.x(), outer.point.y()) - 3.0) < 1e-9);
+      CHECK(std::abs(outer.r - 3.0) < 1e-9);
+      CHECK(inner.r < 1e-9);
+      // Around the first turn the projection wanders with the design: past the outer radius
+      // by a small part of the pitch at most.
+      double beyond = 0;
+      for (const ContactPoint& p : out.points) beyond = std::max(beyond, p.r - 3.0);
+      CHECK(beyond < 0.1 * o.pitch);
+    }
+  }
 }

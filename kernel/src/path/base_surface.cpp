@@ -111,7 +111,16 @@ BasePoint BaseSurface::at_arc_length(double s) const {
   if (plane_) return {std::clamp(s, 0.0, rho_max_), 0.0, 0.0, 0.0};
   const int n = static_cast<int>(inverse_rho_.size()) - 1;
   if (s <= 0) return from_parameter(0.0);
-  if (s >= ds_ * n) return from_parameter(rho_max_);
+  if (s >= ds_ * n) {
+    // Past its edge the generating curve goes on along its tangent: the spiral's first
+    // contact may need a few µm more of base than the aperture (path/spiral.cpp).
+    BasePoint p = from_parameter(rho_max_);
+    const double beyond = s - ds_ * n, c = 1 / std::sqrt(1 + p.slope * p.slope);
+    p.rho += beyond * c;
+    p.h += beyond * c * p.slope;
+    p.curvature = 0;
+    return p;
+  }
   const int k = std::min(n - 1, static_cast<int>(s / ds_));
   const double t = s / ds_ - k, h = ds_;
   const std::size_t a = static_cast<std::size_t>(k), b = a + 1;

@@ -1,5 +1,6 @@
 #include "freeturn/path/spiral.hpp"
 
+#include <algorithm>
 #include <cmath>
 #include <numbers>
 #include <string>
@@ -28,6 +29,14 @@ class SpiralPath {
     s_outer_ = base.arc_length(o.outer_radius);
     s_inner_ = base.arc_length(o.inner_radius);
     end_ = (s_outer_ - s_inner_) / b_;
+    if (!base.is_plane()) {
+      // Projected along the base normal, the base's own radius is not the contact's: the
+      // ends' arc lengths are solved so that the first and last contacts lie on the
+      // aperture's radii (paper 000 spirals the base; the aperture bounds the design).
+      s_outer_ = end_arc_length(o.outer_radius, s_outer_, true);
+      if (o.inner_radius > 0) s_inner_ = end_arc_length(o.inner_radius, s_inner_, false);
+      end_ = (s_outer_ - s_inner_) / b_;
+    }
   }
 
   double tau_end() const { return end_; }
@@ -59,12 +68,43 @@ class SpiralPath {
   BasePoint base_point(double theta) const {
     // The ends are exact radii, not the inverse of an arc length.
     const double s = o_.centre_to_edge ? s_inner_ + b_ * theta : s_outer_ - b_ * theta;
-    if (theta <= 0) return base_.at_radius(o_.centre_to_edge ? o_.inner_radius : o_.outer_radius);
-    if (theta >= end_) return base_.at_radius(o_.centre_to_edge ? o_.outer_radius : o_.inner_radius);
-    return base_.at_arc_length(s);
+    if (base_.is_plane()) {
+      if (theta <= 0) return base_.at_radius(o_.centre_to_edge ? o_.inner_radius : o_.outer_radius);
+      if (theta >= end_) return base_.at_radius(o_.centre_to_edge ? o_.outer_radius : o_.inner_radius);
+    }
+    return base_.at_arc_length(std::clamp(s, s_inner_, s_outer_));
   }
 
  private:
+  // The base's arc length whose projection along the base normal lands on the contact
+  // radius `target` at the spiral's end there (θ = 0 at the start, the last θ at the end,
+  // which itself moves with the arc length): secant iterations from `guess`, within the
+  // base, or the base continued along its edge tangent by up to 5% of its length.
+  double end_arc_length(double target, double guess, bool outer) const {
+    const double total = 1.05 * base_.total_arc_length();
+    const auto miss = [&](double arc) {
+      const double theta =
+          outer == o_.centre_to_edge ? (outer ? arc - s_inner_ : s_outer_ - arc) / b_ : 0.0;
+      const BasePoint bp = base_.at_arc_length(arc);
+      const HeightFieldHit hit = intersect_ray(design_, BaseSurface::point(bp, theta),
+                                               BaseSurface::normal(bp, theta), 0.0);
+      if (hit.status != Status::kOk || !hit.point.allFinite())
+        throw InputError(where(theta, bp.rho),
+                         "the projection along the base normal misses the design surface");
+      return hit.point.x() * std::cos(theta) + hit.point.y() * std::sin(theta) - target;
+    };
+    double a = guess, fa = miss(a);
+    double b = std::clamp(guess - fa, 0.0, total), fb = b == a ? fa : miss(b);
+    for (int it = 0; it < 30 && std::abs(fb) > 1e-12 && fb != fa; ++it) {
+      const double next = std::clamp(b - fb * (b - a) / (fb - fa), 0.0, total);
+      a = b;
+      fa = fb;
+      b = next;
+      fb = miss(b);
+    }
+    return b;
+  }
+
   void evaluate(double theta, detail::AxisState& s) const {
     const BasePoint bp = base_point(theta);
     s.tau = theta;

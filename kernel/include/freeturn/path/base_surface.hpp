@@ -42,6 +42,7 @@ class BaseSurface {
   // H and its first two derivatives at ρ in [0, ρ_max] (clamped).
   BasePoint at_radius(double rho) const;
   // The point at arc length s from the axis along the generating curve.
+  // Past the edge (s > total_arc_length) the curve continues along its edge tangent.
   BasePoint at_arc_length(double s) const;
   // Arc length from the axis to ρ.
   double arc_length(double rho) const;
