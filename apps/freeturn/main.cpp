@@ -66,6 +66,10 @@ int main(int argc, char** argv) {
     }
     try {
       return c.run(rest);
+    } catch (const freeturn::CheckFailure& e) {
+      // A check set to error stopped the run before anything was written.
+      std::fprintf(stderr, "FAIL: %s\n", e.what());
+      return freeturn::cli::kExitCheckFailed;
     } catch (const freeturn::InputError& e) {
       std::fprintf(stderr, "%s\n", e.what());
       return freeturn::cli::kExitBadInput;

@@ -115,6 +115,14 @@ contains "the report says UNSAFE" "$tmp/gouge/report.json" '"verdict": "UNSAFE"'
 "$freeturn" check "$tmp/gouge.yaml" > "$tmp/stdout"; expect "check with a downgraded gouge" 1 $?
 contains "check says UNSAFE" "$tmp/stdout" "UNSAFE: finish: gouge: "
 if grep -q "^PASS" "$tmp/stdout"; then echo "FAIL: check printed PASS for a gouging program"; fail=1; fi
+# With the checks as errors (the default) the same job stops at the first gouge: exit 1
+# (a check failed, not bad input), the place named, nothing written.
+sed -e 's/amplitude: 0.005 /amplitude: 0.05 /' -e 's/period: 2.5 /period: 1.0 /' \
+    -e 's/nose_radius: 0.5/nose_radius: 0.6/' "$src/configs/jobs/sinusoidal_ring.yaml" > "$tmp/gouge_error.yaml"
+"$freeturn" run "$tmp/gouge_error.yaml" -o "$tmp/gouge_error" > /dev/null 2> "$tmp/err"; expect "run stopped by a gouge" 1 $?
+contains "run names the gouge and where" "$tmp/err" "gouge check: concave radius"
+contains "run names where" "$tmp/err" "r = "
+[[ -z "$(ls -A "$tmp/gouge_error" 2> /dev/null)" ]] || { echo "FAIL: a run stopped by a check left files:"; ls "$tmp/gouge_error"; fail=1; }
 "$freeturn" check "$src/configs/jobs/oap_segment.yaml" > "$tmp/stdout"; expect "check ok" 0 $?
 contains "check pass" "$tmp/stdout" "PASS: oap_segment on iso-lathe-xzc"
 "$freeturn" check "$tmp/bad.yaml" > /dev/null 2>&1; expect "check bad job" 2 $?

@@ -24,7 +24,10 @@ axes:
 faulty: {fault: $fault}
 YAML
   sed -e "s|^machine: .*|machine: $tmp/faulty-$fault.yaml|" "$src/configs/jobs/oap_segment.yaml" > "$tmp/job-$fault.yaml"
-  [[ $fault == bytes ]] && printf 'limits: {max_file_mb: 1}\n' >> "$tmp/job-$fault.yaml"
+  # The plugin's own bytes, not the CL file's (blocks reach the plugin only once the block
+  # schedule's window is planned, after the CL rows are written).
+  [[ $fault == bytes ]] && sed -i 's/^outputs: .*/outputs: {cl_csv: false}/' "$tmp/job-$fault.yaml" &&
+    printf 'limits: {max_file_mb: 1}\n' >> "$tmp/job-$fault.yaml"
   out="$tmp/out-$fault"
   mkdir "$out"
   echo "an earlier program" > "$out/oap_segment.faulty-$fault.nc"

@@ -56,12 +56,12 @@ void AxisMapper::check_block(const AxisRecord& r, const CutterLocation& cl) {
     if (!std::isfinite(v))
       throw InputError(where(cl), std::string(axis_letter(s.axis)) + " is not a finite number");
     if (v < s.min || v > s.max)
-      throw InputError(where(cl), std::string(axis_letter(s.axis)) + " = " + number(v) +
+      throw CheckFailure(where(cl), std::string(axis_letter(s.axis)) + " = " + number(v) +
                                       " is outside its travel [" + number(s.min) + ", " +
                                       number(s.max) + "] on machine '" + machine_.name + "'");
   }
   if (machine_.has(Axis::kB) && (r.b < machine_.b_min_deg || r.b > machine_.b_max_deg))
-    throw InputError(where(cl), "B = " + number(r.b) + "° is outside the tool-rotation limits [" +
+    throw CheckFailure(where(cl), "B = " + number(r.b) + "° is outside the tool-rotation limits [" +
                                     number(machine_.b_min_deg) + "°, " +
                                     number(machine_.b_max_deg) + "°]");
 }
@@ -136,7 +136,7 @@ void AxisMapper::write(std::span<const CutterLocation> chunk) {
         report_.limiting = limiting + " at " + where(cl);
       }
       if (motion_.enforce_dynamics && spiral && rpm_limit < motion_.spindle_rpm)
-        throw InputError(where(cl), limiting + " exceeds the machine's limit at " +
+        throw CheckFailure(where(cl), limiting + " exceeds the machine's limit at " +
                                         number(motion_.spindle_rpm) + " rpm; this block allows at most " +
                                         number(rpm_limit) + " rpm");
       report_.cycle_time += r.time;

@@ -85,7 +85,7 @@ void ToolChecker::found(ToolCheck check, double value, double limit, const Cutte
     here.x = cl.contact.point.x();
     here.y = cl.contact.point.y();
     const bool curvature = check == ToolCheck::kLocalGouge;
-    throw InputError(where_text(here),
+    throw CheckFailure(where_text(here),
                      std::string(tool_check_name(check)) + " check: " + value_text(check, value) +
                          (curvature ? " is below the nose radius " +
                                           std::to_string(compensation_.tool.nose_radius) + " mm"

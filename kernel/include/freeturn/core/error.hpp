@@ -34,4 +34,12 @@ class InputError : public std::runtime_error {
   std::string problem_;
 };
 
+// The program a job describes would break a check: a gouge, a contact or clearance angle,
+// a travel or B limit, a dynamic limit. The job is well formed; the cut is not safe. The
+// command line answers it with exit 1 (a check failed), not 2 (bad input).
+class CheckFailure : public InputError {
+ public:
+  using InputError::InputError;
+};
+
 }  // namespace freeturn
