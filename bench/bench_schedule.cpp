@@ -7,20 +7,12 @@
 #include <vector>
 
 #include "freeturn/machine/block_schedule.hpp"
+#include "machine/fixtures.hpp"
 
 namespace {
 
 using namespace freeturn;
 
-MachineDescription moore_250upl() {
-  MachineDescription m;
-  m.name = "moore-nanotech-250upl";
-  m.axes = {{Axis::kX, 1, 0, -75, 75, 6, 25, 500},
-            {Axis::kZ, 1, 0, -75, 75, 6, 25, 2000},
-            {Axis::kC, 1, 0, -1e300, 1e300, 5, 3000, 30000}};
-  m.max_block_rate = 2000;
-  return m;
-}
 
 class Discard final : public AxisSink {
  public:
@@ -41,7 +33,7 @@ std::vector<AxisRecord> spiral(long blocks, double rpm, double amplitude) {
 }
 
 void run(benchmark::State& state, double rpm, double amplitude) {
-  const MachineDescription m = moore_250upl();
+  const MachineDescription m = test::moore_250upl_xzc();
   const std::vector<AxisRecord> in = spiral(state.range(0), rpm, amplitude);
   double slowed = 0;
   for (auto _ : state) {

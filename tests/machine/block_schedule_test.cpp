@@ -2,6 +2,7 @@
 // alone, the way a program is read (velocity Δq/t, acceleration |Δv|/min(t1, t2), from
 // and to rest), and compared with the machine's limits.
 #include "freeturn/machine/block_schedule.hpp"
+#include "machine/fixtures.hpp"
 
 #include <doctest/doctest.h>
 
@@ -14,16 +15,7 @@ using namespace freeturn;
 
 namespace {
 
-MachineDescription machine() {
-  MachineDescription m;
-  m.name = "test";
-  m.axes = {{Axis::kX, 1, 0, -100, 100, 6, 25, 500},
-            {Axis::kZ, 1, 0, -100, 100, 6, 25, 2000},
-            {Axis::kC, 1, 0, -1e300, 1e300, 5, 3000, 30000}};
-  m.c_wrapped = true;
-  m.max_block_rate = 2000;
-  return m;
-}
+MachineDescription machine() { return test::moore_250upl_xzc(); }
 
 struct Figures {
   double velocity[3] = {0, 0, 0}, acceleration[3] = {0, 0, 0}, rate = 0, total = 0;

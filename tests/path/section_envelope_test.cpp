@@ -15,6 +15,7 @@
 #include "freeturn/path/spiral.hpp"
 #include "freeturn/surface/lenslet_array.hpp"
 #include "freeturn/surface/sinusoidal.hpp"
+#include "freeturn/surface/zernike.hpp"
 #include "freeturn/tool/compensation.hpp"
 
 namespace freeturn {
@@ -91,6 +92,30 @@ double brute_overlap(const Surface& s, double x, double z, double R) {
     else lo = m1;
   }
   return std::max(best, h(0.5 * (lo + hi)));
+}
+
+SpiralOptions spiral_options(double outer, double pitch, double tolerance, double nose_radius) {
+  SpiralOptions o;
+  o.outer_radius = outer;
+  o.pitch = pitch;
+  o.points.tolerance = tolerance;
+  o.tool.nose_radius = nose_radius;
+  return o;
+}
+
+// Plans a spiral with the nose of radius o.tool.nose_radius and compensates every contact.
+std::vector<CutterLocation> plan_with_nose(const Surface& s, const BaseSurface& base,
+                                           const SpiralOptions& o, std::vector<ContactPoint>* contacts = nullptr,
+                                           PathSummary* summary = nullptr) {
+  ContactCollector out;
+  const PathSummary planned = plan_spiral(s, base, o, out);
+  if (summary) *summary = planned;
+  CompensationOptions c;
+  c.tool.nose_radius = o.tool.nose_radius;
+  std::vector<CutterLocation> cls;
+  for (const ContactPoint& p : out.points) cls.push_back(compensate(p, c));
+  if (contacts) *contacts = std::move(out.points);
+  return cls;
 }
 
 NoseTouch touch_at(const Surface& s, double rho, double R) {
@@ -191,23 +216,16 @@ TEST_SUITE("path") {
   TEST_CASE("compound eye, space spiral with a nose: no point of the nose below the design") {
     const LensletArray eye(test::compound_eye_options(2.2));
     const double R = 0.2;
-    SpiralOptions o;
-    o.outer_radius = 1.6;
-    o.pitch = 0.05;
-    o.points.tolerance = 2e-4;
+    SpiralOptions o = spiral_options(1.6, 0.05, 2e-4, R);
     o.points.max_angle_step = 4 * std::numbers::pi / 180;
-    o.tool.nose_radius = R;
-    ContactCollector out;
-    const PathSummary summary =
-        plan_spiral(eye, fit_base_least_squares(sample_aperture(eye, 0, 1.6)), o, out);
+    std::vector<ContactPoint> contacts;
+    PathSummary summary;
+    const std::vector<CutterLocation> cls = plan_with_nose(
+        eye, fit_base_least_squares(sample_aperture(eye, 0, 1.6)), o, &contacts, &summary);
     CHECK(summary.jumps == 0);
-    CompensationOptions c;
-    c.tool.nose_radius = R;
-    std::vector<CutterLocation> cls;
     long held = 0;
     double worst_uncut = 0;
-    for (const ContactPoint& p : out.points) {
-      cls.push_back(compensate(p, c));
+    for (const ContactPoint& p : contacts) {
       held += p.uncut_residual > 0;
       worst_uncut = std::max(worst_uncut, p.uncut_residual);
     }
@@ -233,18 +251,10 @@ TEST_SUITE("path") {
     lo.extent = 1.5;
     const LensletArray mla(lo);
     const double R = 0.1;
-    SpiralOptions o;
-    o.outer_radius = 1.2;
-    o.pitch = 0.04;
-    o.points.tolerance = 2e-4;
-    o.tool.nose_radius = R;
-    ContactCollector out;
-    const PathSummary summary = plan_spiral(mla, BaseSurface::plane(1.5), o, out);
+    SpiralOptions o = spiral_options(1.2, 0.04, 2e-4, R);
+    PathSummary summary;
+    const std::vector<CutterLocation> cls = plan_with_nose(mla, BaseSurface::plane(1.5), o, nullptr, &summary);
     CHECK(summary.jumps == 0);
-    CompensationOptions c;
-    c.tool.nose_radius = R;
-    std::vector<CutterLocation> cls;
-    for (const ContactPoint& p : out.points) cls.push_back(compensate(p, c));
     const test::DenseNoseFigures f = test::dense_nose_figures(mla, cls, R, 12, 240);
     MESSAGE("points ", cls.size(), ", deepest ", f.gouge * 1e6, " nm, chord ", f.worst * 1e6, " nm");
     CHECK(f.gouge <= 10e-6);
@@ -256,17 +266,9 @@ TEST_SUITE("path") {
     const double A = 0.005, w = 2 * std::numbers::pi / 2.5;
     const SinusoidalRing ring(A, w, 0.0);
     const double R = 0.5;
-    SpiralOptions o;
-    o.outer_radius = 1.0;
-    o.pitch = 0.02;
-    o.points.tolerance = 1e-4;
-    o.tool.nose_radius = R;
-    ContactCollector out;
-    plan_spiral(ring, BaseSurface::plane(1.0), o, out);
-    CompensationOptions c;
-    c.tool.nose_radius = R;
-    std::vector<CutterLocation> cls;
-    for (const ContactPoint& p : out.points) cls.push_back(compensate(p, c));
+    SpiralOptions o = spiral_options(1.0, 0.02, 1e-4, R);
+    std::vector<ContactPoint> contacts;
+    const std::vector<CutterLocation> cls = plan_with_nose(ring, BaseSurface::plane(1.0), o, &contacts);
     // The last contact is held where the nose, standing off ε/2, touches both sides of the
     // cone: its centre on the axis (by symmetry) at the height where a circle of radius
     // R + ε/2 about it just clears the section, max over ρ of f(ρ) + √((R + ε/2)² − ρ²)
@@ -275,13 +277,36 @@ TEST_SUITE("path") {
     const double psi = std::atan(A * w), lifted = R + 0.5 * o.points.tolerance;
     const double held_z = brute_overlap(ring, 0.0, 0.0, lifted);  // = max f(ρ) + √(R'² − ρ²)
     CHECK(held_z == doctest::Approx(lifted / std::cos(psi)).epsilon(1e-7));
-    REQUIRE(out.points.back().uncut_residual > 0);
+    REQUIRE(contacts.back().uncut_residual > 0);
     CHECK(std::abs(cls.back().nose_centre.x()) < 1e-9);
     CHECK(std::abs(cls.back().nose_centre.z() - held_z) < 1e-9);
-    CHECK(std::abs(out.points.back().uncut_residual - (held_z - R)) < 1e-9);
+    CHECK(std::abs(contacts.back().uncut_residual - (held_z - R)) < 1e-9);
     const test::DenseNoseFigures f = test::dense_nose_figures(ring, cls, R, 20, 400);
     MESSAGE("points ", cls.size(), ", deepest ", f.gouge * 1e6, " nm, chord ", f.worst * 1e6, " nm");
     CHECK(f.gouge <= 10e-6);
+  }
+
+  TEST_CASE("coma through the centre: the nose centre crosses the axis, and the nose stays above") {
+    // Coma (Noll 8, 50 µm on a 2 mm radius) on a sphere: a slope of 2·√8·A/R_n = 0.14 at
+    // the axis, so the section through the axis is tilted there and the centre of a
+    // 0.3 mm nose sits up to R·0.14 = 42 µm across the axis on the last turn (half a pitch,
+    // 25 µm, from it at most where the slope points outward).
+    std::vector<double> coefficients(8, 0.0);
+    coefficients[7] = 0.05;
+    const Zernike coma(1 / 30.0, 0, {}, 2.0, coefficients);
+    const double R = 0.3;
+    SpiralOptions o = spiral_options(2.0, 0.05, 2e-4, R);
+    const std::vector<CutterLocation> cls = plan_with_nose(coma, BaseSurface::plane(2.0), o);
+    double least_x = 1e300;
+    for (const CutterLocation& cl : cls) {
+      const double t = cl.contact.theta;
+      least_x = std::min(least_x, cl.nose_centre.x() * std::cos(t) + cl.nose_centre.y() * std::sin(t));
+    }
+    CHECK(least_x < -0.01);  // the centre passes through the axis
+    const test::DenseNoseFigures f = test::dense_nose_figures(coma, cls, R, 12, 240);
+    MESSAGE("points ", cls.size(), ", deepest ", f.gouge * 1e6, " nm, chord ", f.worst * 1e6, " nm");
+    CHECK(f.gouge <= 10e-6);
+    CHECK(f.worst <= 2e-4 * 1.02);
   }
 }
 
