@@ -387,6 +387,7 @@ void write_report(const RunReport& r, const std::string& json_path, const std::s
          ",\n    \"predicted\": {\"pv_mm\": " + num(s.predicted.pv()) +
          ", \"max_mm\": " + num(s.predicted.max()) + ", \"min_mm\": " + num(s.predicted.min()) +
          ", \"max_scallop_mm\": " + num(s.predicted.max_scallop) +
+         ", \"max_uncut_mm\": " + num(s.predicted.max_uncut) +
          ", \"max_chord_above_mm\": " + num(s.predicted.max_chord_above) +
          ", \"max_chord_below_mm\": " + num(s.predicted.max_chord_below) +
          ", \"pv_ratio\": " + num(s.pv > 0 ? s.predicted.pv() / s.pv : 0) + "},\n    \"worst\": [";

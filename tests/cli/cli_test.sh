@@ -101,6 +101,26 @@ for row in csv.DictReader(open(sys.argv[1])):
 sys.exit(0 if worst < 1e-12 else 1)
 PY
 
+# The sinusoidal ring cut as a spiral through its cone point on the 250UPL: safe (PASS),
+# and the planner's prediction, the uncut residual at the cone included, bounds the
+# simulated form error.
+cat > "$tmp/ring_spiral.yaml" <<YAML
+name: ring_spiral
+aperture: {outer_radius: 1.0}
+surface: {type: sinusoidal_ring, amplitude: 0.005, period: 2.5}
+tool: {nose_radius: 0.5, included_angle_deg: 120}
+strategy:
+  mode: spiral
+  spiral: planar
+  pitch: 0.02
+  points: {chord: {tolerance: 0.0001, max_angle_deg: 4}}
+cutting: {spindle_rpm: 20}
+machine: moore-nanotech-250upl
+YAML
+"$freeturn" simulate "$tmp/ring_spiral.yaml" -o "$tmp/ring_spiral" > "$tmp/stdout"; expect "ring spiral simulate" 0 $?
+contains "ring spiral: prediction bounds the cut" "$tmp/stdout" "an upper bound"
+contains "ring spiral passes" "$tmp/ring_spiral/report.json" '"verdict": "PASS"'
+
 # A downgraded check still marks the program UNSAFE: a sinusoidal ring whose troughs
 # (concave radius 1/(Aω²) = 0.507 mm) are tighter than a 0.6 mm nose, with the gouge
 # checks set to warning, is written, but run exits 1 and both commands name the worst place.

@@ -177,6 +177,42 @@ TEST_SUITE("path") {
     CHECK(uncut < 1.01 * R * (1 / std::cos(delta / 2) - 1) + 1e-6);
   }
 
+  TEST_CASE("a lenslet rim: the nose held at the intersection of the lens's and the base's offsets") {
+    // The compound eye's central lenslet: its axis is the spindle axis, so in every radial
+    // section the lens is a circle of radius 5 about (0, h − 5) (convex) and the base one of
+    // radius 20 about (0, 20) (concave), meeting at the rim ρ = D/2 = 0.45. Their offsets
+    // by R are the concentric circles of radii 5 + R and 20 − R. At θ = 30° the section
+    // passes between the first ring's lenslets, so nothing else is under the nose.
+    const LensletArray eye(test::compound_eye_options(3.0));
+    const double R = 0.2, theta = std::numbers::pi / 6;
+    const double h = (20 - std::sqrt(400 - 0.45 * 0.45)) + (5 - std::sqrt(25 - 0.45 * 0.45));
+    const Eigen::Vector2d lens(0, h - 5), base(0, 20);
+    const double r1 = 5 + R, r2 = 20 - R;
+    const double kz = (r1 * r1 - r2 * r2 - lens.y() * lens.y() + base.y() * base.y()) /
+                      (2 * (base.y() - lens.y()));
+    const Eigen::Vector2d K(std::sqrt(r1 * r1 - (kz - lens.y()) * (kz - lens.y())), kz);
+    const Eigen::Vector2d on_lens = lens + 5 * (K - lens).normalized();
+    const Eigen::Vector2d on_base = base + 20 * (K - base).normalized();
+    CHECK(on_lens.x() < 0.45);
+    CHECK(on_base.x() > 0.45);
+    for (const double rho : {0.447, 0.4499, 0.4501, 0.452}) {
+      CAPTURE(rho);
+      double z, zx, zy;
+      eye.sag_gradient(rho * std::cos(theta), rho * std::sin(theta), z, zx, zy);
+      const NoseTouch t = nose_touch(eye, theta, R, rho, z, zx * std::cos(theta) + zy * std::sin(theta));
+      REQUIRE(t.held);
+      CHECK(std::abs(t.crease_rho - 0.45) < 1e-12);
+      CHECK(std::abs(t.centre_x - K.x()) < 1e-9);
+      CHECK(std::abs(t.centre_z - K.y()) < 1e-9);
+      const Eigen::Vector2d own = rho < 0.45 ? on_lens : on_base, other = rho < 0.45 ? on_base : on_lens;
+      CHECK(std::abs(t.rho - own.x()) < 1e-9);
+      CHECK(std::abs(t.far_rho - other.x()) < 1e-8);
+      const double d = 0.45 - K.x();
+      const double rim_z = h - 5 + std::sqrt(25 - 0.45 * 0.45);
+      CHECK(std::abs(t.uncut - (K.y() - std::sqrt(R * R - d * d) - rim_z)) < 1e-9);
+    }
+  }
+
   TEST_CASE("across a concave crease the nose centre moves continuously and forward, never below") {
     const TwoDomes s;
     const double R = 0.2, xk = TwoDomes::kCrease;

@@ -160,6 +160,7 @@ void CutSimulator::write(std::span<const CutterLocation> chunk) {
     const double r = cl.contact.r;
     if (r >= lo && r <= hi) {
       predicted_.max_scallop = std::max(predicted_.max_scallop, cl.contact.scallop);
+      predicted_.max_uncut = std::max(predicted_.max_uncut, cl.contact.uncut_residual);
       // Across a jump the nose swings over the crease: it cuts into one flank and leaves
       // the valley, so the jump's error counts on both sides.
       if (cl.contact.chord_below || cl.contact.chord_jump)

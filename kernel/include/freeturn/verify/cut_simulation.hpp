@@ -20,6 +20,7 @@
 // applies the segments in path order, so every cell sees the same cuts in the same order
 // whatever the thread count; the figures are reduced ring by ring in ring order.
 
+#include <algorithm>
 #include <cstdint>
 #include <span>
 #include <string>
@@ -65,11 +66,12 @@ struct ResidualPlace {
 };
 
 // What the planner predicted for the same region (its contact points within the figures'
-// radii): material above the design up to max chord above + max scallop, cuts below it up
-// to max chord below; PV the two together.
+// radii): material above the design up to max chord above + the larger of max scallop and
+// max uncut residual (where the nose is held at a crease it leaves that much, pass after
+// pass), cuts below it up to max chord below; PV the two together.
 struct ResidualPrediction {
-  double max_scallop = 0, max_chord_above = 0, max_chord_below = 0;  // mm
-  double max() const { return max_chord_above + max_scallop; }
+  double max_scallop = 0, max_chord_above = 0, max_chord_below = 0, max_uncut = 0;  // mm
+  double max() const { return max_chord_above + std::max(max_scallop, max_uncut); }
   double min() const { return -max_chord_below; }
   double pv() const { return max() - min(); }
 };
