@@ -13,10 +13,11 @@ namespace {
 
 using namespace freeturn;
 
-
 class Discard final : public AxisSink {
  public:
-  void write(std::span<const AxisRecord> chunk) override { count += static_cast<long>(chunk.size()); }
+  void write(std::span<const AxisRecord> chunk) override {
+    count += static_cast<long>(chunk.size());
+  }
   long count = 0;
 };
 
@@ -26,8 +27,9 @@ std::vector<AxisRecord> spiral(long blocks, double rpm, double amplitude) {
   const double dt = 60.0 / rpm / 1000;
   for (long k = 0; k < blocks; ++k) {
     const double theta = 2 * M_PI * static_cast<double>(k) / 1000;
-    r[static_cast<std::size_t>(k)] = {4 - 1e-6 * static_cast<double>(k), amplitude * std::sin(8 * theta),
-                                      std::fmod(0.36 * static_cast<double>(k), 360.0), 0, k ? dt : 0.0};
+    r[static_cast<std::size_t>(k)] = {
+        4 - 1e-6 * static_cast<double>(k), amplitude * std::sin(8 * theta),
+        std::fmod(0.36 * static_cast<double>(k), 360.0), 0, k ? dt : 0.0};
   }
   return r;
 }
@@ -40,18 +42,23 @@ void run(benchmark::State& state, double rpm, double amplitude) {
     Discard out;
     BlockScheduler s(m, out);
     for (std::size_t k = 0; k < in.size(); k += 4096)
-      s.write(std::span<const AxisRecord>(in.data() + k, std::min<std::size_t>(4096, in.size() - k)));
+      s.write(
+          std::span<const AxisRecord>(in.data() + k, std::min<std::size_t>(4096, in.size() - k)));
     s.finish();
     benchmark::DoNotOptimize(out.count);
     slowed = static_cast<double>(s.report().slowed_blocks) / static_cast<double>(in.size());
   }
-  state.counters["blocks/s"] =
-      benchmark::Counter(static_cast<double>(in.size()), benchmark::Counter::kIsIterationInvariantRate);
+  state.counters["blocks/s"] = benchmark::Counter(static_cast<double>(in.size()),
+                                                  benchmark::Counter::kIsIterationInvariantRate);
   state.counters["slowed"] = slowed;
 }
 
-void BM_ScheduleNominal(benchmark::State& state) { run(state, 10, 0.001); }
-void BM_ScheduleSlowed(benchmark::State& state) { run(state, 200, 0.5); }
+void BM_ScheduleNominal(benchmark::State& state) {
+  run(state, 10, 0.001);
+}
+void BM_ScheduleSlowed(benchmark::State& state) {
+  run(state, 200, 0.5);
+}
 
 }  // namespace
 

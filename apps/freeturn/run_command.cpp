@@ -437,8 +437,7 @@ RunReport execute_job(const Job& job, const PreparedJob& prepared, const std::st
     if (f.scheduled)
       std::printf(" (scheduled; at one constant speed, %.4g rpm, %.1f s)", f.dynamics.max_rpm,
                   f.constant_rpm_cycle_time);
-    if (f.held_points > 0)
-      std::printf(", uncut at creases max %.1f nm", f.uncut_max * 1e6);
+    if (f.held_points > 0) std::printf(", uncut at creases max %.1f nm", f.uncut_max * 1e6);
     std::printf("\n");
     for (const std::string& w : written) std::printf("  %s\n", w.c_str());
   }
@@ -506,7 +505,8 @@ int run_run(const std::vector<std::string>& args) {
   if (job_path.empty()) throw InputError("usage", kRunUsage);
   const Job job = load_job(job_path);
   const PreparedJob prepared = prepare_job(job);
-  const RunReport r = run_job(job, prepared, out_dir, quiet, true, simulate ? &simulation : nullptr);
+  const RunReport r =
+      run_job(job, prepared, out_dir, quiet, true, simulate ? &simulation : nullptr);
   // Written, because the job downgraded a check or turned the limits off; not safe to cut.
   return say_unsafe(r) ? kExitCheckFailed : kExitOk;
 }

@@ -265,7 +265,8 @@ void PassFigures::finish(const PathSummary& s, const DynamicsReport& d, const To
   scallop_rms = points > 0 ? std::sqrt(scallop_sq_ / static_cast<double>(points)) : 0.0;
   dynamics = d;
   cycle_time = d.cycle_time;
-  constant_rpm_cycle_time = d.max_rpm > 0 && std::isfinite(d.max_rpm) ? 60 * d.turns / d.max_rpm : 0.0;
+  constant_rpm_cycle_time =
+      d.max_rpm > 0 && std::isfinite(d.max_rpm) ? 60 * d.turns / d.max_rpm : 0.0;
   checks = c;
   const std::string summary = c.summary();
   std::size_t start = 0;
@@ -352,16 +353,17 @@ void write_report(const RunReport& r, const std::string& json_path, const std::s
          ", \"constant_rpm_cycle_time_s\": " + num(f.constant_rpm_cycle_time) +
          ", \"slowed_blocks\": " + std::to_string(f.slowed_blocks) +
          ",\n     \"uncut_residual\": {\"held_points\": " + std::to_string(f.held_points) +
-         ", \"max_mm\": " + num(f.uncut_max) + ", \"at_theta_deg\": " +
-         num(f.uncut_theta * 180 / std::numbers::pi) + ", \"at_r_mm\": " + num(f.uncut_r) +
-         ", \"band_width_mm\": " + num(f.band_width) + ", \"max_by_band_mm\": [" +
+         ", \"max_mm\": " + num(f.uncut_max) +
+         ", \"at_theta_deg\": " + num(f.uncut_theta * 180 / std::numbers::pi) +
+         ", \"at_r_mm\": " + num(f.uncut_r) + ", \"band_width_mm\": " + num(f.band_width) +
+         ", \"max_by_band_mm\": [" +
          [&] {
            std::string b;
            for (std::size_t k = 0; k < f.uncut_by_band.size(); ++k)
              b += (k ? ", " : "") + num(f.uncut_by_band[k]);
            return b;
-         }() + "]}" +
-         ",\n     \"peak_velocity\": {";
+         }() +
+         "]}" + ",\n     \"peak_velocity\": {";
     for (int a = 0; a < 4; ++a)
       j += std::string(a ? ", " : "") + "\"" + kAxes[a] + "\": " + num(f.dynamics.peak_velocity[a]);
     j += "}, \"peak_acceleration\": {";
@@ -406,7 +408,8 @@ void write_report(const RunReport& r, const std::string& json_path, const std::s
       html_escape(r.job) +
       "</title><style>body{font-family:sans-serif;max-width:1200px;margin:2em auto;color:#222}"
       "table{border-collapse:collapse}td,th{border:1px solid #ccc;padding:4px 8px;text-align:right}"
-      "th{text-align:left}figure{display:inline-block;margin:8px}.warn{color:#a15c00}.unsafe{color:#b00020}.pass{color:#1b7a1b}</style></"
+      "th{text-align:left}figure{display:inline-block;margin:8px}.warn{color:#a15c00}.unsafe{color:"
+      "#b00020}.pass{color:#1b7a1b}</style></"
       "head><body>\n";
   h += "<h1>" + html_escape(r.job) + " on " + html_escape(r.machine) + "</h1>\n";
   if (r.alpha_max_deg >= 0)

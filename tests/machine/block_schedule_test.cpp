@@ -15,7 +15,9 @@ using namespace freeturn;
 
 namespace {
 
-MachineDescription machine() { return test::moore_250upl_xzc(); }
+MachineDescription machine() {
+  return test::moore_250upl_xzc();
+}
 
 struct Figures {
   double velocity[3] = {0, 0, 0}, acceleration[3] = {0, 0, 0}, rate = 0, total = 0;
@@ -41,7 +43,8 @@ Figures read_back(const std::vector<AxisRecord>& r) {
     }
     t_prev = t;
   }
-  for (int a = 0; a < 3; ++a) f.acceleration[a] = std::max(f.acceleration[a], std::abs(v_prev[a]) / t_prev);
+  for (int a = 0; a < 3; ++a)
+    f.acceleration[a] = std::max(f.acceleration[a], std::abs(v_prev[a]) / t_prev);
   return f;
 }
 
@@ -77,7 +80,8 @@ TEST_SUITE("machine") {
     const auto out = schedule(machine(), in, 4096, {}, &report);
     REQUIRE(out.size() == in.size());
     // The first block starts from rest: C reaches 180°/s in one block at 9000°/s² < 30000.
-    for (std::size_t k = 1; k < out.size(); ++k) CHECK(out[k].time == doctest::Approx(0.02).epsilon(1e-12));
+    for (std::size_t k = 1; k < out.size(); ++k)
+      CHECK(out[k].time == doctest::Approx(0.02).epsilon(1e-12));
     CHECK(report.slowed_blocks == 0);
     const Figures f = read_back(out);
     check_within(f, machine());
@@ -91,8 +95,10 @@ TEST_SUITE("machine") {
     std::vector<AxisRecord> in;
     double x = 0;
     for (int k = 0; k <= 2000; ++k) {
-      if (k >= 900 && k < 1100) x += (k % 2 ? 0.4 : -0.4);
-      else x += 1e-4;
+      if (k >= 900 && k < 1100)
+        x += (k % 2 ? 0.4 : -0.4);
+      else
+        x += 1e-4;
       in.push_back({x, 0.0, std::fmod(1.8 * k, 360.0), 0, k ? 0.01 : 0.0});
     }
     ScheduleReport report;
@@ -111,7 +117,8 @@ TEST_SUITE("machine") {
     CHECK(report.slowed_blocks < 600);
   }
 
-  TEST_CASE("schedule: random motion stays within the limits, the same for any chunking and window") {
+  TEST_CASE(
+      "schedule: random motion stays within the limits, the same for any chunking and window") {
     std::mt19937 rng(7);
     std::uniform_real_distribution<double> step(-0.05, 0.05), angle(0.5, 4.0), time(0.001, 0.02);
     std::vector<AxisRecord> in;

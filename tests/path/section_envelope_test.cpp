@@ -88,8 +88,10 @@ double brute_overlap(const Surface& s, double x, double z, double R) {
   double lo = at - 1.998 * R / n, hi = at + 1.998 * R / n;
   for (int it = 0; it < 80; ++it) {
     const double m1 = lo + (hi - lo) / 3, m2 = hi - (hi - lo) / 3;
-    if (h(m1) > h(m2)) hi = m2;
-    else lo = m1;
+    if (h(m1) > h(m2))
+      hi = m2;
+    else
+      lo = m1;
   }
   return std::max(best, h(0.5 * (lo + hi)));
 }
@@ -105,7 +107,8 @@ SpiralOptions spiral_options(double outer, double pitch, double tolerance, doubl
 
 // Plans a spiral with the nose of radius o.tool.nose_radius and compensates every contact.
 std::vector<CutterLocation> plan_with_nose(const Surface& s, const BaseSurface& base,
-                                           const SpiralOptions& o, std::vector<ContactPoint>* contacts = nullptr,
+                                           const SpiralOptions& o,
+                                           std::vector<ContactPoint>* contacts = nullptr,
                                            PathSummary* summary = nullptr) {
   ContactCollector out;
   const PathSummary planned = plan_spiral(s, base, o, out);
@@ -140,7 +143,8 @@ TEST_SUITE("path") {
     const double d = xk - K.x();
     const double uncut = K.y() - std::sqrt(R * R - d * d) - s.sag(xk, 0);
 
-    for (const double rho : {xk - 0.012, xk - 0.004, xk - 1e-7, xk + 1e-7, xk + 0.003, xk + 0.009}) {
+    for (const double rho :
+         {xk - 0.012, xk - 0.004, xk - 1e-7, xk + 1e-7, xk + 0.003, xk + 0.009}) {
       CAPTURE(rho);
       const NoseTouch t = touch_at(s, rho, R);
       REQUIRE(t.held);
@@ -171,13 +175,17 @@ TEST_SUITE("path") {
     }
     // In the limit of flat flanks the residual is R(1/cos(δ/2) − 1); with these domes'
     // curvature it is a little less.
-    const double delta = std::atan(TwoDomes::kEA / std::sqrt(TwoDomes::kRA * TwoDomes::kRA - TwoDomes::kEA * TwoDomes::kEA)) +
-                         std::atan(TwoDomes::kEB / std::sqrt(TwoDomes::kRB * TwoDomes::kRB - TwoDomes::kEB * TwoDomes::kEB));
+    const double delta =
+        std::atan(TwoDomes::kEA /
+                  std::sqrt(TwoDomes::kRA * TwoDomes::kRA - TwoDomes::kEA * TwoDomes::kEA)) +
+        std::atan(TwoDomes::kEB /
+                  std::sqrt(TwoDomes::kRB * TwoDomes::kRB - TwoDomes::kEB * TwoDomes::kEB));
     CHECK(uncut > 0.5 * R * (1 / std::cos(delta / 2) - 1));
     CHECK(uncut < 1.01 * R * (1 / std::cos(delta / 2) - 1) + 1e-6);
   }
 
-  TEST_CASE("a lenslet rim: the nose held at the intersection of the lens's and the base's offsets") {
+  TEST_CASE(
+      "a lenslet rim: the nose held at the intersection of the lens's and the base's offsets") {
     // The compound eye's central lenslet: its axis is the spindle axis, so in every radial
     // section the lens is a circle of radius 5 about (0, h − 5) (convex) and the base one of
     // radius 20 about (0, 20) (concave), meeting at the rim ρ = D/2 = 0.45. Their offsets
@@ -199,12 +207,14 @@ TEST_SUITE("path") {
       CAPTURE(rho);
       double z, zx, zy;
       eye.sag_gradient(rho * std::cos(theta), rho * std::sin(theta), z, zx, zy);
-      const NoseTouch t = nose_touch(eye, theta, R, rho, z, zx * std::cos(theta) + zy * std::sin(theta));
+      const NoseTouch t =
+          nose_touch(eye, theta, R, rho, z, zx * std::cos(theta) + zy * std::sin(theta));
       REQUIRE(t.held);
       CHECK(std::abs(t.crease_rho - 0.45) < 1e-12);
       CHECK(std::abs(t.centre_x - K.x()) < 1e-9);
       CHECK(std::abs(t.centre_z - K.y()) < 1e-9);
-      const Eigen::Vector2d own = rho < 0.45 ? on_lens : on_base, other = rho < 0.45 ? on_base : on_lens;
+      const Eigen::Vector2d own = rho < 0.45 ? on_lens : on_base,
+                            other = rho < 0.45 ? on_base : on_lens;
       CHECK(std::abs(t.rho - own.x()) < 1e-9);
       CHECK(std::abs(t.far_rho - other.x()) < 1e-8);
       const double d = 0.45 - K.x();
@@ -289,10 +299,12 @@ TEST_SUITE("path") {
     const double R = 0.1;
     SpiralOptions o = spiral_options(1.2, 0.04, 2e-4, R);
     PathSummary summary;
-    const std::vector<CutterLocation> cls = plan_with_nose(mla, BaseSurface::plane(1.5), o, nullptr, &summary);
+    const std::vector<CutterLocation> cls =
+        plan_with_nose(mla, BaseSurface::plane(1.5), o, nullptr, &summary);
     CHECK(summary.jumps == 0);
     const test::DenseNoseFigures f = test::dense_nose_figures(mla, cls, R, 12, 240);
-    MESSAGE("points ", cls.size(), ", deepest ", f.gouge * 1e6, " nm, chord ", f.worst * 1e6, " nm");
+    MESSAGE("points ", cls.size(), ", deepest ", f.gouge * 1e6, " nm, chord ", f.worst * 1e6,
+            " nm");
     CHECK(f.gouge <= 10e-6);
     CHECK(f.worst <= 2e-4 * 1.02);
   }
@@ -304,7 +316,8 @@ TEST_SUITE("path") {
     const double R = 0.5;
     SpiralOptions o = spiral_options(1.0, 0.02, 1e-4, R);
     std::vector<ContactPoint> contacts;
-    const std::vector<CutterLocation> cls = plan_with_nose(ring, BaseSurface::plane(1.0), o, &contacts);
+    const std::vector<CutterLocation> cls =
+        plan_with_nose(ring, BaseSurface::plane(1.0), o, &contacts);
     // The last contact is held where the nose, standing off ε/2, touches both sides of the
     // cone: its centre on the axis (by symmetry) at the height where a circle of radius
     // R + ε/2 about it just clears the section, max over ρ of f(ρ) + √((R + ε/2)² − ρ²)
@@ -318,7 +331,8 @@ TEST_SUITE("path") {
     CHECK(std::abs(cls.back().nose_centre.z() - held_z) < 1e-9);
     CHECK(std::abs(contacts.back().uncut_residual - (held_z - R)) < 1e-9);
     const test::DenseNoseFigures f = test::dense_nose_figures(ring, cls, R, 20, 400);
-    MESSAGE("points ", cls.size(), ", deepest ", f.gouge * 1e6, " nm, chord ", f.worst * 1e6, " nm");
+    MESSAGE("points ", cls.size(), ", deepest ", f.gouge * 1e6, " nm, chord ", f.worst * 1e6,
+            " nm");
     CHECK(f.gouge <= 10e-6);
   }
 
@@ -336,11 +350,13 @@ TEST_SUITE("path") {
     double least_x = 1e300;
     for (const CutterLocation& cl : cls) {
       const double t = cl.contact.theta;
-      least_x = std::min(least_x, cl.nose_centre.x() * std::cos(t) + cl.nose_centre.y() * std::sin(t));
+      least_x =
+          std::min(least_x, cl.nose_centre.x() * std::cos(t) + cl.nose_centre.y() * std::sin(t));
     }
     CHECK(least_x < -0.01);  // the centre passes through the axis
     const test::DenseNoseFigures f = test::dense_nose_figures(coma, cls, R, 12, 240);
-    MESSAGE("points ", cls.size(), ", deepest ", f.gouge * 1e6, " nm, chord ", f.worst * 1e6, " nm");
+    MESSAGE("points ", cls.size(), ", deepest ", f.gouge * 1e6, " nm, chord ", f.worst * 1e6,
+            " nm");
     CHECK(f.gouge <= 10e-6);
     CHECK(f.worst <= 2e-4 * 1.02);
   }

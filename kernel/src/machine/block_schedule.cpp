@@ -26,8 +26,10 @@ double largest_feasible(double cap, Ok&& ok) {
   }
   for (int it = 0; it < 48 && hi - lo > 1e-13 * hi; ++it) {
     const double mid = 0.5 * (lo + hi);
-    if (ok(mid)) lo = mid;
-    else hi = mid;
+    if (ok(mid))
+      lo = mid;
+    else
+      hi = mid;
   }
   return lo;
 }
@@ -41,8 +43,10 @@ double largest_feasible_from(double known, double cap, Ok&& ok) {
   double lo = known, hi = cap;
   for (int it = 0; it < 48 && hi - lo > 1e-13 * hi; ++it) {
     const double mid = 0.5 * (lo + hi);
-    if (ok(mid)) lo = mid;
-    else hi = mid;
+    if (ok(mid))
+      lo = mid;
+    else
+      hi = mid;
   }
   return lo;
 }
@@ -133,7 +137,8 @@ void BlockScheduler::plan(bool /*final*/) {
       pending_[k + 1].speed = next_s;
       s = largest_feasible(b.upper, [&](double v) { return pair_ok(b.d, v, next_d, next_s); });
     }
-    if (!(s > 0)) throw CheckFailure(place_of(b.record), "no block time lets the machine follow it");
+    if (!(s > 0))
+      throw CheckFailure(place_of(b.record), "no block time lets the machine follow it");
     b.speed = s;
     if (k + 1 < pending_.size()) {
       pending_[k + 1].ref_prev = s;
@@ -150,7 +155,8 @@ void BlockScheduler::plan(bool /*final*/) {
         b.ref_prev > 0 && prev_s <= b.ref_prev ? b.ref_self * prev_s / b.ref_prev : 0.0;
     const double s = largest_feasible_from(
         known, b.speed, [&](double v) { return pair_ok(prev_d, prev_s, b.d, v); });
-    if (!(s > 0)) throw CheckFailure(place_of(b.record), "no block time lets the machine follow it");
+    if (!(s > 0))
+      throw CheckFailure(place_of(b.record), "no block time lets the machine follow it");
     b.speed = s;
     b.ref_prev = prev_s;
     b.ref_self = s;

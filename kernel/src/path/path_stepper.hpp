@@ -59,10 +59,11 @@ inline void interpolate(const AxisState& a, const AxisState& b, double t, Interp
 
 // The largest distance of the interpolated motion from the band's centre (the design
 // raised by the path's stand-off) over one segment, signed (> 0: above it; < 0: below,
-// and below the design itself where it passes the stand-off): samples (8 intervals; 32 on a surface with creases, where the peak is a sharp tent
-// at the crease), then a parabola through the largest and its neighbours. Where the
-// parabola mispredicts the value at its own vertex, the deviation is not smooth there and
-// a golden-section search of the bracket finds the peak instead.
+// and below the design itself where it passes the stand-off): samples (8 intervals; 32
+// on a surface with creases, where the peak is a sharp tent at the crease), then a
+// parabola through the largest and its neighbours. Where the parabola mispredicts the
+// value at its own vertex, the deviation is not smooth there and a golden-section search
+// of the bracket finds the peak instead.
 template <class Path>
 double segment_error(const Path& path, const AxisState& a, const AxisState& b,
                      Interpolation mode) {

@@ -94,13 +94,18 @@ NoseTouch nose_touch(const Surface& design, double theta, double nose_radius, do
   const Section section(design, theta);
   const double reach = 0.999 * R;
   SectionCreases creases;
-  creases.find(design, theta, std::min(rho_p, t.centre_x - reach),
-               std::max(rho_p, t.centre_x + reach));
+  // Every crease within 2R: those under the nose may be overhung, and the ones beyond bound
+  // the flanks the held nose is solved on (a flank ends at the next crease).
+  creases.find(design, theta, std::min(rho_p, t.centre_x) - 2 * R,
+               std::max(rho_p, t.centre_x) + 2 * R);
   // The crease whose other flank the nose overhangs most.
   int held_at = -1, far = 0;
   NoseOverlap worst;
   worst.height = tolerance;
   for (int k = 0; k < creases.count; ++k) {
+    if (!(std::abs(creases.rho[k] - t.centre_x) < reach) &&
+        !(std::abs(creases.rho[k] - rho_p) <= kOffCrease))
+      continue;
     const int side = creases.rho[k] > rho_p + kOffCrease ? 1 : -1;
     double a, b;
     piece_bounds(creases, k, side, t.centre_x - reach, t.centre_x + reach, a, b);

@@ -36,7 +36,7 @@ struct ScheduleReport {
   double cycle_time = 0;          // s: the sum of the block times
   double nominal_cycle_time = 0;  // s: at the requested speed, every block at its nominal time
   long blocks = 0;
-  long slowed_blocks = 0;         // blocks longer than nominal
+  long slowed_blocks = 0;                      // blocks longer than nominal
   double peak_velocity[4] = {0, 0, 0, 0};      // per Axis, machine units per second
   double peak_acceleration[4] = {0, 0, 0, 0};  // per Axis, per second², as defined above
   double peak_block_rate = 0;                  // blocks per second

@@ -50,9 +50,9 @@ NoseOverlap nose_overlap(const Surface& design, double theta, double x_c, double
 
 // Where the nose touches the section for the contact at signed radius rho_p.
 struct NoseTouch {
-  double rho = 0, z = 0, slope = 0;  // the touch on the contact's own flank, and dg/dρ there
+  double rho = 0, z = 0, slope = 0;   // the touch on the contact's own flank, and dg/dρ there
   double centre_x = 0, centre_z = 0;  // the nose centre in the radial plane
-  bool held = false;     // held at a crease: touching both flanks, the contact not reached
+  bool held = false;      // held at a crease: touching both flanks, the contact not reached
   double crease_rho = 0;  // the crease it is held at (held only)
   double far_rho = 0;     // the touch on the other flank (held only)
   double uncut = 0;       // mm: material left above the crease, vertical (held only)
