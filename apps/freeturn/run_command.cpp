@@ -166,6 +166,13 @@ class PassStage final : public CutterSink, public AxisSink {
   long long csv_bytes_ = 0;
 };
 
+// Where the blocks go when nothing is written (check, and the constant-rpm probe): nowhere,
+// so that memory stays bounded whatever the path's length.
+class AxisDiscard final : public AxisSink {
+ public:
+  void write(std::span<const AxisRecord>) override {}
+};
+
 // What the machine's axes carry, for the planner's chord error (path/cutter_points.hpp).
 ToolMotion motion_of(const CompensationOptions& c) {
   ToolMotion m;
@@ -331,7 +338,7 @@ RunReport execute_job(const Job& job, const PreparedJob& prepared, const std::st
     PassFigures& figures =
         report.add_pass(finishing ? "finish" : "rough-" + std::to_string(pass + 1), stock[pass]);
     figures.band_width = (job.aperture.outer_radius - job.aperture.inner_radius) / 64;
-    AxisCollector discard;
+    AxisDiscard discard;
     AxisSink* post = &discard;
     std::unique_ptr<BlockScheduler> scheduler;
     if (write && plan.outputs.nc) {
