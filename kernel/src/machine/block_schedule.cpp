@@ -12,6 +12,19 @@ namespace {
 
 constexpr double kInfinity = std::numeric_limits<double>::infinity();
 
+// Bisection between a feasible speed lo and an infeasible hi > lo, up to the boundary.
+template <class Ok>
+double feasible_boundary(double lo, double hi, Ok&& ok) {
+  for (int it = 0; it < 48 && hi - lo > 1e-13 * hi; ++it) {
+    const double mid = 0.5 * (lo + hi);
+    if (ok(mid))
+      lo = mid;
+    else
+      hi = mid;
+  }
+  return lo;
+}
+
 // The largest speed s ≤ cap for which ok(s) holds: cap itself, or a descent by factors of
 // 0.8 to a feasible speed, then bisection up to the boundary. 0 when none is found.
 template <class Ok>
@@ -24,14 +37,7 @@ double largest_feasible(double cap, Ok&& ok) {
     lo *= 0.8;
     if (ok(lo)) break;
   }
-  for (int it = 0; it < 48 && hi - lo > 1e-13 * hi; ++it) {
-    const double mid = 0.5 * (lo + hi);
-    if (ok(mid))
-      lo = mid;
-    else
-      hi = mid;
-  }
-  return lo;
+  return feasible_boundary(lo, hi, ok);
 }
 
 // The same, knowing a feasible speed `known` ≤ cap (0: none known): bisection between it
@@ -40,15 +46,7 @@ template <class Ok>
 double largest_feasible_from(double known, double cap, Ok&& ok) {
   if (!(known > 0) || !(known <= cap) || !ok(known)) return largest_feasible(cap, ok);
   if (ok(cap)) return cap;
-  double lo = known, hi = cap;
-  for (int it = 0; it < 48 && hi - lo > 1e-13 * hi; ++it) {
-    const double mid = 0.5 * (lo + hi);
-    if (ok(mid))
-      lo = mid;
-    else
-      hi = mid;
-  }
-  return lo;
+  return feasible_boundary(known, cap, ok);
 }
 
 std::string place_of(const AxisRecord& r) {
