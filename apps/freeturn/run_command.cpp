@@ -469,9 +469,9 @@ RunReport run_job(const Job& job, const PreparedJob& prepared, const std::string
   return execute_job(job, prepared, out_dir, quiet, write, simulation);
 }
 
-// Prints the verdict's reasons on stderr; true when the program is unsafe.
-bool say_unsafe(const RunReport& r) {
-  for (const std::string& u : r.unsafe) std::fprintf(stderr, "UNSAFE: %s\n", u.c_str());
+// Prints the verdict's reasons, one "UNSAFE: …" line each; true when the program is unsafe.
+bool say_unsafe(const RunReport& r, std::FILE* out = stderr) {
+  for (const std::string& u : r.unsafe) std::fprintf(out, "UNSAFE: %s\n", u.c_str());
   return !r.unsafe.empty();
 }
 
@@ -579,10 +579,7 @@ int run_check(const std::vector<std::string>& args) {
   try {
     const RunReport r = run_job(job, prepared, "", true, false);
     const PassFigures& f = r.passes.back();
-    if (!r.unsafe.empty()) {
-      for (const std::string& u : r.unsafe) std::printf("UNSAFE: %s\n", u.c_str());
-      return kExitCheckFailed;
-    }
+    if (say_unsafe(r, stdout)) return kExitCheckFailed;
     std::printf(
         "PASS: %s on %s: %ld points, chord error max %.3f nm, highest rpm %.4g%s\n",
         job.name.c_str(), r.machine.c_str(), f.points, f.chord_max * 1e6, f.dynamics.max_rpm,

@@ -15,7 +15,6 @@
 
 #include <algorithm>
 #include <cmath>
-#include <limits>
 
 #include "freeturn/path/cutter_points.hpp"
 #include "freeturn/path/section_envelope.hpp"

@@ -22,6 +22,7 @@
 #include <string>
 
 #include "freeturn/core/error.hpp"
+#include "freeturn/path/contact_point.hpp"
 #include "freeturn/path/cutter_points.hpp"
 
 namespace freeturn::detail {
@@ -114,6 +115,17 @@ double segment_error(const Path& path, const AxisState& a, const AxisState& b,
     }
   }
   return signed_worst;
+}
+
+// The chord fields of the point that ends a segment, from its error as distribute()
+// measures it (from the band's centre, the blocks' stand-off above the design).
+inline void set_chord(ContactPoint& p, const AxisState& s, double error, bool jump,
+                      double stand_off) {
+  p.stand_off = stand_off;
+  p.chord_error = stand_off + std::abs(error);
+  p.chord_below = error < -stand_off;
+  p.chord_jump = jump;
+  p.uncut_residual = s.uncut;
 }
 
 // A jump: over a rejected step the programmed point moves this many times farther than the

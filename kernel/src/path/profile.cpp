@@ -97,12 +97,7 @@ PathSummary plan_profile(const Surface& design, const ProfileOptions& o, Contact
     p.theta = 0;
     p.r = s.contact_r;
     p.point = s.point;
-    // error is measured from the band's centre, the blocks' stand-off above the design.
-    p.stand_off = path.stand_off();
-    p.chord_error = p.stand_off + std::abs(error);
-    p.chord_below = error < -p.stand_off;
-    p.chord_jump = jump;
-    p.uncut_residual = s.uncut;
+    detail::set_chord(p, s, error, jump, path.stand_off());
     detail::fill_section(design, p);
     summary.add(p.theta, p.r, p.chord_error, jump);
     out.push(p);

@@ -174,12 +174,7 @@ PathSummary plan_spiral(const Surface& design, const BaseSurface& base,
     p.theta = s.c;
     p.r = s.contact_r;
     p.point = s.point;
-    // error is measured from the band's centre, the blocks' stand-off above the design.
-    p.stand_off = path.stand_off();
-    p.chord_error = p.stand_off + std::abs(error);
-    p.chord_below = error < -p.stand_off;
-    p.chord_jump = jump;
-    p.uncut_residual = s.uncut;
+    detail::set_chord(p, s, error, jump, path.stand_off());
     const double zr = detail::fill_section(design, p);
     // Adjacent turns are p apart along the base's generating curve; on the design they
     // are p / cos β apart, β the angle between the two sections' tangents.

@@ -23,8 +23,8 @@ struct MotionOptions {
   // A dynamics violation at the constant spindle speed is an error (else only reported).
   // Off when a BlockScheduler follows the mapper: it sets the block times instead.
   bool enforce_dynamics = true;
-  // The share of each limit the highest constant rpm may use (block_schedule.hpp's margin).
-  double margin = 0.98;
+  // The share of each limit the highest constant rpm may use.
+  double margin = kDynamicLimitShare;
 };
 
 struct DynamicsReport {

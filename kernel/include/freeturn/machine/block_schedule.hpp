@@ -27,7 +27,7 @@
 namespace freeturn {
 
 struct ScheduleOptions {
-  double margin = 0.98;        // m: the share of each limit the schedule may use
+  double margin = kDynamicLimitShare;  // m: the share of each limit the schedule may use
   std::size_t window = 16384;  // blocks held for planning (half of them sent at a time)
 };
 

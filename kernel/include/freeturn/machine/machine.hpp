@@ -14,6 +14,10 @@
 namespace freeturn {
 
 enum class Axis { kX, kZ, kC, kB };
+
+// The share of each dynamic limit a program may use: the rest is room for the rounding of
+// the numbers it is written with (block times to the µs, positions to the nm).
+inline constexpr double kDynamicLimitShare = 0.98;
 const char* axis_letter(Axis axis);
 
 struct AxisSpec {
