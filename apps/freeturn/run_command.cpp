@@ -216,11 +216,13 @@ void check_point_bound(const Job& job, const JobPlan& plan, std::size_t passes) 
 }
 
 // Spiral block times are scheduled unless the job asks for one constant speed, turns the
-// machine's limits off, or the dialect writes no time per block.
+// machine's limits off, or the dialect writes no time per block. PVT programs run at one
+// speed too: the controller derives its velocities from the block times (pvt_rule.hpp),
+// so a schedule would change the cubics the chord error was measured on.
 bool scheduling(const Job& job, const MachineDescription& machine) {
   const Cutting& c = job.plan->cutting;
   return c.enforce_dynamics && c.timing == Cutting::Timing::kScheduled &&
-         !machine.constant_block_time;
+         !machine.constant_block_time && machine.interpolation != Interpolation::kCubic;
 }
 
 struct PreparedJob {

@@ -2,6 +2,7 @@
 // NURBS shapes with known closed forms, shared by the nurbs tests.
 
 #include <cmath>
+#include <numbers>
 #include <random>
 #include <vector>
 
@@ -99,6 +100,25 @@ inline NurbsSurface freeform_with_pole(unsigned seed = 42) {
   std::vector<double> knots(n + 4);
   for (int k = 0; k < n + 4; ++k) knots[k] = std::clamp((k - 3) / double(n - 3), 0.0, 1.0);
   return NurbsSurface(3, 3, knots, knots, pts, wts);
+}
+
+// A V-groove along the line x = x_k: z = m·|x − x_k| for x in [x_k − 2, x_k + 2], y in
+// [−2, 2]. Cubic in u with a triple knot at u = 1/2 (two Bézier pieces sharing the
+// control point on the groove), linear in v; each piece reproduces the linear data at its
+// Greville abscissae, so the sag is exact. m > 0 is a concave crease seen from the tool,
+// with the angle 2·atan(m) in the section across it. `skewed` spaces the control points
+// unevenly in x (x_i + 0.3 sin 2πg_i, still monotone, the groove's point kept): x is then
+// no affine function of u, but z stays m·|x − x_k| exactly (an affine map of a Bézier
+// piece's points maps the piece).
+inline NurbsSurface v_groove(double x_k, double m, bool skewed = false) {
+  const double greville[7] = {0, 1.0 / 6, 1.0 / 3, 0.5, 2.0 / 3, 5.0 / 6, 1};
+  std::vector<Vector3d> points;
+  for (const double g : greville)
+    for (const double y : {-2.0, 2.0}) {
+      const double x = x_k - 2 + 4 * g + (skewed ? 0.3 * std::sin(2 * std::numbers::pi * g) : 0.0);
+      points.emplace_back(x, y, m * std::abs(x - x_k));
+    }
+  return NurbsSurface(3, 1, {0, 0, 0, 0, 0.5, 0.5, 0.5, 1, 1, 1, 1}, {0, 0, 1, 1}, points);
 }
 
 }  // namespace freeturn::test

@@ -3,6 +3,7 @@
 // consecutive contact points, sampled densely, against the design surface.
 
 #include <algorithm>
+#include <array>
 #include <cmath>
 #include <vector>
 
@@ -43,7 +44,10 @@ namespace freeturn::test {
 // force (`grid` values of ρ across the nose, then golden section about the best), and
 // scaled to the normal by 1/√(1 + |∇f|²). Returns the largest |overlap|. With `axes`, the
 // programmed axes X, Z, B are interpolated instead and the centre found from them (a B
-// pivot swinging the nose on an arc).
+// pivot swinging the nose on an arc). With `pvt`, the controller's cubics instead of lines:
+// each block's velocity the central difference of its neighbours over their times (Δθ on a
+// spiral at one speed, the X-Z chord at one feed in profile mode), one-sided at the ends,
+// and a cubic Hermite in time through each block, for every coordinate.
 struct DenseNoseFigures {
   double worst = 0;  // the largest |overlap| (mm, normal): the chord error
   double gouge = 0;  // the largest overlap > 0 (mm, normal): how deep the nose cuts into the design
@@ -51,23 +55,45 @@ struct DenseNoseFigures {
 
 inline DenseNoseFigures dense_nose_figures(const Surface& s, const std::vector<CutterLocation>& path,
                                            double R, int samples = 50, int grid = 400,
-                                           const CompensationOptions* axes = nullptr) {
+                                           const CompensationOptions* axes = nullptr, bool pvt = false) {
   DenseNoseFigures figures;
   const auto radial = [](const Eigen::Vector3d& p, double c) { return p.x() * std::cos(c) + p.y() * std::sin(c); };
+  // Per block: the coordinates that move (C, the centre's radial position and z, and the
+  // axes X, Z, B), their times and, for PVT, their velocities.
+  const std::size_t n = path.size();
+  constexpr int kCoordinates = 6;
+  std::vector<std::array<double, kCoordinates>> q(n), v(n);
+  std::vector<double> time(n, 0.0);
+  for (std::size_t k = 0; k < n; ++k) {
+    const CutterLocation& cl = path[k];
+    q[k] = {cl.contact.theta, radial(cl.nose_centre, cl.contact.theta), cl.nose_centre.z(), cl.x, cl.z, cl.b};
+    if (k > 0) {
+      const double dc = q[k][0] - q[k - 1][0];
+      time[k] = time[k - 1] + (dc != 0 ? dc : std::hypot(cl.x - path[k - 1].x, cl.z - path[k - 1].z));
+    }
+  }
+  for (std::size_t k = 0; k < n && pvt; ++k) {
+    const std::size_t lo = k > 0 ? k - 1 : 0, hi = k + 1 < n ? k + 1 : n - 1;
+    const double dt = time[hi] - time[lo];
+    for (int i = 0; i < kCoordinates; ++i) v[k][i] = dt > 0 ? (q[hi][i] - q[lo][i]) / dt : 0.0;
+  }
+  const auto motion = [&](std::size_t k, int i, double t) {
+    const double qa = q[k - 1][i], qb = q[k][i];
+    if (!pvt) return qa + t * (qb - qa);
+    const double h = time[k] - time[k - 1], t2 = t * t, t3 = t2 * t;
+    return (2 * t3 - 3 * t2 + 1) * qa + (t3 - 2 * t2 + t) * h * v[k - 1][i] + (-2 * t3 + 3 * t2) * qb +
+           (t3 - t2) * h * v[k][i];
+  };
   for (std::size_t k = 1; k < path.size(); ++k) {
-    const CutterLocation &a = path[k - 1], &b = path[k];
-    const double ca = a.contact.theta, cb = b.contact.theta;
-    const double ra = radial(a.nose_centre, ca), rb = radial(b.nose_centre, cb);
     // The blocks themselves too (j = 0, and the last block): the nose must clear the
     // design there as well as between them.
     const int last = k + 1 == path.size() ? samples : samples - 1;
     for (int j = 0; j <= last; ++j) {
       const double t = static_cast<double>(j) / samples;
-      const double c = ca + t * (cb - ca);
-      double cr = ra + t * (rb - ra), cz = a.nose_centre.z() + t * (b.nose_centre.z() - a.nose_centre.z());
+      const double c = motion(k, 0, t);
+      double cr = motion(k, 1, t), cz = motion(k, 2, t);
       if (axes) {
-        const Eigen::Vector2d centre =
-            nose_centre_from_axes(a.x + t * (b.x - a.x), a.z + t * (b.z - a.z), a.b + t * (b.b - a.b), *axes);
+        const Eigen::Vector2d centre = nose_centre_from_axes(motion(k, 3, t), motion(k, 4, t), motion(k, 5, t), *axes);
         cr = centre.x();
         cz = centre.y();
       }
@@ -101,8 +127,8 @@ inline DenseNoseFigures dense_nose_figures(const Surface& s, const std::vector<C
 
 inline double densest_nose_error(const Surface& s, const std::vector<CutterLocation>& path,
                                  double R, int samples = 50, int grid = 400,
-                                 const CompensationOptions* axes = nullptr) {
-  return dense_nose_figures(s, path, R, samples, grid, axes).worst;
+                                 const CompensationOptions* axes = nullptr, bool pvt = false) {
+  return dense_nose_figures(s, path, R, samples, grid, axes, pvt).worst;
 }
 
 }  // namespace freeturn::test

@@ -3,6 +3,7 @@
 #include <cmath>
 #include <memory>
 #include <numbers>
+#include <string>
 
 #include "freeturn/path/profile.hpp"
 #include "freeturn/path/spiral.hpp"
@@ -81,6 +82,53 @@ TEST_SUITE("path") {
       MESSAGE("profile ε " << eps * 1e6 << " nm: nose motion " << nose * 1e6 << " nm, " << cls.size() << " points");
       CHECK(nose <= 1.002 * eps);
       CHECK(nose >= 0.9 * eps);
+    }
+  }
+
+  TEST_CASE("PVT: ε holds on the controller's cubics, with velocities from neighbouring blocks") {
+    // The planner's figure must be the one a dense sampler finds on the cubics a controller
+    // given positions only would run (dense_check.hpp writes that rule out on its own).
+    const auto judge = [](const Surface& s, const std::vector<CutterLocation>& cls, double R, double eps,
+                          const std::string& what) {
+      const test::DenseNoseFigures f = test::dense_nose_figures(s, cls, R, 100, 400, nullptr, true);
+      double planned = 0;
+      for (const CutterLocation& cl : cls) planned = std::max(planned, cl.contact.chord_error);
+      MESSAGE(what << ": ε " << eps * 1e6 << " nm, PVT motion " << f.worst * 1e6 << " nm, planned "
+                   << planned * 1e6 << " nm, deepest " << f.gouge * 1e6 << " nm below, " << cls.size()
+                   << " points");
+      CHECK(f.worst <= 1.002 * eps);
+      CHECK(f.gouge <= 1e-9);
+      CHECK(planned == doctest::Approx(f.worst).epsilon(0.02));
+    };
+    {
+      // Paper 001's sinusoidal ring, the profile a Precitech in PVT mode cuts at one feed.
+      const SinusoidalRing ring(0.05, std::numbers::pi, 0.0);
+      const double eps = 1e-4, R = 0.2;
+      ProfileOptions o;
+      o.outer_radius = 5.0;
+      o.inner_radius = 0.5;
+      o.tool.nose_radius = R;
+      o.points.tolerance = eps;
+      o.points.interpolation = Interpolation::kCubic;
+      const auto cls = compensated(ring, R, [&](ContactSink& sink) { plan_profile(ring, o, sink); });
+      judge(ring, cls, R, eps, "profile");
+    }
+    {
+      // A spiral through the vertex of an off-axis sphere: slope on the axis, X through 0.
+      const TransformedSurface sphere(std::make_unique<EvenAsphere>(1 / 30.0, 0), 8, 0,
+                                      Eigen::Matrix3d::Identity());
+      const double eps = 5e-4, R = 0.5;
+      SpiralOptions o;
+      o.outer_radius = 1.0;
+      o.pitch = 0.05;
+      o.tool.nose_radius = R;
+      o.points.tolerance = eps;
+      o.points.max_angle_step = 1.0;
+      o.points.interpolation = Interpolation::kCubic;
+      const auto cls = compensated(sphere, R, [&](ContactSink& sink) {
+        plan_spiral(sphere, BaseSurface::plane(1.0), o, sink);
+      });
+      judge(sphere, cls, R, eps, "spiral through the vertex");
     }
   }
 

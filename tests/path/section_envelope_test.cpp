@@ -11,9 +11,11 @@
 
 #include "dense_check.hpp"
 #include "fixtures.hpp"
+#include "nurbs/fixtures.hpp"
 #include "freeturn/path/base_surface_fit.hpp"
 #include "freeturn/path/spiral.hpp"
 #include "freeturn/surface/lenslet_array.hpp"
+#include "freeturn/surface/nurbs_height_field.hpp"
 #include "freeturn/surface/sinusoidal.hpp"
 #include "freeturn/surface/zernike.hpp"
 #include "freeturn/tool/compensation.hpp"
@@ -307,6 +309,38 @@ TEST_SUITE("path") {
             " nm");
     CHECK(f.gouge <= 10e-6);
     CHECK(f.worst <= 2e-4 * 1.02);
+  }
+
+  TEST_CASE("a NURBS with a C⁰ seam, spiral with a nose: the seam found from its knots, no gouge") {
+    // A V-groove 6.4° deep each side across x = 0.5 (a triple knot of a cubic): the
+    // planner is told of it by the knots alone (NurbsHeightField::section_creases).
+    const double m = 0.05 * 2.23, R = 0.2;
+    const NurbsHeightField groove(test::v_groove(0.5, m));
+    SpiralOptions o = spiral_options(1.2, 0.05, 2e-4, R);
+    std::vector<ContactPoint> contacts;
+    PathSummary summary;
+    const std::vector<CutterLocation> cls =
+        plan_with_nose(groove, BaseSurface::plane(1.2), o, &contacts, &summary);
+    CHECK(summary.jumps == 0);
+    double worst_uncut = 0;
+    long held = 0;
+    for (const ContactPoint& p : contacts) {
+      held += p.uncut_residual > 0;
+      worst_uncut = std::max(worst_uncut, p.uncut_residual);
+    }
+    const test::DenseNoseFigures f = test::dense_nose_figures(groove, cls, R, 12, 240);
+    MESSAGE("points ", cls.size(), ", held ", held, ", deepest ", f.gouge * 1e6, " nm, chord ",
+            f.worst * 1e6, " nm, uncut ", worst_uncut * 1e6, " nm");
+    CHECK(f.gouge <= 10e-6);
+    CHECK(f.worst <= 2e-4 * 1.02);
+    CHECK(held > 0);
+    // Across the groove (θ = 0, π) the section's half-angle is atan m, and the nose, lifted
+    // ε/2, leaves (R + ε/2)/cos(atan m) − R at the bottom; other sections cross it at a
+    // shallower angle and leave less.
+    const double lifted = R + 0.5 * o.points.tolerance;
+    const double closed_form = lifted * std::sqrt(1 + m * m) - R;
+    CHECK(worst_uncut <= closed_form * (1 + 1e-6));
+    CHECK(worst_uncut >= 0.95 * closed_form);
   }
 
   TEST_CASE("sinusoidal ring as a spiral through its cone point: no gouge at the apex") {

@@ -7,6 +7,7 @@
 #include "freeturn/nurbs/interpolation.hpp"
 #include "freeturn/surface/even_asphere.hpp"
 #include "freeturn/surface/nurbs_height_field.hpp"
+#include "nurbs/fixtures.hpp"
 #include "surface/derivatives_check.hpp"
 
 using freeturn::NurbsHeightField;
@@ -150,5 +151,46 @@ TEST_SUITE("surface") {
     // Closed form: the sphere point on the line from its centre through p.
     const Eigen::Vector3d c(0, 0, 20), expected = c + 20.0 * (p - c).normalized();
     CHECK((near.point - expected).norm() < 1e-9);
+  }
+
+  TEST_CASE("NURBS height field: a C⁰ seam is a crease, found where each section crosses it") {
+    // The groove x = 0.6 (a triple knot in a cubic): crossed by the section at θ at
+    // ρ = 0.6/cos θ, in closed form; a twin with uneven control points takes the general
+    // route (sign changes of u − 1/2 along the section, then bisection) and must agree.
+    for (const bool skewed : {false, true}) {
+      const NurbsHeightField groove(freeturn::test::v_groove(0.6, 0.1, skewed));
+      CHECK(groove.affine_parameters() == !skewed);
+      CHECK(groove.has_creases());
+      REQUIRE(groove.crease_knots_u().size() == 1);
+      CHECK(groove.crease_knots_u()[0] == 0.5);
+      CHECK(groove.crease_knots_v().empty());
+      for (const double theta_deg : {0.0, 30.0, 60.0, 180.0}) {
+        const double theta = theta_deg * std::numbers::pi / 180;
+        double rho[4];
+        const int n = groove.section_creases(theta, -1.4, 1.4, rho);
+        REQUIRE(n == 1);
+        CHECK(rho[0] == doctest::Approx(0.6 / std::cos(theta)).epsilon(1e-11));
+        // Either side of it z_x is ∓m: the normal turns there.
+        const double y = rho[0] * std::sin(theta);
+        double z, zx, zy;
+        groove.sag_gradient(0.6 - 1e-6, y, z, zx, zy);
+        CHECK(zx == doctest::Approx(-0.1).epsilon(1e-9));
+        groove.sag_gradient(0.6 + 1e-6, y, z, zx, zy);
+        CHECK(zx == doctest::Approx(0.1).epsilon(1e-9));
+      }
+      // Parallel to the groove (θ = 90°) no section crosses it.
+      double rho[4];
+      CHECK(groove.section_creases(std::numbers::pi / 2, -1.4, 1.4, rho) == 0);
+      // Outside the window: none.
+      CHECK(groove.section_creases(0.0, -1.4, 0.5, rho) == 0);
+    }
+  }
+
+  TEST_CASE("NURBS height field: C⁰ knots of a smooth shape are no creases") {
+    // The spherical cap's nine-point circle has double knots in its quadratic v direction:
+    // C⁰ in parameter, smooth in shape. And a flat groove (m = 0) keeps its triple knot.
+    const NurbsHeightField cap(spherical_cap(10.0, 0.5));
+    CHECK_FALSE(cap.has_creases());
+    CHECK_FALSE(NurbsHeightField(freeturn::test::v_groove(0.6, 0.0)).has_creases());
   }
 }

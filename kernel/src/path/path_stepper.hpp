@@ -11,19 +11,23 @@
 //   double deviation(double x_axis, double c, double z, double b, double hint_r) const;
 //                                           // distance of the tool at these axes from the
 //                                           // design; hint_r: the contact radius nearby
-//   double angle_per_tau() const;           // dC/dτ (1 on a spiral, 0 in profile mode)
+//   double block_time(const AxisState& a, const AxisState& b) const;
+//                                           // the time from block a to b, up to a constant
+//                                           // factor (pvt_rule.hpp)
 //   bool creased() const;                   // the design has creases (Surface::has_creases)
 //   double stand_off() const;               // where the blocks stand off the design (mm):
 //                                           // the centre of the tolerance band
 
 #include <algorithm>
 #include <cmath>
+#include <limits>
 #include <numbers>
 #include <string>
 
 #include "freeturn/core/error.hpp"
 #include "freeturn/path/contact_point.hpp"
 #include "freeturn/path/cutter_points.hpp"
+#include "freeturn/path/pvt_rule.hpp"
 
 namespace freeturn::detail {
 
@@ -32,31 +36,62 @@ struct AxisState {
   double x_axis = 0, c = 0, z = 0;  // X, C, Z of the programmed point (nose_section.hpp)
   double b = 0;                     // B (rad) when it follows the normal, else 0
   double contact_r = 0;             // the contact's signed radius in the radial plane at C
-  double dx = 0, dz = 0, db = 0;    // dX/dτ, dZ/dτ, dB/dτ (cubic interpolation only)
   Eigen::Vector3d point = Eigen::Vector3d::Zero();
   double uncut = 0;  // mm: material the nose, held at a crease, leaves (section_envelope.hpp)
-  double warm = 0;  // the path's warm start for the next point (a projection distance)
+  double warm = 0;   // the path's warm start for the next point (a projection distance)
 };
 
-// The machine's position a fraction t of the way from block a to block b.
-inline void interpolate(const AxisState& a, const AxisState& b, double t, Interpolation mode,
-                        double angle_per_tau, double& x, double& c, double& z, double& bb) {
-  if (mode == Interpolation::kLinear) {
-    x = a.x_axis + t * (b.x_axis - a.x_axis);
-    c = a.c + t * (b.c - a.c);
-    z = a.z + t * (b.z - a.z);
-    bb = a.b + t * (b.b - a.b);
-    return;
+// One segment of the program as the controller runs it: blocks a and b, and in PVT mode
+// the blocks on either side, which set the velocities at a and b (null: the program ends
+// there, and the velocity is one-sided).
+struct Segment {
+  const AxisState* before = nullptr;
+  const AxisState& a;
+  const AxisState& b;
+  const AxisState* after = nullptr;
+};
+
+// The machine's position a fraction u of the way through a segment.
+class SegmentMotion {
+ public:
+  template <class Path>
+  SegmentMotion(const Path& path, const Segment& s, Interpolation mode)
+      : a_(s.a), b_(s.b), cubic_(mode == Interpolation::kCubic) {
+    if (!cubic_) return;
+    const AxisState& before = s.before ? *s.before : s.a;
+    const AxisState& after = s.after ? *s.after : s.b;
+    h_ = path.block_time(s.a, s.b);
+    const double dt_a = path.block_time(before, s.a) + h_, dt_b = h_ + path.block_time(s.b, after);
+    va_[0] = pvt::velocity(before.x_axis, s.b.x_axis, dt_a);
+    va_[1] = pvt::velocity(before.c, s.b.c, dt_a);
+    va_[2] = pvt::velocity(before.z, s.b.z, dt_a);
+    va_[3] = pvt::velocity(before.b, s.b.b, dt_a);
+    vb_[0] = pvt::velocity(s.a.x_axis, after.x_axis, dt_b);
+    vb_[1] = pvt::velocity(s.a.c, after.c, dt_b);
+    vb_[2] = pvt::velocity(s.a.z, after.z, dt_b);
+    vb_[3] = pvt::velocity(s.a.b, after.b, dt_b);
   }
-  // Cubic Hermite on each axis, tangents scaled by the segment's length in τ.
-  const double h = b.tau - a.tau, t2 = t * t, t3 = t2 * t;
-  const double h00 = 2 * t3 - 3 * t2 + 1, h10 = t3 - 2 * t2 + t, h01 = -2 * t3 + 3 * t2,
-               h11 = t3 - t2;
-  x = h00 * a.x_axis + h10 * h * a.dx + h01 * b.x_axis + h11 * h * b.dx;
-  z = h00 * a.z + h10 * h * a.dz + h01 * b.z + h11 * h * b.dz;
-  bb = h00 * a.b + h10 * h * a.db + h01 * b.b + h11 * h * b.db;
-  c = h00 * a.c + h10 * h * angle_per_tau + h01 * b.c + h11 * h * angle_per_tau;
-}
+
+  void at(double u, double& x, double& c, double& z, double& bb) const {
+    if (!cubic_) {
+      x = a_.x_axis + u * (b_.x_axis - a_.x_axis);
+      c = a_.c + u * (b_.c - a_.c);
+      z = a_.z + u * (b_.z - a_.z);
+      bb = a_.b + u * (b_.b - a_.b);
+      return;
+    }
+    x = pvt::hermite(a_.x_axis, va_[0], b_.x_axis, vb_[0], h_, u);
+    c = pvt::hermite(a_.c, va_[1], b_.c, vb_[1], h_, u);
+    z = pvt::hermite(a_.z, va_[2], b_.z, vb_[2], h_, u);
+    bb = pvt::hermite(a_.b, va_[3], b_.b, vb_[3], h_, u);
+  }
+
+ private:
+  const AxisState& a_;
+  const AxisState& b_;
+  bool cubic_;
+  double h_ = 0, va_[4] = {0, 0, 0, 0}, vb_[4] = {0, 0, 0, 0};  // X, C, Z, B
+};
 
 // The largest distance of the interpolated motion from the band's centre (the design
 // raised by the path's stand-off) over one segment, signed (> 0: above it; < 0: below,
@@ -66,15 +101,15 @@ inline void interpolate(const AxisState& a, const AxisState& b, double t, Interp
 // value at its own vertex, the deviation is not smooth there and a golden-section search
 // of the bracket finds the peak instead.
 template <class Path>
-double segment_error(const Path& path, const AxisState& a, const AxisState& b,
-                     Interpolation mode) {
+double segment_error(const Path& path, const Segment& segment, Interpolation mode) {
   constexpr int kMaxIntervals = 32;
   const int intervals = path.creased() ? kMaxIntervals : 8;
-  const double k = path.angle_per_tau();
+  const SegmentMotion motion(path, segment, mode);
+  const AxisState &a = segment.a, &b = segment.b;
   double signed_worst = 0;
   const auto deviation_at = [&](double t) {
     double x, c, z, bb;
-    interpolate(a, b, t, mode, k, x, c, z, bb);
+    motion.at(t, x, c, z, bb);
     const double d = path.deviation(x, c, z, bb, a.contact_r + t * (b.contact_r - a.contact_r)) -
                      path.stand_off();
     if (std::abs(d) > std::abs(signed_worst)) signed_worst = d;
@@ -134,24 +169,67 @@ inline void set_chord(ContactPoint& p, const AxisState& s, double error, bool ju
 constexpr double kJumpRatio = 100;
 
 // Walks τ from 0 to tau_end, calling emit(state, chord_error, jump) for every point, the
-// chord error signed as segment_error's. `jump` marks a segment across which the
-// programmed point jumps (the nose centre at a crease sharper than the nose: the offset
-// of a concave crease is not the offset of either side): its error stops falling with the
-// step, so the step search accepts a short step over it and reports the error as it is.
+// chord error (of the segment that ends at the point) signed as segment_error's. `jump`
+// marks a segment across which the programmed point jumps (the nose centre at a crease
+// sharper than the nose: the offset of a concave crease is not the offset of either
+// side): its error stops falling with the step, so the step search accepts a short step
+// over it and reports the error as it is.
+//
+// PVT (pvt_rule.hpp): a segment's cubic depends on the blocks on either side, so the
+// search for the next block b judges two segments. The one before it, (a₋, a), is final
+// once b is chosen (b sets the velocity at a): it must stay within the target too, which
+// keeps consecutive block times close wherever the path bends. The new one, (a, b), waits
+// for the block after b to set the velocity at b. That velocity runs from the secant
+// (b − a)/h, as the next step shrinks to nothing, to the velocity one equal step gives;
+// the motion is affine in it, so its largest error is convex in it, and (a, b) is judged
+// at both: whatever step the next search takes up to an equal one, (a, b) stays within
+// the target, and a short enough next step always exists. It is judged finally when the
+// next block is chosen, and emitted then: emission lags one block in PVT mode.
 template <class Path, class Emit>
 void distribute(Path& path, const CutterPointOptions& o, Emit&& emit) {
   const double end = path.tau_end();
-  AxisState current, trial;
+  const bool pvt = o.interpolation == Interpolation::kCubic;
+  // The last two blocks before `current` (PVT), and whether they exist.
+  AxisState before2, before, current, trial, look;
+  bool has_before2 = false, has_before = false;
   path.at(0.0, current);
   path.commit(current);
   emit(current, 0.0, false);
   if (!(end > 0)) return;
-  const double order = o.interpolation == Interpolation::kLinear ? 2.0 : 4.0;
+  // Chord error ∝ step^order: linear chords; PVT's central-difference velocities are
+  // second-order, so its cubics are third-order.
+  const double order = pvt ? 3.0 : 2.0;
   // The band is [0, ε] above the design, its centre the blocks' stand-off: each segment
   // may bend ε − stand_off either way from it (margin for the sampled maximum).
   const double target = 0.97 * (o.tolerance - path.stand_off());
   const double min_step = 1e-12 * std::max(1.0, end);
   double step = std::min(path.cap(), end);
+  // A trial block's errors: of the new segment (current, trial) and, in PVT mode, of the
+  // one before it as `trial` finalises it. The larger in size decides.
+  double new_error = 0, previous_error = 0;
+  const auto measure = [&](const AxisState& t) {
+    if (!pvt) {
+      new_error = segment_error(path, Segment{nullptr, current, t, nullptr}, o.interpolation);
+      previous_error = 0;
+      return std::abs(new_error);
+    }
+    const Segment secant{has_before ? &before : nullptr, current, t, nullptr};
+    new_error = segment_error(path, secant, o.interpolation);
+    double worst = std::abs(new_error);
+    if (t.tau < end) {
+      path.at(std::min(end, t.tau + (t.tau - current.tau)), look);
+      const double equal_step =
+          segment_error(path, Segment{secant.before, current, t, &look}, o.interpolation);
+      worst = std::max(worst, std::abs(equal_step));
+    }
+    previous_error =
+        has_before
+            ? segment_error(path, Segment{has_before2 ? &before2 : nullptr, before, current, &t},
+                            o.interpolation)
+            : 0.0;
+    return std::max(worst, std::abs(previous_error));
+  };
+  bool pending_jump = false;  // PVT: the jump flag of the segment that ends at `current`
   while (current.tau < end) {
     const double remaining = end - current.tau;
     // The end is reached exactly, never by a sum that rounds short of it.
@@ -162,7 +240,7 @@ void distribute(Path& path, const CutterPointOptions& o, Emit&& emit) {
     if (o.rule == CutterPointRule::kEqualAngle) {
       step = std::min(2 * std::numbers::pi / o.points_per_revolution, remaining);
       path.at(advance(step), trial);
-      error = segment_error(path, current, trial, o.interpolation);
+      measure(trial);
     } else if (o.rule == CutterPointRule::kEqualArcLength) {
       step = std::min(step, limit);
       for (int it = 0; it < 3; ++it) {
@@ -173,28 +251,41 @@ void distribute(Path& path, const CutterPointOptions& o, Emit&& emit) {
         step = next;
       }
       path.at(advance(step), trial);
-      error = segment_error(path, current, trial, o.interpolation);
+      measure(trial);
     } else {
       // The largest step whose error is at most the target: e ∝ step^order locally, so
       // the secant-like update converges in a few evaluations.
       step = std::min(step, limit);
       double accepted = 0;
       AxisState best;
-      double best_error = 0;
+      double best_new = 0, best_previous = 0;
+      // PVT: the step with the smallest error, taken if none meets the target (its error
+      // is then reported as it is, and the verdict judges it).
+      AxisState least;
+      double least_error = std::numeric_limits<double>::infinity(), least_step = 0;
+      double least_new = 0, least_previous = 0;
       // The last rejected step: across a crease (a lenslet's rim) the error stops falling
       // with the step while the chord still spans the crease, so the local order is
       // measured and a step that barely helps is halved instead.
       double failed_step = 0, failed_error = 0;
+      bool exhausted = false;
       for (int it = 0; it < 80; ++it) {
         path.at(advance(step), trial);
-        const double signed_error = segment_error(path, current, trial, o.interpolation);
-        error = std::abs(signed_error);
+        error = measure(trial);
+        if (pvt && error < least_error) {
+          least = trial;
+          least_error = error;
+          least_step = step;
+          least_new = new_error;
+          least_previous = previous_error;
+        }
         double next;
         if (error <= target) {
           if (step > accepted) {
             accepted = step;
             best = trial;
-            best_error = signed_error;
+            best_new = new_error;
+            best_previous = previous_error;
           }
           if (step >= limit || error >= 0.9 * target) break;
           next = error > 0 ? step * std::min(2.0, std::pow(target / error, 1 / order) * 0.995)
@@ -211,45 +302,65 @@ void distribute(Path& path, const CutterPointOptions& o, Emit&& emit) {
           failed_step = step;
           failed_error = error;
           const double contact_move = (trial.point - current.point).norm();
-          const double axes_move =
-              std::hypot(trial.x_axis - current.x_axis, trial.z - current.z,
-                         0.5 * (std::abs(trial.x_axis) + std::abs(current.x_axis)) * (trial.c - current.c));
+          const double axes_move = std::hypot(
+              trial.x_axis - current.x_axis, trial.z - current.z,
+              0.5 * (std::abs(trial.x_axis) + std::abs(current.x_axis)) * (trial.c - current.c));
           if (axes_move > kJumpRatio * contact_move) {
             // This step crosses the jump. A shorter accepted one would only end before it,
             // and the next search would close in on it without end.
             accepted = step;
             best = trial;
-            best_error = signed_error;
+            best_new = new_error;
+            best_previous = previous_error;
             jump = true;
             break;
           }
           if (accepted > 0 && next <= accepted) break;  // nothing between them is better
         }
-        if (next < min_step)
-          throw InputError("θ = " + std::to_string(current.c) + " rad, r = " +
-                               std::to_string(current.contact_r) + " mm",
-                           "cannot meet the chord tolerance " + std::to_string(o.tolerance * 1e3) +
-                               " µm: the path is not smooth here");
+        if (next < min_step) {
+          exhausted = true;
+          break;
+        }
         if (std::abs(next - step) <= 1e-6 * step && accepted > 0) break;
         step = next;
       }
-      if (accepted == 0)
-        throw InputError("θ = " + std::to_string(current.c) + " rad, r = " +
-                             std::to_string(current.contact_r) + " mm",
-                         "no step meets the chord tolerance " + std::to_string(o.tolerance * 1e3) +
-                             " µm");
+      if (accepted == 0 && pvt && least_step > 0) {
+        accepted = least_step;
+        best = least;
+        best_new = least_new;
+        best_previous = least_previous;
+      } else if (accepted == 0) {
+        throw InputError("θ = " + std::to_string(current.c) +
+                             " rad, r = " + std::to_string(current.contact_r) + " mm",
+                         (exhausted ? "cannot meet the chord tolerance "
+                                    : "no step meets the chord tolerance ") +
+                             std::to_string(o.tolerance * 1e3) +
+                             (exhausted ? " µm: the path is not smooth here" : " µm"));
+      }
       trial = best;
-      error = best_error;
+      new_error = best_new;
+      previous_error = best_previous;
       step = accepted;
     }
     // A last sliver shorter than a millionth of a step joins this one instead.
     if (end - trial.tau < 1e-6 * step && trial.tau < end) {
       path.at(end, trial);
-      error = segment_error(path, current, trial, o.interpolation);
+      measure(trial);
     }
     path.commit(trial);
+    if (!pvt) {
+      current = trial;
+      emit(current, new_error, jump);
+      continue;
+    }
+    if (has_before) emit(current, previous_error, pending_jump);
+    before2 = before;
+    has_before2 = has_before;
+    before = current;
+    has_before = true;
     current = trial;
-    emit(current, error, jump);
+    pending_jump = jump;
+    if (current.tau >= end) emit(current, new_error, jump);  // measured one-sided: final
   }
 }
 

@@ -21,7 +21,10 @@ class ProfilePath {
 
   double tau_end() const { return o_.outer_radius - o_.inner_radius; }
   double cap() const { return o_.points.max_radial_step; }
-  double angle_per_tau() const { return 0.0; }
+  // At one feed a block's time is its X-Z chord (pvt_rule.hpp).
+  double block_time(const detail::AxisState& a, const detail::AxisState& b) const {
+    return std::hypot(b.x_axis - a.x_axis, b.z - a.z);
+  }
   bool creased() const { return design_.has_creases(); }
   double stand_off() const { return nose_.stand_off(); }
 
@@ -34,15 +37,6 @@ class ProfilePath {
     s.tau = tau;
     s.c = 0;
     place(r, s);
-    // d/dτ = −d/dr. With a nose the centre rides the offset curve, whose speed differs
-    // from the contact's by 1 + Rκ: differences of the centre's axes give it.
-    const double d = 1e-6;
-    detail::AxisState lo, hi;
-    place(r - d, lo);
-    place(r + d, hi);
-    s.dx = -(hi.x_axis - lo.x_axis) / (2 * d);
-    s.dz = -(hi.z - lo.z) / (2 * d);
-    s.db = -(hi.b - lo.b) / (2 * d);
   }
   void commit(const detail::AxisState&) {}
 

@@ -41,7 +41,10 @@ class SpiralPath {
 
   double tau_end() const { return end_; }
   double cap() const { return o_.points.max_angle_step; }
-  double angle_per_tau() const { return 1.0; }
+  // At one spindle speed a block's time is its angle (pvt_rule.hpp).
+  double block_time(const detail::AxisState& a, const detail::AxisState& b) const {
+    return b.tau - a.tau;
+  }
   bool creased() const { return design_.has_creases(); }
   double stand_off() const { return nose_.stand_off(); }
   double pitch() const { return o_.pitch; }
@@ -50,19 +53,7 @@ class SpiralPath {
     return nose_.deviation(x_axis, c, z, b, hint_r);
   }
 
-  void at(double theta, detail::AxisState& s) const {
-    evaluate(theta, s);
-    if (o_.points.interpolation == Interpolation::kCubic) {
-      // The path's velocities, which a PVT post writes with each block.
-      const double d = 1e-6, lo_theta = std::max(0.0, theta - d), hi_theta = std::min(end_, theta + d);
-      detail::AxisState lo, hi;
-      evaluate(lo_theta, lo);
-      evaluate(hi_theta, hi);
-      s.dx = (hi.x_axis - lo.x_axis) / (hi_theta - lo_theta);
-      s.dz = (hi.z - lo.z) / (hi_theta - lo_theta);
-      s.db = (hi.b - lo.b) / (hi_theta - lo_theta);
-    }
-  }
+  void at(double theta, detail::AxisState& s) const { evaluate(theta, s); }
   void commit(const detail::AxisState& s) { lambda_ = s.warm; }
 
   BasePoint base_point(double theta) const {

@@ -36,8 +36,7 @@ double segment_distance(const Eigen::Vector2d& a, const Eigen::Vector2d& b) {
 
 }  // namespace
 
-NurbsHeightField::NurbsHeightField(nurbs::NurbsSurface surface)
-    : locator_(std::move(surface)) {
+NurbsHeightField::NurbsHeightField(nurbs::NurbsSurface surface) : locator_(std::move(surface)) {
   const nurbs::NurbsSurface& s = locator_.surface();
   double z_max = -std::numeric_limits<double>::infinity();
   Eigen::AlignedBox3d box;
@@ -89,6 +88,105 @@ NurbsHeightField::NurbsHeightField(nurbs::NurbsSurface surface)
     throw InputError("surface", "the NURBS surface is edge-on to the z axis everywhere");
   double u, v;
   defined_radius_ = parameters_at(0, 0, u, v) ? boundary_distance() : 0.0;
+  find_creases();
+}
+
+void NurbsHeightField::find_creases() {
+  const nurbs::NurbsSurface& s = locator_.surface();
+  // A seam candidate is only C⁰ in parameter; it is a crease when the normals just either
+  // side of it differ (sampled along the knot line) by more than rounding would explain.
+  constexpr double kTurn = 1e-7;  // rad
+  constexpr int kSamples = 16;
+  const auto scan = [&](const nurbs::KnotVector& knots, bool along_u, std::vector<double>& out) {
+    const std::vector<double> breaks = knots.breakpoints();
+    const double span = knots.back() - knots.front();
+    for (std::size_t k = 1; k + 1 < breaks.size(); ++k) {
+      const double t = breaks[k];
+      if (knots.multiplicity(t) < knots.degree()) continue;
+      const double h = 1e-9 * span;
+      const double lo = along_u ? s.front_v() : s.front_u(), hi = along_u ? s.back_v() : s.back_u();
+      for (int j = 0; j <= kSamples; ++j) {
+        const double w = lo + (hi - lo) * j / kSamples;
+        const nurbs::Vector3d before = along_u ? s.normal(t - h, w) : s.normal(w, t - h);
+        const nurbs::Vector3d after = along_u ? s.normal(t + h, w) : s.normal(w, t + h);
+        if (before.allFinite() && after.allFinite() && before.cross(after).norm() > kTurn) {
+          out.push_back(t);
+          break;
+        }
+      }
+    }
+  };
+  scan(s.knots_u(), true, crease_u_);
+  scan(s.knots_v(), false, crease_v_);
+}
+
+int NurbsHeightField::section_creases(double theta, double rho_lo, double rho_hi,
+                                      std::span<double> out) const {
+  if (!has_creases() || !(rho_lo <= rho_hi) || !std::isfinite(rho_lo) || !std::isfinite(rho_hi))
+    return 0;
+  const double ct = std::cos(theta), st = std::sin(theta);
+  int count = 0;
+  const auto add = [&](double rho) {
+    double u, v;
+    if (!(rho >= rho_lo && rho <= rho_hi) || !parameters_at(rho * ct, rho * st, u, v)) return;
+    if (count < static_cast<int>(out.size())) out[count++] = rho;
+  };
+  if (affine_) {
+    // x = x0 + sx·u: the knot line u = u* is the line x = x0 + sx·u*, met at ρ = x/cos θ.
+    for (const double u : crease_u_)
+      if (std::abs(ct) > 1e-15) add((x0_ + sx_ * u) / ct);
+    for (const double v : crease_v_)
+      if (std::abs(st) > 1e-15) add((y0_ + sy_ * v) / st);
+  } else {
+    // Along the section, u(ρ) − u* changes sign where it crosses the line u = u*.
+    constexpr int kSteps = 16;
+    double previous_rho = 0, previous_u = 0, previous_v = 0;
+    bool has_previous = false;
+    for (int i = 0; i <= kSteps; ++i) {
+      const double rho = rho_lo + (rho_hi - rho_lo) * i / kSteps;
+      double u, v;
+      if (!parameters_at(rho * ct, rho * st, u, v)) {
+        has_previous = false;
+        continue;
+      }
+      if (has_previous) {
+        const auto bisect = [&](double value, bool in_u) {
+          const double a0 = (in_u ? previous_u : previous_v) - value, b0 = (in_u ? u : v) - value;
+          // A closed direction wraps between samples: that is no crossing of its lines.
+          const nurbs::KnotVector& knots =
+              in_u ? locator_.surface().knots_u() : locator_.surface().knots_v();
+          if (std::abs(b0 - a0) > 0.5 * (knots.back() - knots.front())) return;
+          if (b0 == 0) {
+            add(rho);
+            return;
+          }
+          if (a0 == 0 || (a0 < 0) == (b0 < 0)) return;
+          double lo = previous_rho, hi = rho, f_lo = a0;
+          for (int it = 0; it < 60 && hi - lo > 1e-13 * std::max(1.0, std::abs(hi)); ++it) {
+            const double mid = 0.5 * (lo + hi);
+            double um, vm;
+            if (!parameters_at(mid * ct, mid * st, um, vm)) return;
+            const double f = (in_u ? um : vm) - value;
+            if ((f < 0) == (f_lo < 0)) {
+              lo = mid;
+              f_lo = f;
+            } else {
+              hi = mid;
+            }
+          }
+          add(0.5 * (lo + hi));
+        };
+        for (const double c : crease_u_) bisect(c, true);
+        for (const double c : crease_v_) bisect(c, false);
+      }
+      previous_rho = rho;
+      previous_u = u;
+      previous_v = v;
+      has_previous = true;
+    }
+  }
+  std::sort(out.begin(), out.begin() + count);
+  return count;
 }
 
 double NurbsHeightField::boundary_distance() const {

@@ -7,6 +7,7 @@
 
 #include "freeturn/core/error.hpp"
 #include "freeturn/core/parallel_for.hpp"
+#include "freeturn/path/pvt_rule.hpp"
 
 namespace freeturn {
 namespace {
@@ -104,19 +105,19 @@ void CutSimulator::sweep_columns(std::size_t end, int pair_begin, int pair_end) 
     const long last = static_cast<long>(std::ceil(tb / per_column)) - 1;
     if (last < first) continue;
     const double h = tb - ta;
-    // PVT: each block's velocity (per radian of θ) from its neighbours, as a controller
-    // that is given positions only derives it; one-sided at the path's ends.
-    Eigen::Vector3d va = Eigen::Vector3d::Zero(), vb = Eigen::Vector3d::Zero();
+    // PVT (pvt_rule.hpp): each block's velocity from its neighbours over their times, at
+    // one spindle speed their angles; one-sided at the path's ends.
     const Eigen::Vector3d qa(a.x, a.z, a.b), qb(b.x, b.z, b.b);
+    Eigen::Vector3d va = Eigen::Vector3d::Zero(), vb = Eigen::Vector3d::Zero();
     if (cubic) {
       const CutterLocation& before = i > 0 ? pending_[i - 1] : a;
       const CutterLocation& after = i + 2 < pending_.size() ? pending_[i + 2] : b;
-      const auto slope = [](const CutterLocation& p, const CutterLocation& q) {
-        const double d = q.contact.theta - p.contact.theta;
-        return d > 0 ? Eigen::Vector3d((q.x - p.x) / d, (q.z - p.z) / d, (q.b - p.b) / d) : Eigen::Vector3d::Zero();
-      };
-      va = slope(before, b);
-      vb = slope(a, after);
+      const Eigen::Vector3d q_before(before.x, before.z, before.b), q_after(after.x, after.z, after.b);
+      const double dt_a = tb - before.contact.theta, dt_b = after.contact.theta - ta;
+      for (int axis = 0; axis < 3; ++axis) {
+        va[axis] = pvt::velocity(q_before[axis], qb[axis], dt_a);
+        vb[axis] = pvt::velocity(qa[axis], q_after[axis], dt_b);
+      }
     }
     const double pa = radial_of(a.contact.point, ta), pb = radial_of(b.contact.point, tb);
     for (long k = first; k <= last; ++k) {
@@ -126,8 +127,7 @@ void CutSimulator::sweep_columns(std::size_t end, int pair_begin, int pair_end) 
       const double t = (k * per_column - ta) / h;
       Eigen::Vector3d q;
       if (cubic) {
-        const double t2 = t * t, t3 = t2 * t;
-        q = (2 * t3 - 3 * t2 + 1) * qa + (t3 - 2 * t2 + t) * h * va + (-2 * t3 + 3 * t2) * qb + (t3 - t2) * h * vb;
+        for (int axis = 0; axis < 3; ++axis) q[axis] = pvt::hermite(qa[axis], va[axis], qb[axis], vb[axis], h, t);
       } else {
         q = qa + t * (qb - qa);
       }

@@ -17,8 +17,8 @@ enum class CutterPointRule { kEqualAngle, kEqualArcLength, kChordError };
 // How the controller moves the axes between two blocks.
 enum class Interpolation {
   kLinear,  // X, C, Z linear in time (G01)
-  kCubic,   // PVT: each axis a cubic Hermite through the positions and velocities of the
-            // path at the two blocks (the post writes the path's velocities)
+  kCubic,   // PVT: each axis a cubic Hermite through the two blocks, with the velocities
+            // the controller derives from their neighbours (pvt_rule.hpp)
 };
 
 struct CutterPointOptions {

@@ -10,6 +10,9 @@
 // Jacobian of (S_x, S_y) in (u, v) and g = (∂S_z/∂u, ∂S_z/∂v),
 //   ∇z = J⁻ᵀ g,    ∇²z = J⁻ᵀ (∇²S_z − z_x ∇²S_x − z_y ∇²S_y) J⁻¹.
 
+#include <span>
+#include <vector>
+
 #include "freeturn/nurbs/surface_locator.hpp"
 #include "freeturn/surface/surface.hpp"
 
@@ -28,6 +31,17 @@ class NurbsHeightField final : public Surface {
   // The largest disc about the origin inside the projection (0 if the origin is outside).
   double defined_radius() const override { return defined_radius_; }
 
+  // Creases are the seams where the surface is only C⁰: an interior knot of multiplicity
+  // at least the degree whose knot line the normal turns across (a double knot of a
+  // quadratic circle's net is C⁰ in parameter but smooth in shape, and is no crease).
+  bool has_creases() const override { return !crease_u_.empty() || !crease_v_.empty(); }
+  // Where the radial section crosses those knot lines: in closed form on affine
+  // parameters, else by sign changes of u − u* (v − v*) along the section and bisection.
+  int section_creases(double theta, double rho_lo, double rho_hi,
+                      std::span<double> out) const override;
+  std::span<const double> crease_knots_u() const { return crease_u_; }
+  std::span<const double> crease_knots_v() const { return crease_v_; }
+
   const nurbs::NurbsSurface& nurbs() const { return locator_.surface(); }
   const nurbs::SurfaceLocator& locator() const { return locator_; }
   // True when x = x0 + sx·u and y = y0 + sy·v exactly (no inversion needed).
@@ -42,6 +56,7 @@ class NurbsHeightField final : public Surface {
   // from the limit normal and the Hessian from central differences of the gradient.
   HeightDerivatives derivatives_at(double x, double y, double u, double v, int order) const;
   double boundary_distance() const;
+  void find_creases();
 
   nurbs::SurfaceLocator locator_;
   bool affine_ = false;
@@ -49,6 +64,7 @@ class NurbsHeightField final : public Surface {
   double z_above_ = 0;  // above every control point: the origin of cold rays
   double scale_ = 1;    // size of the control net, for tolerances
   double defined_radius_ = 0;
+  std::vector<double> crease_u_, crease_v_;  // knot values of the seams, ascending
 };
 
 }  // namespace freeturn
