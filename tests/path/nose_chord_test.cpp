@@ -18,7 +18,7 @@ using namespace freeturn;
 namespace {
 
 std::vector<CutterLocation> compensated(const Surface& s, double R, const auto& plan,
-                                       CompensationOptions c = {}) {
+                                        CompensationOptions c = {}) {
   c.tool.nose_radius = R;
   ToolCheckOptions checks;
   checks.policy.fill(CheckPolicy::kOff);
@@ -34,22 +34,43 @@ std::vector<ContactPoint> contacts(const std::vector<CutterLocation>& cls) {
   return p;
 }
 
+// The sphere of radius 30 mm decentred 8 mm (slope on the axis): the nose centre's path
+// curves around the turn differently from the contact's. A spiral over [inner, 1] mm at a
+// 0.05 mm pitch with a nose of radius R, ε as given, steps up to 1 rad.
+const TransformedSurface decentred_sphere(std::make_unique<EvenAsphere>(1 / 30.0, 0), 8, 0,
+                                          Eigen::Matrix3d::Identity());
+SpiralOptions sphere_spiral(double inner, double eps, double R, Interpolation mode) {
+  SpiralOptions o;
+  o.outer_radius = 1.0;
+  o.inner_radius = inner;
+  o.pitch = 0.05;
+  o.tool.nose_radius = R;
+  o.points.tolerance = eps;
+  o.points.max_angle_step = 1.0;
+  o.points.interpolation = mode;
+  return o;
+}
+
+// Paper 001's sinusoidal ring, period 2 mm, in profile from 5 mm to 0.5 mm: away from the
+// centre, where the profile meets its mirror image in a cone tip.
+const SinusoidalRing ring(0.05, std::numbers::pi, 0.0);
+ProfileOptions ring_profile(double eps, double R, Interpolation mode) {
+  ProfileOptions o;
+  o.outer_radius = 5.0;
+  o.inner_radius = 0.5;
+  o.tool.nose_radius = R;
+  o.points.tolerance = eps;
+  o.points.interpolation = mode;
+  return o;
+}
+
 }  // namespace
 
 TEST_SUITE("path") {
   TEST_CASE("with a nose, ε holds on the nose-centre motion the machine interpolates (spiral)") {
-    // An off-axis sphere, where the nose centre's path curves around the turn differently
-    // from the contact's.
-    const TransformedSurface sphere(std::make_unique<EvenAsphere>(1 / 30.0, 0), 8, 0,
-                                    Eigen::Matrix3d::Identity());
+    const TransformedSurface& sphere = decentred_sphere;
     const double eps = 5e-4, R = 0.5;
-    SpiralOptions o;
-    o.outer_radius = 1.0;
-    o.inner_radius = 0.5;
-    o.pitch = 0.05;
-    o.tool.nose_radius = R;
-    o.points.tolerance = eps;
-    o.points.max_angle_step = 1.0;
+    const SpiralOptions o = sphere_spiral(0.5, eps, R, Interpolation::kLinear);
     const auto cls = compensated(sphere, R, [&](ContactSink& sink) {
       plan_spiral(sphere, BaseSurface::plane(1.0), o, sink);
     });
@@ -66,20 +87,14 @@ TEST_SUITE("path") {
   }
 
   TEST_CASE("with a nose, ε holds on the nose-centre motion (profile)") {
-    // The sinusoidal ring of paper 001, period 2 mm.
-    const SinusoidalRing ring(0.05, std::numbers::pi, 0.0);
     {
       const double eps = 1e-4, R = 0.2;
-      ProfileOptions o;
-      // Away from the centre, where the ring's profile meets its mirror image in a cone
-      // tip the nose cannot follow (the centre check's business).
-      o.outer_radius = 5.0;
-      o.inner_radius = 0.5;
-      o.tool.nose_radius = R;
-      o.points.tolerance = eps;
-      const auto cls = compensated(ring, R, [&](ContactSink& sink) { plan_profile(ring, o, sink); });
+      const ProfileOptions o = ring_profile(eps, R, Interpolation::kLinear);
+      const auto cls =
+          compensated(ring, R, [&](ContactSink& sink) { plan_profile(ring, o, sink); });
       const double nose = test::densest_nose_error(ring, cls, R, 200);
-      MESSAGE("profile ε " << eps * 1e6 << " nm: nose motion " << nose * 1e6 << " nm, " << cls.size() << " points");
+      MESSAGE("profile ε " << eps * 1e6 << " nm: nose motion " << nose * 1e6 << " nm, "
+                           << cls.size() << " points");
       CHECK(nose <= 1.002 * eps);
       CHECK(nose >= 0.9 * eps);
     }
@@ -88,43 +103,31 @@ TEST_SUITE("path") {
   TEST_CASE("PVT: ε holds on the controller's cubics, with velocities from neighbouring blocks") {
     // The planner's figure must be the one a dense sampler finds on the cubics a controller
     // given positions only would run (dense_check.hpp writes that rule out on its own).
-    const auto judge = [](const Surface& s, const std::vector<CutterLocation>& cls, double R, double eps,
-                          const std::string& what) {
+    const auto judge = [](const Surface& s, const std::vector<CutterLocation>& cls, double R,
+                          double eps, const std::string& what) {
       const test::DenseNoseFigures f = test::dense_nose_figures(s, cls, R, 100, 400, nullptr, true);
       double planned = 0;
       for (const CutterLocation& cl : cls) planned = std::max(planned, cl.contact.chord_error);
       MESSAGE(what << ": ε " << eps * 1e6 << " nm, PVT motion " << f.worst * 1e6 << " nm, planned "
-                   << planned * 1e6 << " nm, deepest " << f.gouge * 1e6 << " nm below, " << cls.size()
-                   << " points");
+                   << planned * 1e6 << " nm, deepest " << f.gouge * 1e6 << " nm below, "
+                   << cls.size() << " points");
       CHECK(f.worst <= 1.002 * eps);
       CHECK(f.gouge <= 1e-9);
       CHECK(planned == doctest::Approx(f.worst).epsilon(0.02));
     };
     {
-      // Paper 001's sinusoidal ring, the profile a Precitech in PVT mode cuts at one feed.
-      const SinusoidalRing ring(0.05, std::numbers::pi, 0.0);
+      // The ring's profile, as a Precitech in PVT mode cuts it at one feed.
       const double eps = 1e-4, R = 0.2;
-      ProfileOptions o;
-      o.outer_radius = 5.0;
-      o.inner_radius = 0.5;
-      o.tool.nose_radius = R;
-      o.points.tolerance = eps;
-      o.points.interpolation = Interpolation::kCubic;
-      const auto cls = compensated(ring, R, [&](ContactSink& sink) { plan_profile(ring, o, sink); });
+      const ProfileOptions o = ring_profile(eps, R, Interpolation::kCubic);
+      const auto cls =
+          compensated(ring, R, [&](ContactSink& sink) { plan_profile(ring, o, sink); });
       judge(ring, cls, R, eps, "profile");
     }
     {
-      // A spiral through the vertex of an off-axis sphere: slope on the axis, X through 0.
-      const TransformedSurface sphere(std::make_unique<EvenAsphere>(1 / 30.0, 0), 8, 0,
-                                      Eigen::Matrix3d::Identity());
+      // A spiral through the vertex of the decentred sphere: slope on the axis, X through 0.
+      const TransformedSurface& sphere = decentred_sphere;
       const double eps = 5e-4, R = 0.5;
-      SpiralOptions o;
-      o.outer_radius = 1.0;
-      o.pitch = 0.05;
-      o.tool.nose_radius = R;
-      o.points.tolerance = eps;
-      o.points.max_angle_step = 1.0;
-      o.points.interpolation = Interpolation::kCubic;
+      const SpiralOptions o = sphere_spiral(0.0, eps, R, Interpolation::kCubic);
       const auto cls = compensated(sphere, R, [&](ContactSink& sink) {
         plan_spiral(sphere, BaseSurface::plane(1.0), o, sink);
       });
@@ -132,7 +135,9 @@ TEST_SUITE("path") {
     }
   }
 
-  TEST_CASE("with B following about a pivot, ε holds on the pivot's motion, where the nose swings on arcs") {
+  TEST_CASE(
+      "with B following about a pivot, ε holds on the pivot's motion, where the nose swings on "
+      "arcs") {
     // An Alvarez plate (paper 002's 4-axis part): its slope changes around the turn, so B
     // does, and the nose centre swings on an arc of radius L between blocks.
     const Alvarez plate(0.02, 0.0);
@@ -150,21 +155,22 @@ TEST_SUITE("path") {
     o.points.tolerance = eps;
     o.points.max_angle_step = 1.0;
     c.tool.nose_radius = R;
-    const auto cls = compensated(plate, R, [&](ContactSink& sink) {
-      plan_spiral(plate, BaseSurface::plane(3.0), o, sink);
-    }, c);
+    const auto cls = compensated(
+        plate, R, [&](ContactSink& sink) { plan_spiral(plate, BaseSurface::plane(3.0), o, sink); },
+        c);
     const double pivot = test::densest_nose_error(plate, cls, R, 50, 400, &c);
     const double centre = test::densest_nose_error(plate, cls, R);
-    MESSAGE("ε " << eps * 1e6 << " nm: pivot motion " << pivot * 1e6 << " nm (a linear nose centre would err "
-                 << centre * 1e6 << " nm), " << cls.size() << " points");
+    MESSAGE("ε " << eps * 1e6 << " nm: pivot motion " << pivot * 1e6
+                 << " nm (a linear nose centre would err " << centre * 1e6 << " nm), " << cls.size()
+                 << " points");
     CHECK(pivot <= 1.002 * eps);
     CHECK(pivot >= 0.9 * eps);
     // Planned as if the centre moved linearly, the same tolerance errs more on the pivot.
     SpiralOptions naive = o;
     naive.tool.axis_offset = 0;
-    const auto naive_cls = compensated(plate, R, [&](ContactSink& sink) {
-      plan_spiral(plate, BaseSurface::plane(3.0), naive, sink);
-    }, c);
+    const auto naive_cls = compensated(
+        plate, R,
+        [&](ContactSink& sink) { plan_spiral(plate, BaseSurface::plane(3.0), naive, sink); }, c);
     CHECK(test::densest_nose_error(plate, naive_cls, R, 50, 400, &c) > 1.2 * eps);
   }
 }
