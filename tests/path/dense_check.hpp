@@ -5,6 +5,7 @@
 #include <algorithm>
 #include <array>
 #include <cmath>
+#include <numbers>
 #include <vector>
 
 #include "freeturn/path/contact_point.hpp"
@@ -123,6 +124,49 @@ inline DenseNoseFigures dense_nose_figures(const Surface& s, const std::vector<C
     }
   }
   return figures;
+}
+
+// The material a spiral leaves, cut by brute force: at each of `columns` angles φ every
+// pass's nose centre is interpolated linearly in (C, radial position, z) between the
+// cutter locations whose C brackets φ (mod 2π), and at radii r_lo, r_lo + step, … ≤ r_hi
+// the lowest of the noses' lower arcs (radius R) is compared with the design's sag, the
+// difference scaled to the normal by 1/√(1 + |∇f|²). Returns the largest such residual
+// (mm, > 0: material left) over the cells some nose reaches.
+inline double dense_spiral_residual(const Surface& s, const std::vector<CutterLocation>& path,
+                                    double R, int columns, double r_lo, double r_hi,
+                                    double step) {
+  constexpr double kTwoPi = 2 * std::numbers::pi;
+  double worst = -1e300;
+  std::vector<std::array<double, 2>> centres;  // (radial, z) of each pass at φ
+  for (int j = 0; j < columns; ++j) {
+    const double phi = kTwoPi * j / columns;
+    centres.clear();
+    for (std::size_t k = 1; k < path.size(); ++k) {
+      const double ta = path[k - 1].contact.theta, tb = path[k].contact.theta;
+      const double turns = std::ceil((ta - phi) / kTwoPi);
+      const double t = phi + turns * kTwoPi;
+      if (!(t >= ta && t < tb)) continue;
+      const double u = (t - ta) / (tb - ta);
+      const auto radial = [&](const CutterLocation& cl) {
+        return cl.nose_centre.x() * std::cos(cl.contact.theta) + cl.nose_centre.y() * std::sin(cl.contact.theta);
+      };
+      centres.push_back({radial(path[k - 1]) + u * (radial(path[k]) - radial(path[k - 1])),
+                         path[k - 1].nose_centre.z() + u * (path[k].nose_centre.z() - path[k - 1].nose_centre.z())});
+    }
+    const double cp = std::cos(phi), sp = std::sin(phi);
+    for (double rho = r_lo; rho <= r_hi; rho += step) {
+      double lowest = 1e300;
+      for (const auto& c : centres) {
+        const double d = rho - c[0];
+        if (std::abs(d) < R) lowest = std::min(lowest, c[1] - std::sqrt(R * R - d * d));
+      }
+      if (lowest == 1e300) continue;
+      double f, fx, fy;
+      s.sag_gradient(rho * cp, rho * sp, f, fx, fy);
+      worst = std::max(worst, (lowest - f) / std::sqrt(1 + fx * fx + fy * fy));
+    }
+  }
+  return worst;
 }
 
 inline double densest_nose_error(const Surface& s, const std::vector<CutterLocation>& path,

@@ -15,6 +15,9 @@
 //                                           // the time from block a to b, up to a constant
 //                                           // factor (pvt_rule.hpp)
 //   bool creased() const;                   // the design has creases (Surface::has_creases)
+//   double slide(double x_axis, double c, double z, double b, const AxisState& ideal) const;
+//                                           // how far the tool at these axes rises above
+//                                           // the path's own nose `ideal` (nose_section.hpp)
 //   double stand_off() const;               // where the blocks stand off the design (mm):
 //                                           // the centre of the tolerance band
 
@@ -36,8 +39,10 @@ struct AxisState {
   double x_axis = 0, c = 0, z = 0;  // X, C, Z of the programmed point (nose_section.hpp)
   double b = 0;                     // B (rad) when it follows the normal, else 0
   double contact_r = 0;             // the contact's signed radius in the radial plane at C
+  double slope = 0;                 // the section's slope dz/dρ at the contact
   Eigen::Vector3d point = Eigen::Vector3d::Zero();
-  double uncut = 0;  // mm: material the nose, held at a crease, leaves (section_envelope.hpp)
+  bool held = false;  // the nose is held at a crease (section_envelope.hpp)
+  double uncut = 0;   // mm: the material it leaves there
   double warm = 0;   // the path's warm start for the next point (a projection distance)
 };
 
@@ -100,18 +105,19 @@ class SegmentMotion {
 // parabola through the largest and its neighbours. Where the parabola mispredicts the
 // value at its own vertex, the deviation is not smooth there and a golden-section search
 // of the bracket finds the peak instead.
-template <class Path>
-double segment_error(const Path& path, const Segment& segment, Interpolation mode) {
+//
+// The largest of the deviation over one segment, signed (> 0: above; < 0: below):
+// samples (8 intervals; 32 on a surface with creases, where the peak is a sharp tent at
+// the crease), then a parabola through the largest and its neighbours. Where the parabola
+// mispredicts the value at its own vertex, the deviation is not smooth there and a
+// golden-section search of the bracket finds the peak instead.
+template <class Path, class Deviation>
+double largest_deviation(const Path& path, Deviation&& deviation) {
   constexpr int kMaxIntervals = 32;
   const int intervals = path.creased() ? kMaxIntervals : 8;
-  const SegmentMotion motion(path, segment, mode);
-  const AxisState &a = segment.a, &b = segment.b;
   double signed_worst = 0;
   const auto deviation_at = [&](double t) {
-    double x, c, z, bb;
-    motion.at(t, x, c, z, bb);
-    const double d = path.deviation(x, c, z, bb, a.contact_r + t * (b.contact_r - a.contact_r)) -
-                     path.stand_off();
+    const double d = deviation(t);
     if (std::abs(d) > std::abs(signed_worst)) signed_worst = d;
     return std::abs(d);
   };
@@ -152,6 +158,43 @@ double segment_error(const Path& path, const Segment& segment, Interpolation mod
   return signed_worst;
 }
 
+// The largest distance of the interpolated motion from the band's centre (the design
+// raised by the path's stand-off) over one segment, signed (> 0: above it; < 0: below,
+// and below the design itself where it passes the stand-off).
+//
+// On a creased surface the distance above is also the nose's rise over the path's own
+// nose at the same τ (Path::slide): where the path's nose is held at a crease or changes
+// flank across one, an interpolated nose that keeps touching the design may still touch it
+// far from where the path's does, and the cusp to the next pass grows with the slide.
+// Whether a segment passes such a place cannot be told from its ends (a hold can begin and
+// end between them), so every segment that meets the gap target is measured again with
+// it; one that misses the target is rejected on its gap alone.
+template <class Path>
+double segment_error(const Path& path, const Segment& segment, Interpolation mode,
+                     double target) {
+  const SegmentMotion motion(path, segment, mode);
+  const AxisState &a = segment.a, &b = segment.b;
+  const auto gap_at = [&](double t, double& x, double& c, double& z, double& bb) {
+    motion.at(t, x, c, z, bb);
+    return path.deviation(x, c, z, bb, a.contact_r + t * (b.contact_r - a.contact_r)) -
+           path.stand_off();
+  };
+  const double gap = largest_deviation(path, [&](double t) {
+    double x, c, z, bb;
+    return gap_at(t, x, c, z, bb);
+  });
+  if (!path.creased() || std::abs(gap) > target) return gap;
+  AxisState ideal;
+  const double with_slide = largest_deviation(path, [&](double t) {
+    double x, c, z, bb;
+    const double d = gap_at(t, x, c, z, bb);
+    path.at(a.tau + t * (b.tau - a.tau), ideal);
+    const double above = std::max(d, path.slide(x, c, z, bb, ideal));
+    return above >= -d ? above : d;
+  });
+  return std::abs(with_slide) >= std::abs(gap) ? with_slide : gap;
+}
+
 // The chord fields of the point that ends a segment, from its error as distribute()
 // measures it (from the band's centre, the blocks' stand-off above the design).
 inline void set_chord(ContactPoint& p, const AxisState& s, double error, bool jump,
@@ -161,6 +204,34 @@ inline void set_chord(ContactPoint& p, const AxisState& s, double error, bool ju
   p.chord_below = error < -stand_off;
   p.chord_jump = jump;
   p.uncut_residual = s.uncut;
+}
+
+// Where the nose begins or ends a hold at a crease (section_envelope.hpp) the axis motion
+// kinks: the first state past the change in (a, b], to 1e-12 in τ, by bisection. A block
+// there puts the kink on a block boundary, and the chords on either side follow smooth
+// pieces (with a jump in held state the blocks on either side stay where they were).
+template <class Path>
+void end_at_hold_change(const Path& path, const AxisState& a, const AxisState& b,
+                        AxisState& first_changed) {
+  first_changed = b;
+  double lo = a.tau, hi = b.tau;
+  AxisState mid;
+  for (int it = 0; it < 60 && hi - lo > 1e-12 * std::max(1.0, std::abs(hi)); ++it) {
+    path.at(0.5 * (lo + hi), mid);
+    if (mid.held == a.held) {
+      lo = mid.tau;
+    } else {
+      hi = mid.tau;
+      first_changed = mid;
+    }
+  }
+}
+
+// Two blocks farther apart than the program's resolution (1 nm along X, Z and the arc of C):
+// a nose held at a crease of a profile does not move, and its hold's end is no new block.
+inline bool apart(const AxisState& a, const AxisState& b) {
+  const double arc = 0.5 * (std::abs(a.x_axis) + std::abs(b.x_axis)) * (b.c - a.c);
+  return std::hypot(b.x_axis - a.x_axis, b.z - a.z, arc) > 1e-6;
 }
 
 // A jump: over a rejected step the programmed point moves this many times farther than the
@@ -190,7 +261,7 @@ void distribute(Path& path, const CutterPointOptions& o, Emit&& emit) {
   const double end = path.tau_end();
   const bool pvt = o.interpolation == Interpolation::kCubic;
   // The last two blocks before `current` (PVT), and whether they exist.
-  AxisState before2, before, current, trial, look;
+  AxisState before2, before, current, trial, look, transition;
   bool has_before2 = false, has_before = false;
   path.at(0.0, current);
   path.commit(current);
@@ -207,25 +278,27 @@ void distribute(Path& path, const CutterPointOptions& o, Emit&& emit) {
   // A trial block's errors: of the new segment (current, trial) and, in PVT mode, of the
   // one before it as `trial` finalises it. The larger in size decides.
   double new_error = 0, previous_error = 0;
-  const auto measure = [&](const AxisState& t) {
+  // `cutoff`: a segment whose gap alone misses it is not measured further (segment_error).
+  constexpr double kFull = std::numeric_limits<double>::infinity();
+  const auto measure = [&](const AxisState& t, double cutoff) {
     if (!pvt) {
-      new_error = segment_error(path, Segment{nullptr, current, t, nullptr}, o.interpolation);
+      new_error = segment_error(path, Segment{nullptr, current, t, nullptr}, o.interpolation, cutoff);
       previous_error = 0;
       return std::abs(new_error);
     }
     const Segment secant{has_before ? &before : nullptr, current, t, nullptr};
-    new_error = segment_error(path, secant, o.interpolation);
+    new_error = segment_error(path, secant, o.interpolation, cutoff);
     double worst = std::abs(new_error);
     if (t.tau < end) {
       path.at(std::min(end, t.tau + (t.tau - current.tau)), look);
       const double equal_step =
-          segment_error(path, Segment{secant.before, current, t, &look}, o.interpolation);
+          segment_error(path, Segment{secant.before, current, t, &look}, o.interpolation, cutoff);
       worst = std::max(worst, std::abs(equal_step));
     }
     previous_error =
         has_before
             ? segment_error(path, Segment{has_before2 ? &before2 : nullptr, before, current, &t},
-                            o.interpolation)
+                            o.interpolation, cutoff)
             : 0.0;
     return std::max(worst, std::abs(previous_error));
   };
@@ -240,7 +313,7 @@ void distribute(Path& path, const CutterPointOptions& o, Emit&& emit) {
     if (o.rule == CutterPointRule::kEqualAngle) {
       step = std::min(2 * std::numbers::pi / o.points_per_revolution, remaining);
       path.at(advance(step), trial);
-      measure(trial);
+      measure(trial, kFull);
     } else if (o.rule == CutterPointRule::kEqualArcLength) {
       step = std::min(step, limit);
       for (int it = 0; it < 3; ++it) {
@@ -251,7 +324,7 @@ void distribute(Path& path, const CutterPointOptions& o, Emit&& emit) {
         step = next;
       }
       path.at(advance(step), trial);
-      measure(trial);
+      measure(trial, kFull);
     } else {
       // The largest step whose error is at most the target: e ∝ step^order locally, so
       // the secant-like update converges in a few evaluations.
@@ -271,7 +344,7 @@ void distribute(Path& path, const CutterPointOptions& o, Emit&& emit) {
       bool exhausted = false;
       for (int it = 0; it < 80; ++it) {
         path.at(advance(step), trial);
-        error = measure(trial);
+        error = measure(trial, target);
         if (pvt && error < least_error) {
           least = trial;
           least_error = error;
@@ -341,11 +414,27 @@ void distribute(Path& path, const CutterPointOptions& o, Emit&& emit) {
       new_error = best_new;
       previous_error = best_previous;
       step = accepted;
+      // Taken over the target (a jump, or PVT's least error): its gap alone was measured.
+      if (std::max(std::abs(new_error), std::abs(previous_error)) > target) {
+        measure(trial, kFull);
+      } else if (trial.held != current.held && !jump) {
+        end_at_hold_change(path, current, trial, transition);
+        // Not within a tenth of the step of either end: the kink is on a block already, and
+        // a sliver of a block would only demand more of the axes at one speed.
+        const double at = (transition.tau - current.tau) / step;
+        if (at > 0.1 && at < 0.9 && apart(transition, current) && apart(transition, trial) &&
+            measure(transition, target) <= target) {
+          trial = transition;
+          step = trial.tau - current.tau;
+        } else {
+          measure(trial, kFull);
+        }
+      }
     }
     // A last sliver shorter than a millionth of a step joins this one instead.
     if (end - trial.tau < 1e-6 * step && trial.tau < end) {
       path.at(end, trial);
-      measure(trial);
+      measure(trial, kFull);
     }
     path.commit(trial);
     if (!pvt) {

@@ -31,6 +31,14 @@ class ProfilePath {
   double deviation(double x_axis, double, double z, double b, double hint_r) const {
     return nose_.deviation(x_axis, 0.0, z, b, hint_r);
   }
+  // A single pass: only its own touch counts.
+  bool crosses_crease(const detail::AxisState& a, const detail::AxisState& b) const {
+    return nose_.crosses_crease(a.c, a.contact_r, b.c, b.contact_r);
+  }
+  double slide(double x_axis, double, double z, double b, const detail::AxisState& ideal) const {
+    return nose_.slide(x_axis, z, b, ideal.x_axis, ideal.z, ideal.b, ideal.contact_r, ideal.slope,
+                       0.0);
+  }
 
   void at(double tau, detail::AxisState& s) const {
     const double r = tau >= tau_end() ? o_.inner_radius : o_.outer_radius - tau;
@@ -49,6 +57,8 @@ class ProfilePath {
     const NoseTouch touch = nose_.touch(0.0, r, z, zx);
     s.contact_r = touch.rho;
     s.point = {touch.rho, 0.0, touch.z};
+    s.slope = touch.slope;
+    s.held = touch.held;
     s.uncut = touch.held ? touch.uncut : 0.0;
     nose_.axes(touch.rho, touch.z, touch.slope, s.x_axis, s.z, s.b);
   }

@@ -52,6 +52,14 @@ class SpiralPath {
   double deviation(double x_axis, double c, double z, double b, double hint_r) const {
     return nose_.deviation(x_axis, c, z, b, hint_r);
   }
+  // The next turns lie a pitch away on either side: each turn cuts half a pitch either way.
+  bool crosses_crease(const detail::AxisState& a, const detail::AxisState& b) const {
+    return nose_.crosses_crease(a.c, a.contact_r, b.c, b.contact_r);
+  }
+  double slide(double x_axis, double, double z, double b, const detail::AxisState& ideal) const {
+    return nose_.slide(x_axis, z, b, ideal.x_axis, ideal.z, ideal.b, ideal.contact_r, ideal.slope,
+                       0.5 * o_.pitch);
+  }
 
   void at(double theta, detail::AxisState& s) const { evaluate(theta, s); }
   void commit(const detail::AxisState& s) { lambda_ = s.warm; }
@@ -123,6 +131,7 @@ class SpiralPath {
         s.point = hit.point;
         s.x_axis = contact_r;
         s.z = z;
+        s.held = false;
         s.uncut = 0;
         return;
       }
@@ -133,6 +142,8 @@ class SpiralPath {
     const NoseTouch touch = nose_.touch(theta, contact_r, z, zx * c + zy * sn);
     s.contact_r = touch.rho;
     s.point = {touch.rho * c, touch.rho * sn, touch.z};
+    s.slope = touch.slope;
+    s.held = touch.held;
     s.uncut = touch.held ? touch.uncut : 0.0;
     nose_.axes(touch.rho, touch.z, touch.slope, s.x_axis, s.z, s.b);
   }
