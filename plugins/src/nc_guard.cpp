@@ -3,6 +3,7 @@
 #include <cctype>
 #include <charconv>
 #include <cmath>
+#include <cstdio>
 #include <string>
 #include <system_error>
 
@@ -102,6 +103,16 @@ void NcGuard::refuse(const std::string& what) {
 }
 
 void NcGuard::check_line(std::string_view line) {
+  // Text only, comments included: a controller reads every byte of a line.
+  for (std::size_t i = 0; i < line.size(); ++i) {
+    const unsigned char ch = static_cast<unsigned char>(line[i]);
+    if ((ch < 0x20 && ch != '\t' && ch != '\r') || ch > 0x7E) {
+      char code[8];
+      std::snprintf(code, sizeof code, "0x%02X", ch);
+      return refuse("byte " + std::string(code) + " at column " + std::to_string(i + 1) +
+                    " is not printable ASCII");
+    }
+  }
   // The words outside comments: "( … )" and everything after ';'.
   std::string code;
   int depth = 0;
@@ -129,7 +140,16 @@ void NcGuard::check_line(std::string_view line) {
     if (j < code.size() && (code[j] == '-' || code[j] == '+')) ++j;
     const std::size_t digits = j;
     while (j < code.size() && (std::isdigit(static_cast<unsigned char>(code[j])) || code[j] == '.')) ++j;
-    if (j == digits) continue;  // a keyword letter, not a word
+    if (j == digits) {
+      // A keyword's letter, unless it stands alone: then it is a word whose number is
+      // missing or is not a number ("F" then garbage).
+      const bool alone = (i == 0 || !std::isalpha(static_cast<unsigned char>(code[i - 1]))) &&
+                         (j >= code.size() || !std::isalpha(static_cast<unsigned char>(code[j])));
+      if (alone && std::string("xzcbf").find(code[i]) != std::string::npos)
+        return refuse(std::string(1, static_cast<char>(std::toupper(static_cast<unsigned char>(code[i])))) +
+                      " without a number after it: " + std::string(line));
+      continue;
+    }
     const char letter = static_cast<char>(std::toupper(static_cast<unsigned char>(code[i])));
     std::string_view number(code.data() + i + 1, j - i - 1);
     if (!number.empty() && number.front() == '+') number.remove_prefix(1);

@@ -74,9 +74,14 @@ void PostProgram::check_output(const char* stage) {
 }
 
 void PostProgram::fail(const char* stage) const {
-  throw InputError(
-      "post-processor '" + std::string(plugin_.post().name) + "' (" + plugin_.path() + ")",
-      std::string(stage) + ": " + (error_[0] ? error_ : "failed without a message"));
+  const std::string what = error_[0] ? error_ : "failed without a message";
+  const std::string who =
+      "post-processor '" + std::string(plugin_.post().name) + "' (" + plugin_.path() + ")";
+  // A refusal at creation is of the dialect settings: it is reported where the machine
+  // file states the setting it names.
+  if (std::string(stage) == "create")
+    throw InputError(machine_.place_of_setting_in(what), who + " refuses its settings: " + what);
+  throw InputError(who, std::string(stage) + ": " + what);
 }
 
 void PostProgram::write(std::span<const AxisRecord> chunk) {

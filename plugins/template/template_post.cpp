@@ -55,7 +55,7 @@ int begin(void* handle, char* error, size_t size) {
 
 int blocks(void* handle, const ft_block* b, size_t count, char* error, size_t size) {
   auto* p = static_cast<TemplatePost*>(handle);
-  char number[48];
+  char number[freeturn::post::kNumberCapacity];
   for (size_t k = 0; k < count; ++k) {
     p->line.clear();
     for (int i = 0; i < p->info->layout.count; ++i) {
@@ -63,15 +63,20 @@ int blocks(void* handle, const ft_block* b, size_t count, char* error, size_t si
       const double v = letter == 'X' ? b[k].x : letter == 'Z' ? b[k].z : letter == 'C' ? b[k].c : b[k].b;
       const int n = freeturn::post::format_fixed(v, p->info->layout.decimals[i], number);
       if (n == 0) {
-        std::snprintf(error, size, "block %zu: %c is not a finite number", k, letter);
+        std::snprintf(error, size, "block %zu: %c cannot be written (not finite, or too long)", k, letter);
         return 1;
       }
       if (!p->line.empty()) p->line += ' ';
       p->line += letter;
       p->line.append(number, static_cast<size_t>(n));
     }
+    const int n = freeturn::post::format_fixed(b[k].time, 6, number);
+    if (n == 0) {
+      std::snprintf(error, size, "block %zu: its time cannot be written", k);
+      return 1;
+    }
     p->line += " T";
-    p->line.append(number, static_cast<size_t>(freeturn::post::format_fixed(b[k].time, 6, number)));
+    p->line.append(number, static_cast<size_t>(n));
     p->line += '\n';
     if (!put(p, p->line)) {
       std::snprintf(error, size, "cannot write block %zu", k);

@@ -19,8 +19,9 @@ class IsoPost {
           freeturn::post::FlatSettings& settings)
       : info_(info), out_(out) {
     std::string message;
-    if (!settings.number("retract", 1.0, retract_, message) ||
-        !settings.number("approach_feed", 20.0, approach_feed_, message))
+    // The approach comes down from `retract` above the first point, never from below.
+    if (!settings.number_in("retract", 1.0, 0.01, 500, retract_, message) ||
+        !settings.number_in("approach_feed", 20.0, 0.001, 10000, approach_feed_, message))
       throw PostError(message);
   }
 
@@ -78,8 +79,7 @@ class IsoPost {
     const char letter = info_.layout.letters[i];
     const double v = letter == 'X' ? b.x : letter == 'Z' ? b.z : letter == 'C' ? b.c : b.b;
     line_ += ' ';
-    if (!append_word(line_, letter, v, info_.layout.decimals[i], letter == 'C' && info_.c_wrapped))
-      throw PostError(std::string("axis ") + letter + " is not a finite number");
+    append_word(line_, letter, v, info_.layout.decimals[i], letter == 'C' && info_.c_wrapped);
   }
 
   const ft_program_info& info_;

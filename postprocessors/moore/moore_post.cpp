@@ -5,6 +5,7 @@
 // C-axis mode (M79). Long programs are split: the main program calls child point files
 // with M98(<name>_NNN.nc), each ending in M99. The codes whose meaning public programs do
 // not settle (the header and footer lines) come from the machine YAML.
+#include <cmath>
 #include <cstdio>
 #include <string>
 
@@ -24,11 +25,18 @@ class MoorePost {
       : info_(info), out_(out) {
     std::string message;
     double time_decimals = 6;
-    if (!s.number("retract", 1.0, retract_, message) ||
-        !s.number("approach_feed", 200.0, approach_feed_, message) ||
-        !s.number("child_blocks", 0.0, child_blocks_, message) ||
-        !s.number("time_decimals", 6.0, time_decimals, message))
+    // The approach comes down from `retract` above the first point: above it, never below
+    // (a negative retract would move at rapid inside the part). G93's F is the block time:
+    // with no decimals every short block would read F0.
+    if (!s.number_in("retract", 1.0, 0.01, 500, retract_, message) ||
+        !s.number_in("approach_feed", 200.0, 0.001, 10000, approach_feed_, message) ||
+        !s.whole_number_in("child_blocks", 0.0, 0, 1e8, child_blocks_, message) ||
+        !s.whole_number_in("time_decimals", 6.0, 1, 9, time_decimals, message))
       throw PostError(message);
+    // A child file per handful of points would be thousands of files for one part.
+    if (child_blocks_ != 0 && child_blocks_ < 1000)
+      throw PostError("dialect setting 'child_blocks' is " + s.text("child_blocks", "") +
+                      ": 0 (one program) or at least 1000 points per child file");
     time_decimals_ = static_cast<int>(time_decimals);
     header_ = freeturn::post::unescape_lines(
         s.text("header", "G71 G01 G18 G40 G63 G90 G94 G54\\nT0101\\nG53 Z-180.\\nM80\\nG09 C0.0\\nG92 C0.0"));
@@ -74,6 +82,9 @@ class MoorePost {
         last_time_ = -1;  // every child states its feed
       }
       if (b[k].time != last_time_) {
+        if (!(std::nearbyint(b[k].time * time_scale()) > 0))
+          throw PostError("a block time of " + std::to_string(b[k].time) + " s reads F0 at " +
+                          std::to_string(time_decimals_) + " decimals: raise time_decimals");
         line_ = "G93 F";
         append_number(line_, b[k].time, time_decimals_);
         line_ += "\n";
@@ -100,6 +111,8 @@ class MoorePost {
   }
 
  private:
+  double time_scale() const { return std::pow(10.0, time_decimals_); }
+
   // The axis words of a block, C first as NanoCAM writes them, then X, Z, B.
   void words(const ft_block& b) {
     const ft_axis_layout& l = info_.layout;
@@ -108,8 +121,7 @@ class MoorePost {
         if (l.letters[i] != letter) continue;
         const double v = letter == 'X' ? b.x : letter == 'Z' ? b.z : letter == 'C' ? b.c : b.b;
         if (!line_.empty() && line_.back() != '\n') line_.push_back(' ');
-        if (!append_word(line_, letter, v, l.decimals[i], letter == 'C' && info_.c_wrapped))
-          throw PostError(std::string("axis ") + letter + " is not a finite number");
+        append_word(line_, letter, v, l.decimals[i], letter == 'C' && info_.c_wrapped);
       }
   }
 

@@ -28,7 +28,12 @@ class PrecitechPost {
     footer_ = freeturn::post::unescape_lines(s.text("footer", "; end\\nM30"));
     time_word_ = s.text("time_word", "");
     feed_line_ = s.text("feed_line", "G01 F");
-    if (time_word_.size() > 1) throw PostError("time_word must be one letter");
+    // A word letter of its own: not an axis, and not a code (G, M, N) or the feed.
+    if (time_word_.size() > 1 ||
+        (time_word_.size() == 1 && (time_word_[0] < 'A' || time_word_[0] > 'Z' ||
+                                    std::string("XZCBGMNF").find(time_word_[0]) != std::string::npos)))
+      throw PostError("time_word must be one capital letter other than X, Z, C, B, G, M, N and F, not '" +
+                      time_word_ + "'");
     profile_ = true;
     for (int i = 0; i < info.layout.count; ++i)
       if (info.layout.letters[i] == 'C') profile_ = false;
@@ -69,8 +74,7 @@ class PrecitechPost {
         for (int i = 0; i < l.count; ++i)
           if (l.letters[i] == letter) {
             const double v = letter == 'X' ? b[k].x : letter == 'Z' ? b[k].z : letter == 'C' ? b[k].c : b[k].b;
-            if (!append_word(line_, letter, v, l.decimals[i], letter == 'C' && info_.c_wrapped))
-              throw PostError(std::string("axis ") + letter + " is not a finite number");
+            append_word(line_, letter, v, l.decimals[i], letter == 'C' && info_.c_wrapped);
           }
       if (!first_ && !time_word_.empty()) append_word(line_, time_word_[0], b[k].time, 9);
       first_ = false;

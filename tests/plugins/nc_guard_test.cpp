@@ -93,4 +93,23 @@ TEST_SUITE("plugins") {
     guard.end_files();
     CHECK(guard.reason() == "main.nc:4: X200 is outside the machine's range [-100.0000005, 100.0000005]");
   }
+
+  TEST_CASE("the NC guard refuses bytes no controller should get and words without their number") {
+    const MachineDescription m = lathe();
+    const auto refused = [&](const std::string& text) {
+      NcGuard guard(m);
+      return refusal_of(guard, text);
+    };
+    // What an overrun formatter left after F: bytes of memory, in code or in a comment.
+    CHECK(refused(std::string("G93 F\x01\x9c\n")) == "p.nc:1: byte 0x01 at column 6 is not printable ASCII");
+    CHECK(refused(std::string("G1 X1 (\xc3\xa9)\n")) == "p.nc:1: byte 0xC3 at column 8 is not printable ASCII");
+    CHECK(refused(std::string("G1 X1\0\n", 7)).find("byte 0x00 at column 6") != std::string::npos);
+    // An axis or feed letter standing alone, or before a letter that is no number.
+    CHECK(refused("G93 F\n") == "p.nc:1: F without a number after it: G93 F");
+    CHECK(refused("G1 X Z1\n") == "p.nc:1: X without a number after it: G1 X Z1");
+    CHECK(refused("G1 C@\n").find("C without a number") != std::string::npos);
+    // Keywords whose letters are word letters are not words.
+    CHECK(refused("G1 X1 Z1\nM30\nEXEC\n").empty());
+    CHECK(refused("G1 X1.5 F200.\n").empty());
+  }
 }

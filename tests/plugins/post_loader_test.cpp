@@ -43,7 +43,7 @@ TEST_SUITE("plugins") {
     m.name = "test";
     m.axes = {{Axis::kX}, {Axis::kZ}};
     CHECK_THROWS_WITH_AS(PostProgram(*failing, m, {"job"}, dir.file("out.nc")),
-                         doctest::Contains("create: this dialect needs a setting 'program_number'"),
+                         doctest::Contains("refuses its settings: this dialect needs a setting 'program_number'"),
                          InputError);
     // Nothing was left behind.
     CHECK(std::distance(std::filesystem::directory_iterator(dir.path()),

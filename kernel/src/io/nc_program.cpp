@@ -50,6 +50,17 @@ std::vector<NcBlock> parse_nc(const std::string& text, const std::string& file) 
         const std::size_t number_start = j;
         if (j < l.size() && (l[j] == '-' || l[j] == '+')) ++j;
         while (j < l.size() && (std::isdigit(static_cast<unsigned char>(l[j])) || l[j] == '.')) ++j;
+        // "X1e5" is no X1 followed by a word E5: an exponent no controller reads.
+        if (j > number_start && j + 1 < l.size() && (l[j] == 'e' || l[j] == 'E')) {
+          std::size_t k = j + 1;
+          if (k < l.size() && (l[k] == '-' || l[k] == '+')) ++k;
+          if (k < l.size() && std::isdigit(static_cast<unsigned char>(l[k]))) {
+            while (k < l.size() && std::isdigit(static_cast<unsigned char>(l[k]))) ++k;
+            i = j;
+            fail("'" + l.substr(number_start - 1, k - number_start + 1) +
+                 "' is in exponent notation, which NC controllers do not read as one number");
+          }
+        }
         const std::string number = l.substr(number_start, j - number_start);
         if (ch != '#' && ch != '[' && !number.empty() && number != "-" && number != "+" &&
             number != ".") {

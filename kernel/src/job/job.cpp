@@ -30,8 +30,8 @@ Aperture read_aperture(const YAML::Node& node, const std::string& file) {
 
 }  // namespace
 
-Job load_job(const std::string& path) {
-  const YAML::Node root = load_yaml_file(path);
+Job load_job(const std::string& path, std::uintmax_t max_bytes) {
+  const YAML::Node root = load_yaml_file(path, max_bytes);
   if (!root.IsDefined() || root.IsNull()) throw InputError(path, "the job file is empty");
   MapReader map(root, path, "job");
   Job job;

@@ -18,10 +18,11 @@ Axis axis_from(const std::string& name, MapReader& map) {
 
 }  // namespace
 
-MachineDescription load_machine(const std::string& path) {
-  const YAML::Node root = load_yaml_file(path);
+MachineDescription load_machine(const std::string& path, std::uintmax_t max_bytes) {
+  const YAML::Node root = load_yaml_file(path, max_bytes);
   MapReader map(root, path, "machine");
   MachineDescription m;
+  m.file_place = SourceLocation{path, 0, 0};
   m.name = map.text("name");
   m.plugin = map.text("plugin");
   const YAML::Node axes = map.child("axes");
@@ -95,7 +96,9 @@ MachineDescription load_machine(const std::string& path) {
     // breaks and backslashes escaped (\n, \\), so a template can span lines.
     if (!dialect->IsMap())
       throw InputError(location_of(*dialect, path), "machine." + m.plugin + " must be a map");
+    m.dialect_place = location_of(*dialect, path);
     for (auto it = dialect->begin(); it != dialect->end(); ++it) {
+      m.dialect_key_places.emplace_back(it->first.Scalar(), location_of(it->second, path));
       if (!it->second.IsScalar())
         throw InputError(location_of(it->second, path),
                          "machine." + m.plugin + "." + it->first.Scalar() +

@@ -1,9 +1,15 @@
 #include "freeturn/job/yaml_reader.hpp"
 
+#include <algorithm>
 #include <cmath>
+#include <cstdio>
+#include <filesystem>
 #include <fstream>
+#include <set>
 #include <sstream>
+#include <string_view>
 #include <utility>
+#include <vector>
 
 namespace freeturn {
 
@@ -19,17 +25,152 @@ SourceLocation location_of(const YAML::Node& node, const std::string& file) {
   return loc;
 }
 
-YAML::Node load_yaml_file(const std::string& path) {
+namespace {
+
+// Line and column (1-based) of a byte offset.
+SourceLocation location_at(const std::string& text, std::size_t offset, const std::string& file) {
+  SourceLocation loc{file, 1, 1};
+  for (std::size_t i = 0; i < offset && i < text.size(); ++i) {
+    if (text[i] == '\n') {
+      ++loc.line;
+      loc.column = 1;
+    } else if ((static_cast<unsigned char>(text[i]) & 0xC0) != 0x80) {
+      ++loc.column;  // a column per character, not per UTF-8 continuation byte
+    }
+  }
+  return loc;
+}
+
+// Bytes no YAML file of ours means: a byte-order mark past the start (a file pasted into
+// another), NUL and other control characters (a binary file).
+void refuse_stray_bytes(const std::string& text, const std::string& file) {
+  const std::size_t bom = text.find("\xEF\xBB\xBF", 1);
+  if (bom != std::string::npos)
+    throw InputError(location_at(text, bom, file),
+                     "a byte-order mark inside the file (two files joined?); it may only "
+                     "open the file");
+  for (std::size_t i = 0; i < text.size(); ++i) {
+    const unsigned char ch = static_cast<unsigned char>(text[i]);
+    if ((ch < 0x20 && ch != '\t' && ch != '\n' && ch != '\r') || ch == 0x7F) {
+      char code[8];
+      std::snprintf(code, sizeof code, "0x%02X", ch);
+      throw InputError(location_at(text, i, file),
+                       std::string("a control character (") + code +
+                           ") in the file: not a YAML text file");
+    }
+  }
+}
+
+// The byte offset of a 0-based line and column.
+std::size_t offset_of(const std::string& text, int line, int column) {
+  std::size_t at = 0;
+  for (int l = 0; l < line && at != std::string::npos; ++l) {
+    at = text.find('\n', at);
+    if (at != std::string::npos) ++at;
+  }
+  return at == std::string::npos ? text.size() : std::min(text.size(), at + column);
+}
+
+// A quoted scalar must close on the line it opens: a missing quote otherwise swallows the
+// keys that follow it, and the file reads as something else. (Line breaks in a value are
+// written as \n, or as a block scalar.)
+void refuse_open_quote(const YAML::Node& node, const std::string& text, const std::string& file) {
+  const YAML::Mark m = node.Mark();
+  if (m.line < 0) return;
+  std::size_t i = offset_of(text, m.line, m.column);
+  if (i >= text.size() || (text[i] != '"' && text[i] != '\'')) return;
+  const char quote = text[i];
+  for (++i; i < text.size(); ++i) {
+    const char ch = text[i];
+    if (ch == '\n' || ch == '\r') break;
+    if (quote == '"' && ch == '\\') {
+      ++i;
+      continue;
+    }
+    if (ch == quote) {
+      if (quote == '\'' && i + 1 < text.size() && text[i + 1] == '\'') {
+        ++i;  // '' is a quote inside a single-quoted value
+        continue;
+      }
+      return;
+    }
+  }
+  throw InputError(SourceLocation{file, m.line + 1, m.column + 1},
+                   std::string("the value opened by ") + quote +
+                       " does not close on its line (a missing closing quote?)");
+}
+
+// Walks the tree: duplicate keys and quoted values left open.
+void check_tree(const YAML::Node& node, const std::string& text, const std::string& file,
+                int depth) {
+  if (depth > 64) throw InputError(location_of(node, file), "nested more than 64 levels deep");
+  if (node.IsScalar()) {
+    if (node.Tag() == "!") refuse_open_quote(node, text, file);
+    return;
+  }
+  if (node.IsSequence()) {
+    for (const YAML::Node& item : node) check_tree(item, text, file, depth + 1);
+    return;
+  }
+  if (!node.IsMap()) return;
+  std::set<std::string> keys;
+  for (auto it = node.begin(); it != node.end(); ++it) {
+    check_tree(it->first, text, file, depth + 1);
+    if (it->first.IsScalar() && !keys.insert(it->first.Scalar()).second)
+      throw InputError(location_of(it->first, file),
+                       "the key '" + it->first.Scalar() +
+                           "' appears twice in this map (the first would silently win)");
+    check_tree(it->second, text, file, depth + 1);
+  }
+}
+
+}  // namespace
+
+YAML::Node load_yaml_file(const std::string& path, std::uintmax_t max_bytes) {
+  std::error_code ec;
+  const std::filesystem::file_status status = std::filesystem::status(path, ec);
+  if (ec || !std::filesystem::exists(status))
+    throw InputError(path, "no such file");
+  if (std::filesystem::is_directory(status))
+    throw InputError(path, "is a directory, not a YAML file");
+  if (!std::filesystem::is_regular_file(status))
+    throw InputError(path, "is not a regular file (a device, pipe or socket): give a YAML file");
+  const std::uintmax_t size = std::filesystem::file_size(path, ec);
+  if (ec) throw InputError(path, "cannot read the file's size");
+  if (size > max_bytes)
+    throw InputError(path, "the file has " + std::to_string(size) + " bytes, over the " +
+                               std::to_string(max_bytes) +
+                               "-byte bound for a YAML file (docs/robustness.md)");
   std::ifstream in(path, std::ios::binary);
   if (!in) throw InputError(path, "cannot open the file for reading");
-  std::ostringstream text;
-  text << in.rdbuf();
+  std::ostringstream buffer;
+  buffer << in.rdbuf();
+  const std::string text = buffer.str();
+  refuse_stray_bytes(text, path);
+  std::vector<YAML::Node> documents;
   try {
-    return YAML::Load(text.str());
+    documents = YAML::LoadAll(text);
   } catch (const YAML::ParserException& e) {
     SourceLocation loc{path, e.mark.line + 1, e.mark.column + 1};
     throw InputError(loc, "YAML syntax error: " + e.msg);
   }
+  if (documents.size() > 1) {
+    // The second document begins at its "---" (or right after the first one's "...").
+    SourceLocation loc = location_of(documents[1], path);
+    for (std::size_t at = 0, line = 1; at < text.size(); ++line) {
+      const std::size_t end = std::min(text.find('\n', at), text.size());
+      const std::string_view l(text.data() + at, end - at);
+      if (line > 1 && (l.starts_with("---") || l.starts_with("..."))) {
+        loc = SourceLocation{path, static_cast<int>(line), 1};
+        break;
+      }
+      at = end + 1;
+    }
+    throw InputError(loc, "a second YAML document: a job or machine file holds one");
+  }
+  if (documents.empty()) return YAML::Node();
+  check_tree(documents[0], text, path, 0);
+  return documents[0];
 }
 
 MapReader::MapReader(const YAML::Node& node, std::string file, std::string what)

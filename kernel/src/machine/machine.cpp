@@ -9,6 +9,12 @@ const char* axis_letter(Axis axis) {
   return kLetters[static_cast<int>(axis)];
 }
 
+SourceLocation MachineDescription::place_of_setting_in(const std::string& message) const {
+  for (const auto& [key, place] : dialect_key_places)
+    if (message.find("'" + key + "'") != std::string::npos) return place;
+  return dialect_place.file.empty() ? file_place : dialect_place;
+}
+
 bool MachineDescription::has(Axis axis) const {
   for (const AxisSpec& a : axes)
     if (a.axis == axis) return true;

@@ -4,16 +4,29 @@
 
 #include <charconv>
 #include <cmath>
+#include <cstdio>
 #include <cstring>
+#include <stdexcept>
 #include <string>
+#include <system_error>
 
 namespace freeturn::post {
 
-// Writes `value` with `decimals` digits after the point into `out` (at least 40 bytes)
-// and returns the length, or 0 for NaN or infinity.
+// The room a formatted number may take, its terminator included: any NC word freeturn
+// writes fits (a travel of metres at 12 decimals is 20 characters).
+constexpr int kNumberCapacity = 48;
+// The decimals a word may carry.
+constexpr int kMaxDecimals = 15;
+
+// Writes `value` with `decimals` digits after the point into `out` (kNumberCapacity
+// bytes) and returns the length; 0 for NaN or infinity, for decimals outside
+// [0, kMaxDecimals], and for a value too long to fit (1e300 in fixed notation). Never
+// writes past out + kNumberCapacity − 1, and never leaves a byte it did not mean.
 inline int format_fixed(double value, int decimals, char* out) {
-  if (!std::isfinite(value)) return 0;
-  char* end = std::to_chars(out, out + 40, value, std::chars_format::fixed, decimals).ptr;
+  if (!std::isfinite(value) || decimals < 0 || decimals > kMaxDecimals) return 0;
+  const auto [end, error] =
+      std::to_chars(out, out + kNumberCapacity - 1, value, std::chars_format::fixed, decimals);
+  if (error != std::errc()) return 0;
   int n = static_cast<int>(end - out);
   // "-0.000" after rounding is 0.
   if (out[0] == '-') {
@@ -30,31 +43,40 @@ inline int format_fixed(double value, int decimals, char* out) {
 
 // C in [0, 360) at `decimals`: a value that rounds to 360 is written as 0.
 inline int format_wrapped_degrees(double value, int decimals, char* out) {
+  if (!std::isfinite(value) || decimals < 0 || decimals > kMaxDecimals) return 0;
   const double scale = std::pow(10.0, decimals);
   double rounded = std::nearbyint(value * scale) / scale;
   if (rounded >= 360.0) rounded -= 360.0;
   return format_fixed(rounded, decimals, out);
 }
 
-// Appends `letter` and the value (fixed decimals; C wrapped when `wrapped`) to `line`.
-// Returns false for NaN or infinity.
-inline bool append_word(std::string& line, char letter, double value, int decimals,
-                        bool wrapped = false) {
-  char buf[48];
-  const int n = wrapped ? format_wrapped_degrees(value, decimals, buf) : format_fixed(value, decimals, buf);
-  if (n == 0) return false;
-  line.push_back(letter);
-  line.append(buf, static_cast<std::size_t>(n));
-  return true;
+// Why a number cannot be written: thrown by the append functions (the plugin adapter turns
+// it into the plugin's refusal; nothing is written).
+inline std::range_error unwritable(char letter, double value, int decimals) {
+  char text[32];
+  std::snprintf(text, sizeof text, "%.17g", value);
+  return std::range_error(std::string(letter ? std::string(1, letter) + " " : "a number ") + text +
+                          " cannot be written with " + std::to_string(decimals) +
+                          " decimals (not finite, or too long for an NC word)");
 }
 
-// Appends the value alone (fixed decimals). Returns false for NaN or infinity.
-inline bool append_number(std::string& line, double value, int decimals) {
-  char buf[48];
-  const int n = format_fixed(value, decimals, buf);
-  if (n == 0) return false;
+// Appends `letter` and the value (fixed decimals; C wrapped when `wrapped`) to `line`.
+// Throws std::range_error when the value cannot be written (format_fixed).
+inline void append_word(std::string& line, char letter, double value, int decimals,
+                        bool wrapped = false) {
+  char buf[kNumberCapacity];
+  const int n = wrapped ? format_wrapped_degrees(value, decimals, buf) : format_fixed(value, decimals, buf);
+  if (n == 0) throw unwritable(letter, value, decimals);
+  line.push_back(letter);
   line.append(buf, static_cast<std::size_t>(n));
-  return true;
+}
+
+// Appends the value alone (fixed decimals). Throws std::range_error as append_word does.
+inline void append_number(std::string& line, double value, int decimals) {
+  char buf[kNumberCapacity];
+  const int n = format_fixed(value, decimals, buf);
+  if (n == 0) throw unwritable(0, value, decimals);
+  line.append(buf, static_cast<std::size_t>(n));
 }
 
 // A setting's value as written in the machine YAML: "\n" is a line break, "\\" a

@@ -5,6 +5,8 @@
 // is for them. A key the plugin does not know is an error, as in every other YAML
 // freeturn reads.
 
+#include <cmath>
+#include <cstdio>
 #include <cstdlib>
 #include <map>
 #include <string>
@@ -57,6 +59,23 @@ class FlatSettings {
     }
     return true;
   }
+  // A number within [lo, hi] (a fallback outside it is the plugin's own fault).
+  bool number_in(const std::string& key, double fallback, double lo, double hi, double& out,
+                 std::string& error) {
+    if (!number(key, fallback, out, error)) return false;
+    if (out >= lo && out <= hi) return true;
+    error = "dialect setting '" + key + "' is " + text(key, "") + ", outside [" + shortest(lo) +
+            ", " + shortest(hi) + "]";
+    return false;
+  }
+  // A whole number within [lo, hi].
+  bool whole_number_in(const std::string& key, double fallback, double lo, double hi, double& out,
+                       std::string& error) {
+    if (!number_in(key, fallback, lo, hi, out, error)) return false;
+    if (out == std::floor(out)) return true;
+    error = "dialect setting '" + key + "' must be a whole number, not " + text(key, "");
+    return false;
+  }
   // The keys the plugin asked for, comma-separated (for messages).
   std::string known_keys() const {
     std::string out;
@@ -71,6 +90,11 @@ class FlatSettings {
   }
 
  private:
+  static std::string shortest(double v) {
+    char buf[32];
+    std::snprintf(buf, sizeof buf, "%.15g", v);
+    return buf;
+  }
   static std::string trim(const std::string& s) {
     const std::size_t a = s.find_first_not_of(" \t\r");
     if (a == std::string::npos) return {};

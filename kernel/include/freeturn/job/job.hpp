@@ -7,6 +7,7 @@
 #include <string>
 #include <vector>
 
+#include "freeturn/job/yaml_limits.hpp"
 #include "freeturn/path/base_plan.hpp"
 #include "freeturn/path/cutter_points.hpp"
 #include "freeturn/surface/surface.hpp"
@@ -74,6 +75,7 @@ struct Job {
 };
 
 // Reads and validates a job file. Throws InputError ("file:line:col: what") on bad input.
-Job load_job(const std::string& path);
+// max_bytes bounds the file before it is parsed (load_yaml_file).
+Job load_job(const std::string& path, std::uintmax_t max_bytes = kMaxYamlBytes);
 
 }  // namespace freeturn

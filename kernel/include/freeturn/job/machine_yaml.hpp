@@ -5,11 +5,13 @@
 
 #include <string>
 
+#include "freeturn/job/yaml_limits.hpp"
 #include "freeturn/machine/machine.hpp"
 
 namespace freeturn {
 
-// Throws InputError at file:line:col for a bad key or value.
-MachineDescription load_machine(const std::string& path);
+// Throws InputError at file:line:col for a bad key or value. max_bytes bounds the file
+// before it is parsed (load_yaml_file).
+MachineDescription load_machine(const std::string& path, std::uintmax_t max_bytes = kMaxYamlBytes);
 
 }  // namespace freeturn

@@ -4,19 +4,24 @@
 
 #include <yaml-cpp/yaml.h>
 
+#include <cstdint>
 #include <optional>
 #include <set>
 #include <string>
 
 #include "freeturn/core/error.hpp"
+#include "freeturn/job/yaml_limits.hpp"
 
 namespace freeturn {
 
 // The location of a node in its file (yaml-cpp marks are 0-based; ours are 1-based).
 SourceLocation location_of(const YAML::Node& node, const std::string& file);
 
-// Parses a whole YAML file; a syntax error becomes an InputError at its line and column.
-YAML::Node load_yaml_file(const std::string& path);
+// Parses a whole YAML file, strictly: a regular file of at most max_bytes, one document,
+// no duplicate key in any map, no quoted value left open past its line, no byte-order mark
+// past the start and no control character. Every refusal (and a syntax error) is an
+// InputError at its line and column, or at the file for its kind and size.
+YAML::Node load_yaml_file(const std::string& path, std::uintmax_t max_bytes = kMaxYamlBytes);
 
 // Reads one YAML map. Call finish() after the last read: it rejects the keys that were
 // never asked for.

@@ -7,8 +7,10 @@
 
 #include <limits>
 #include <string>
+#include <utility>
 #include <vector>
 
+#include "freeturn/core/error.hpp"
 #include "freeturn/path/cutter_points.hpp"
 
 namespace freeturn {
@@ -47,6 +49,15 @@ struct MachineDescription {
   // its header): spirals then run at one constant spindle speed, never a schedule.
   bool constant_block_time = false;
   std::string dialect_settings;  // the YAML text under the dialect's key, for the plugin
+  // Where the machine file states them: the file, the dialect's map and each of its keys
+  // (a plugin's refusal of a setting is reported at the setting).
+  SourceLocation file_place;
+  SourceLocation dialect_place;
+  std::vector<std::pair<std::string, SourceLocation>> dialect_key_places;
+
+  // The place of the dialect setting a plugin's message names ('key'), else of the
+  // dialect's map, else of the file.
+  SourceLocation place_of_setting_in(const std::string& message) const;
 
   bool has(Axis axis) const;
   const AxisSpec& spec(Axis axis) const;  // throws std::out_of_range when absent
