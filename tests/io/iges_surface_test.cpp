@@ -98,4 +98,23 @@ TEST_SUITE("io") {
                          InputError);
     CHECK_THROWS_AS(read_iges_surface(dir.file("missing.igs")), InputError);
   }
+
+  TEST_CASE("IGES: a units flag that disagrees with the units name is refused at the global section") {
+    freeturn::test::TempDir dir;
+    const std::string text = freeturn::test::read_file(kData + "two_patches_inch.igs");
+    // Flag 1 (inches) with the name "INCH" reads; the name "2HMM" in its place (same
+    // width as "4HINCH" less two, padded) does not: which one was meant cannot be told.
+    std::string mm_name = text;
+    const std::size_t at = mm_name.find("4HINCH");
+    REQUIRE(at != std::string::npos);
+    mm_name.replace(at, 6, "2HMM  ");
+    CHECK_THROWS_WITH_AS(read_iges_surface(dir.write("units.igs", mm_name), 3),
+                         doctest::Contains("units.igs:2: the global section's units flag 1 (IN) "
+                                           "disagrees with its units name 'MM'"),
+                         InputError);
+    // The lower-case name of the same unit is the same unit.
+    std::string lower = text;
+    lower.replace(lower.find("4HINCH"), 6, "4Hinch");
+    CHECK_NOTHROW(read_iges_surface(dir.write("lower.igs", lower), 3));
+  }
 }

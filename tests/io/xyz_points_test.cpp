@@ -40,6 +40,15 @@ TEST_SUITE("io") {
       CHECK_THROWS_WITH_AS(read_xyz_points(dir.write("b.csv", std::string("0 0 0\n") + bad)),
                            doctest::Contains("b.csv:2:"), InputError);
     }
+    // A first row of NaN or infinity is no header of column names.
+    for (const char* row : {"nan nan nan\n", "NaN 1 2\n", "inf 0 0\n", "x -INF z\n"}) {
+      CAPTURE(row);
+      CHECK_THROWS_WITH_AS(read_xyz_points(dir.write("h.csv", std::string(row) + "0 0 0\n1 0 0\n")),
+                           doctest::Contains("h.csv:1:"), InputError);
+      CHECK_THROWS_WITH_AS(read_xyz_points(dir.write("h.csv", std::string(row) + "0 0 0\n1 0 0\n")),
+                           doctest::Contains("is not a finite number"), InputError);
+    }
+    CHECK(read_xyz_points(dir.write("names.csv", "x y z\n0 0 0\n")).size() == 1);
     const auto points = read_xyz_points(dir.write("s.csv", "+1.5 -2E+01 .25\n"));
     REQUIRE(points.size() == 1);
     CHECK(points[0] == Eigen::Vector3d(1.5, -20, 0.25));

@@ -2,11 +2,14 @@
 
 #include "number_text.hpp"
 
+#include <algorithm>
+#include <cctype>
 #include <charconv>
 #include <cmath>
 #include <fstream>
 #include <map>
 #include <string>
+#include <vector>
 
 #include "freeturn/core/error.hpp"
 
@@ -250,6 +253,21 @@ class IgesFile {
     if (!flag_read || it == kMillimetres.end())
       throw InputError(SourceLocation{path_, line, 0},
                        "units flag " + unit + " is not supported (use 2 = mm)");
+    // Field 15 names the unit. A file whose flag and name disagree was edited by hand or
+    // written wrongly; which one is meant cannot be told, and 25.4× is no small error.
+    static const std::map<int, std::vector<std::string>> kNames = {
+        {1, {"IN", "INCH"}}, {2, {"MM"}},  {4, {"FT"}},  {6, {"M"}},
+        {8, {"MIL"}},        {9, {"UM"}},  {10, {"CM"}}, {11, {"UIN"}}};
+    std::string name = field(14);
+    for (char& ch : name) ch = static_cast<char>(std::toupper(static_cast<unsigned char>(ch)));
+    if (!name.empty()) {
+      const std::vector<std::string>& names = kNames.at(flag);
+      if (std::find(names.begin(), names.end(), name) == names.end())
+        throw InputError(SourceLocation{path_, line, 0},
+                         "the global section's units flag " + std::to_string(flag) + " (" +
+                             names.front() + ") disagrees with its units name '" + field(14) +
+                             "': correct one of them");
+    }
     mm_per_unit_ = it->second;
   }
 

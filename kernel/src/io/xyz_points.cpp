@@ -1,6 +1,8 @@
 #include "freeturn/io/xyz_points.hpp"
 
+#include <cmath>
 #include <fstream>
+#include <string>
 #include <string_view>
 
 #include "freeturn/core/error.hpp"
@@ -34,6 +36,11 @@ std::vector<Eigen::Vector3d> read_xyz_points(const std::string& path) {
       const std::string_view field = rest.substr(0, rest.find(' '));
       rest.remove_prefix(field.size());
       double x;
+      // NaN or infinity is a number that is not finite, not a column name: a first row of
+      // them must not pass for a header and vanish.
+      if (detail::parse_number(field, x) && !std::isfinite(x))
+        throw InputError(SourceLocation{path, n, 0},
+                         "'" + std::string(field) + "' is not a finite number (x y z in mm)");
       if (count == 3 || !detail::parse_finite(field, x)) {
         ok = false;
         break;
@@ -45,7 +52,19 @@ std::vector<Eigen::Vector3d> read_xyz_points(const std::string& path) {
       header_allowed = false;
       continue;
     }
-    if (header_allowed && count == 0) {  // a header of column names
+    if (header_allowed && count == 0) {  // a header of column names, none a number
+      for (std::string_view fields(line); !fields.empty();) {
+        const std::size_t start = fields.find_first_not_of(' ');
+        if (start == std::string_view::npos) break;
+        fields.remove_prefix(start);
+        const std::string_view field = fields.substr(0, fields.find(' '));
+        fields.remove_prefix(field.size());
+        double x;
+        if (detail::parse_number(field, x))
+          throw InputError(SourceLocation{path, n, 0},
+                           "'" + std::string(field) + "' is not a finite number, and a header "
+                           "row names the columns: a row of points has three finite numbers");
+      }
       header_allowed = false;
       continue;
     }

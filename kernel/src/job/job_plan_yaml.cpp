@@ -1,6 +1,7 @@
 #include "job_plan_yaml.hpp"
 
 #include <cmath>
+#include <cstdio>
 #include <numbers>
 
 namespace freeturn::detail {
@@ -20,17 +21,20 @@ CheckPolicy read_policy(MapReader& map, const std::string& key, CheckPolicy fall
 void read_tool(MapReader& job, JobPlan& plan, const Aperture& aperture) {
   MapReader t(job.child("tool"), job.file(), "tool");
   ToolGeometry& g = plan.tool.tool;
-  g.nose_radius = t.positive("nose_radius");
-  g.included_angle = t.positive("included_angle_deg", 60.0) * kRadians;
-  if (g.included_angle > std::numbers::pi * 1.5)
-    t.fail("included_angle_deg", "included_angle_deg must be at most 270");
-  g.clearance_angle = t.positive("clearance_angle_deg", 10.0) * kRadians;
+  // Diamond turning noses run from a few µm to a few mm.
+  g.nose_radius = t.in_range("nose_radius", 0, 100, true, " mm");
+  g.included_angle = t.in_range("included_angle_deg", 60.0, 0, 270, true, "°") * kRadians;
+  // Below the edge the flank clears the cut surface by this angle; past 45° no insert
+  // is ground, and past 90° the "clearance" would face into the part.
+  g.clearance_angle = t.in_range("clearance_angle_deg", 10.0, 0, 45, true, "°") * kRadians;
   if (t.has("program_point")) {
     const std::string p = t.text("program_point");
     if (p != "centre" && p != "tip") t.fail("program_point", "program_point must be centre or tip");
     g.program_point = p == "tip" ? ProgramPoint::kTip : ProgramPoint::kNoseCentre;
   }
-  g.centre_height = t.number("centre_height", 0.0);
+  // The edge's height off the spindle axis: micrometres in practice, never the part's size.
+  g.centre_height = t.in_range("centre_height", 0.0, -0.5 * aperture.outer_radius,
+                               0.5 * aperture.outer_radius, false, " mm");
   if (const auto w = t.optional_child("waviness")) {
     if (!w->IsSequence()) throw InputError(location_of(*w, job.file()), "tool.waviness must be a list of [angle_deg, error_mm]");
     for (std::size_t i = 0; i < w->size(); ++i) {
@@ -41,6 +45,14 @@ void read_tool(MapReader& job, JobPlan& plan, const Aperture& aperture) {
         throw InputError(location_of(e, job.file()), "tool.waviness entries are [angle_deg, error_mm]");
       if (!g.waviness.empty() && !(a * kRadians > g.waviness.back().first))
         throw InputError(location_of(e, job.file()), "tool.waviness angles must increase");
+      if (!(std::abs(a) <= 180))
+        throw InputError(location_of(e[0], job.file()), "tool.waviness angles must be within [-180, 180]°");
+      // A form error of the edge, a fraction of the nose: one as large as the nose is a
+      // different tool (or millimetres typed for micrometres).
+      if (!(std::abs(v) < 0.1 * g.nose_radius))
+        throw InputError(location_of(e[1], job.file()),
+                         "tool.waviness error " + e[1].Scalar() + " mm must be smaller than a tenth of the nose radius (" +
+                             e[1].Scalar() + " vs " + std::to_string(g.nose_radius) + " mm)");
       g.waviness.emplace_back(a * kRadians, v);
     }
   }
@@ -54,7 +66,26 @@ void read_tool(MapReader& job, JobPlan& plan, const Aperture& aperture) {
   t.finish();
 }
 
-void read_points(MapReader& s, CutterPointOptions& p) {
+// The fewest points a rule can give over the aperture: the spiral's length over the
+// plane, π(R_o² − R_i²)/pitch (a surface's slope only lengthens it), over the arc step;
+// its turns times the points per turn; a profile's radial length over its step. Refused
+// before planning when over limits.max_points, at the key that sets the step.
+void refuse_too_many_points(MapReader& m, const std::string& key, double points,
+                            const JobPlan& plan) {
+  if (!(points > static_cast<double>(plan.limits.max_points))) return;
+  char text[160];
+  std::snprintf(text, sizeof text,
+                "this asks for at least %.3g points over the aperture, over limits.max_points "
+                "(%lld): a typo in a step or pitch?",
+                points, plan.limits.max_points);
+  m.fail(key, std::string("strategy.points: ") + text);
+}
+
+void read_points(MapReader& s, JobPlan& plan, const Aperture& aperture) {
+  CutterPointOptions& p = plan.strategy.points;
+  const bool spiral = plan.strategy.mode == Strategy::Mode::kSpiral;
+  const double ro = aperture.outer_radius, ri = aperture.inner_radius;
+  const double turns = spiral ? (ro - ri) / plan.strategy.pitch : 0.0;
   MapReader pm(s.child("points"), s.file(), "strategy.points");
   int rules = 0;
   if (const auto e = pm.optional_child("equal_angle")) {
@@ -63,22 +94,29 @@ void read_points(MapReader& s, CutterPointOptions& p) {
     const double n = m.positive("per_rev");
     if (n != std::floor(n) || n < 3 || n > 1e7) m.fail("per_rev", "per_rev must be an integer from 3 to 10000000");
     p.points_per_revolution = static_cast<int>(n);
+    refuse_too_many_points(m, "per_rev", turns * n, plan);
     m.finish();
     ++rules;
   }
   if (const auto e = pm.optional_child("equal_arc")) {
     MapReader m(*e, s.file(), "strategy.points.equal_arc");
     p.rule = CutterPointRule::kEqualArcLength;
-    p.arc_length = m.positive("length");
+    // From 10 nm (far below any chord tolerance) to 10 mm.
+    p.arc_length = m.in_range("length", 1e-5, 10, false, " mm");
+    const double length = spiral ? std::numbers::pi * (ro * ro - ri * ri) / plan.strategy.pitch : ro - ri;
+    refuse_too_many_points(m, "length", length / p.arc_length, plan);
     m.finish();
     ++rules;
   }
   if (const auto e = pm.optional_child("chord")) {
     MapReader m(*e, s.file(), "strategy.points.chord");
     p.rule = CutterPointRule::kChordError;
-    p.tolerance = m.positive("tolerance");
-    p.max_angle_step = m.positive("max_angle_deg", 5.0) * kRadians;
-    p.max_radial_step = m.positive("max_radial_step", 0.5);
+    // 0.1 nm is below any machine's resolution; 0.1 mm is no finishing cut.
+    p.tolerance = m.in_range("tolerance", 1e-7, 0.1, false, " mm");
+    p.max_angle_step = m.in_range("max_angle_deg", 5.0, 0.001, 90, false, "°") * kRadians;
+    p.max_radial_step = m.in_range("max_radial_step", 0.5, 1e-5, 100, false, " mm");
+    if (spiral) refuse_too_many_points(m, "max_angle_deg", turns * 2 * std::numbers::pi / p.max_angle_step, plan);
+    else refuse_too_many_points(m, "max_radial_step", (ro - ri) / p.max_radial_step, plan);
     m.finish();
     ++rules;
   }
@@ -86,7 +124,7 @@ void read_points(MapReader& s, CutterPointOptions& p) {
   pm.finish();
 }
 
-void read_strategy(MapReader& job, JobPlan& plan) {
+void read_strategy(MapReader& job, JobPlan& plan, const Aperture& aperture) {
   MapReader s(job.child("strategy"), job.file(), "strategy");
   Strategy& st = plan.strategy;
   const std::string mode = s.text("mode");
@@ -97,6 +135,12 @@ void read_strategy(MapReader& job, JobPlan& plan) {
     if (kind != "planar" && kind != "space") s.fail("spiral", "strategy.spiral must be planar or space, not '" + kind + "'");
     st.space = kind == "space";
     st.pitch = s.positive("pitch");
+    // Passes a nose diameter apart do not overlap: a ridge stands between every two.
+    if (!(st.pitch < 2 * plan.tool.tool.nose_radius))
+      s.fail("pitch", "strategy.pitch " + s.node()["pitch"].Scalar() +
+                          " mm is not below the nose diameter (2 × " +
+                          std::to_string(plan.tool.tool.nose_radius) +
+                          " mm): the passes would not overlap");
     st.base.kind = st.space ? BaseKind::kLeastSquares : BaseKind::kPlane;
   }
   if (const auto b = s.optional_child("base_surface")) {
@@ -113,7 +157,7 @@ void read_strategy(MapReader& job, JobPlan& plan) {
       if (v && st.base.kind != BaseKind::kMinimax) bm.fail("search_axis", "search_axis needs fit: minimax");
       st.base.search_axis = v;
     }
-    st.base.angle_limit = bm.positive("max_normal_deviation_deg", 90.0) * kRadians;
+    st.base.angle_limit = bm.in_range("max_normal_deviation_deg", 90.0, 0, 90, true, "°") * kRadians;
     if (bm.has("on_exceed")) {
       const std::string e = bm.text("on_exceed");
       if (e != "error" && e != "warning") bm.fail("on_exceed", "on_exceed must be error or warning");
@@ -127,7 +171,7 @@ void read_strategy(MapReader& job, JobPlan& plan) {
       s.fail("direction", "direction must be edge_to_centre or centre_to_edge");
     st.centre_to_edge = d == "centre_to_edge";
   }
-  read_points(s, st.points);
+  read_points(s, plan, aperture);
   if (st.mode == Strategy::Mode::kProfile && st.points.rule == CutterPointRule::kEqualAngle)
     s.fail("points", "equal_angle points need a spiral; profile mode takes equal_arc or chord");
   if (s.has("b_axis")) {
@@ -206,12 +250,12 @@ std::optional<JobPlan> read_job_plan(MapReader& job, const Aperture& aperture) {
     return std::nullopt;
   }
   JobPlan plan;
+  read_limits(job, plan);  // the point estimate (read_points) is held to them
   read_tool(job, plan, aperture);
-  read_strategy(job, plan);
+  read_strategy(job, plan, aperture);
   read_cutting(job, plan);
   plan.machine = job.text("machine");
   read_outputs(job, plan);
-  read_limits(job, plan);
   if (plan.strategy.b_mode == BMode::kFollow) plan.tool.b_mode = BMode::kFollow;
   return plan;
 }

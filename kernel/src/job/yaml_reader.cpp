@@ -245,6 +245,26 @@ double MapReader::non_negative(const std::string& key, double fallback) {
   return v;
 }
 
+double MapReader::in_range(const std::string& key, double fallback, double lo, double hi,
+                           bool open_low, const std::string& unit) {
+  auto value = optional_child(key);
+  if (!value) return fallback;
+  const double v = read_number(*value, key);
+  if (!(open_low ? v > lo : v >= lo) || !(v <= hi)) {
+    std::ostringstream bounds;
+    bounds << (open_low ? "(" : "[") << lo << ", " << hi << "]" << unit;
+    throw InputError(location_of(*value, file_), what_ + "." + key + " must be within " +
+                                                     bounds.str() + ", not " + value->Scalar());
+  }
+  return v;
+}
+
+double MapReader::in_range(const std::string& key, double lo, double hi, bool open_low,
+                           const std::string& unit) {
+  child(key);  // an error when it is missing
+  return in_range(key, 0.0, lo, hi, open_low, unit);
+}
+
 std::string MapReader::text(const std::string& key) {
   const YAML::Node value = child(key);
   if (!value.IsScalar() || value.Scalar().empty())

@@ -46,6 +46,12 @@ class MapReader {
   double positive(const std::string& key, double fallback);
   // A finite number >= 0.
   double non_negative(const std::string& key, double fallback);
+  // A finite number in (lo, hi] (`open_low`) or [lo, hi]; `unit` follows the bounds in the
+  // message ("°", " mm").
+  double in_range(const std::string& key, double fallback, double lo, double hi, bool open_low,
+                  const std::string& unit);
+  double in_range(const std::string& key, double lo, double hi, bool open_low,
+                  const std::string& unit);  // required
   // A non-empty string.
   std::string text(const std::string& key);
 
