@@ -566,6 +566,27 @@ int run_simulate(const std::vector<std::string>& args) {
   return say_unsafe(r) ? kExitCheckFailed : kExitOk;
 }
 
+// The plugin reads its dialect settings when a program is created: check creates one in
+// a private temporary folder and drops it unwritten, so that settings `run` would refuse
+// are refused here too, at their place in the machine file (exit 2).
+void check_dialect_settings(const Job& job, const PreparedJob& prepared) {
+  const std::filesystem::path folder = std::filesystem::temp_directory_path() /
+                                       ("freeturn-check-" + std::to_string(getpid()));
+  std::filesystem::create_directories(folder);
+  try {
+    const PostProgram probe(*prepared.plugin, prepared.machine,
+                            ProgramSettings{job.name, job.plan->cutting.spindle_rpm,
+                                            job.plan->cutting.feed, -1, -1},
+                            (folder / "settings-check.nc").string());
+  } catch (...) {
+    std::error_code ignored;
+    std::filesystem::remove_all(folder, ignored);
+    throw;
+  }
+  std::error_code ignored;
+  std::filesystem::remove_all(folder, ignored);
+}
+
 int run_check(const std::vector<std::string>& args) {
   std::string job_path;
   for (const std::string& a : args) {
@@ -578,6 +599,7 @@ int run_check(const std::vector<std::string>& args) {
   // Bad input (the job, the machine, the plugin) is exit 2; a job that would fail is 1.
   const Job job = load_job(job_path);
   const PreparedJob prepared = prepare_job(job);
+  check_dialect_settings(job, prepared);
   try {
     const RunReport r = run_job(job, prepared, "", true, false);
     const PassFigures& f = r.passes.back();

@@ -1,0 +1,118 @@
+#!/usr/bin/env bash
+# Bad inputs a user (or an attacker) writes: each is refused with exit 2, a message at
+# file:line:col naming what is wrong, nothing in the output folder, in under 5 s.
+set -uo pipefail
+freeturn="$1"
+src="$2"
+tmp="$(mktemp -d)"
+trap 'rm -rf "$tmp"' EXIT
+fail=0
+cases=0
+
+# refused DESCRIPTION FILE EXPECTED-PREFIX WORDS...: `freeturn check` and `run` on the job
+# FILE exit 2, stderr starts with EXPECTED-PREFIX (file:line:col) and holds every WORD.
+refused() {
+  local what="$1" job="$2" where="$3"
+  shift 3
+  cases=$((cases + 1))
+  for command in check run; do
+    rm -rf "$tmp/out"
+    mkdir -p "$tmp/out"
+    local start=$SECONDS
+    local args=("$job")
+    [[ "$command" == run ]] && args+=(-o "$tmp/out")
+    (cd "$tmp/out" && timeout 20 "$freeturn" "$command" "${args[@]}" > "$tmp/stdout" 2> "$tmp/err")
+    local code=$?
+    local took=$((SECONDS - start))
+    if [[ "$code" != 2 ]]; then echo "FAIL: $what ($command): exit $code, expected 2"; cat "$tmp/err"; fail=1; continue; fi
+    if [[ "$(head -c ${#where} "$tmp/err")" != "$where" ]]; then
+      echo "FAIL: $what ($command): stderr does not start with '$where':"; cat "$tmp/err"; fail=1
+    fi
+    for word in "$@"; do
+      grep -qF -- "$word" "$tmp/err" || { echo "FAIL: $what ($command): '$word' not in:"; cat "$tmp/err"; fail=1; }
+    done
+    if [[ -n "$(ls -A "$tmp/out")" ]]; then echo "FAIL: $what ($command): left $(ls -A "$tmp/out")"; fail=1; fi
+    if ((took > 5)); then echo "FAIL: $what ($command): took ${took} s"; fail=1; fi
+  done
+}
+
+# A small valid job to break one line at a time (LinuxCNC lathe, X Z C, ISO dialect).
+base="$tmp/base.yaml"
+cat > "$base" <<'YAML'
+name: plate
+aperture:
+  outer_radius: 2.0
+surface:
+  type: sphere
+  radius: 50.0
+tool:
+  nose_radius: 0.5
+  clearance_angle_deg: 10
+strategy:
+  mode: spiral
+  spiral: planar
+  pitch: 0.05
+  points:
+    chord: {tolerance: 0.001, max_angle_deg: 5}
+cutting:
+  spindle_rpm: 20
+machine: MACHINE
+YAML
+cp "$src/postprocessors/iso/machines/iso-lathe-xzc.yaml" "$tmp/machine.yaml"
+sed -i "s|MACHINE|$tmp/machine.yaml|" "$base"
+"$freeturn" check "$base" > /dev/null 2>&1 || { echo "FAIL: the base job does not pass"; "$freeturn" check "$base"; exit 1; }
+
+# variant NAME SED-SCRIPT: the base job edited.
+variant() { sed "$2" "$base" > "$tmp/$1.yaml"; echo "$tmp/$1.yaml"; }
+
+# YAML that a person would not mean.
+job=$(variant dup_key 's/^  pitch: 0.05/  pitch: 0.05\n  pitch: 0.5/')
+refused "a duplicate key" "$job" "$job:14:3:" "'pitch' appears twice"
+job=$(variant dup_flow 's/chord: {tolerance: 0.001, max_angle_deg: 5}/chord: {tolerance: 0.001, tolerance: 0.01}/')
+refused "a duplicate key in a flow map" "$job" "$job:15:31:" "'tolerance' appears twice"
+job=$(variant dup_machine "s|^machine: .*|&\nmachine: iso-lathe-xz|")
+refused "machine twice" "$job" "$job:19:1:" "'machine' appears twice"
+job=$(variant two_docs '$a ---\nname: other')
+refused "a second document" "$job" "$job:19:1:" "second YAML document"
+job=$(variant open_quote 's/^name: plate/name: "plate/')
+refused "an unterminated quote" "$job" "$job:1:7:" "does not close on its line"
+job=$(variant bom_mid 's/^tool:/\xef\xbb\xbftool:/')
+refused "a byte-order mark mid-file" "$job" "$job:7:1:" "byte-order mark"
+printf 'name: plate\0\n' > "$tmp/nul.yaml"
+refused "a NUL byte" "$tmp/nul.yaml" "$tmp/nul.yaml:1:12:" "control character"
+mkdir -p "$tmp/dir.yaml"
+refused "a directory as the job" "$tmp/dir.yaml" "$tmp/dir.yaml:" "is a directory"
+refused "a device as the job" /dev/zero "/dev/zero:" "not a regular file"
+head -c 5000000 /dev/zero | tr '\0' '#' > "$tmp/huge.yaml"
+refused "a 5 MB job" "$tmp/huge.yaml" "$tmp/huge.yaml:" "over the 4194304-byte bound"
+
+# Ranges the schema states.
+job=$(variant clearance 's/clearance_angle_deg: 10/clearance_angle_deg: 720/')
+refused "clearance 720°" "$job" "$job:9:24:" "clearance_angle_deg must be within (0, 45]"
+job=$(variant pitch 's/pitch: 0.05/pitch: 1.5/')
+refused "a pitch of three nose radii" "$job" "$job:13:10:" "would not overlap"
+job=$(variant tolerance 's/tolerance: 0.001/tolerance: 1e-30/')
+refused "a chord tolerance of 1e-30" "$job" "$job:15:24:" "tolerance must be within"
+job=$(variant angle 's/max_angle_deg: 5/max_angle_deg: 1e-9/')
+refused "max_angle_deg 1e-9" "$job" "$job:15:46:" "max_angle_deg must be within"
+job=$(variant arc 's/chord: {tolerance: 0.001, max_angle_deg: 5}/equal_arc: {length: 1e-12}/')
+refused "an arc step of 1e-12 mm" "$job" "$job:15:25:" "length must be within"
+job=$(variant arc_many 's/chord: {tolerance: 0.001, max_angle_deg: 5}/equal_arc: {length: 1e-5}/')
+echo "limits: {max_points: 1000000}" >> "$job"
+refused "an arc step over the point limit" "$job" "$job:15:25:" "limits.max_points"
+
+# Machine and dialect settings.
+machine_variant() {
+  sed "$2" "$tmp/machine.yaml" > "$tmp/$1.machine.yaml"
+  sed "s|^machine: .*|machine: $tmp/$1.machine.yaml|" "$base" > "$tmp/$1.yaml"
+  echo "$tmp/$1"
+}
+m=$(machine_variant retract 's/^  retract: .*/  retract: -1.46/')
+refused "a negative retract" "$m.yaml" "$m.machine.yaml:12:12:" "'retract' is -1.46, outside"
+m=$(machine_variant feed 's/^  approach_feed: .*/  approach_feed: 1e300/')
+refused "an approach feed of 1e300" "$m.yaml" "$m.machine.yaml:13:18:" "'approach_feed' is 1e300"
+m=$(machine_variant dialect_dup 's/^  retract: .*/  retract: 1\n  retract: 2/')
+refused "a dialect key twice" "$m.yaml" "$m.machine.yaml:13:3:" "'retract' appears twice"
+
+echo "$cases cases"
+exit $fail
