@@ -185,36 +185,6 @@ ToolMotion motion_of(const CompensationOptions& c) {
   return m;
 }
 
-// Before any work: the fewest points the passes can have (each step is at most the angle
-// cap, or the equal angle; at most the radial cap in profile mode), against the limit, so
-// that a typo in the pitch is refused at once rather than after minutes of planning.
-void check_point_bound(const Job& job, const JobPlan& plan, std::size_t passes) {
-  const CutterPointOptions& p = plan.strategy.points;
-  const double width = job.aperture.outer_radius - job.aperture.inner_radius;
-  double per_pass;
-  std::string how;
-  if (plan.strategy.mode == Strategy::Mode::kSpiral) {
-    const double turns = width / plan.strategy.pitch;
-    const double per_turn = p.rule == CutterPointRule::kEqualAngle
-                                ? p.points_per_revolution
-                                : std::ceil(2 * std::numbers::pi / p.max_angle_step);
-    per_pass = turns * per_turn;
-    how = std::to_string(turns) + " turns at pitch " + std::to_string(plan.strategy.pitch) +
-          " mm, at least " + std::to_string(per_turn) + " points per turn";
-  } else {
-    per_pass = width / p.max_radial_step;
-    how = "steps of at most " + std::to_string(p.max_radial_step) + " mm";
-  }
-  const double total = per_pass * static_cast<double>(passes);
-  if (total > static_cast<double>(plan.limits.max_points))
-    throw InputError(
-        job.file,
-        "the job needs at least " + std::to_string(static_cast<long long>(total)) + " points (" +
-            how + ", " + std::to_string(passes) +
-            " passes): more than limits.max_points = " + std::to_string(plan.limits.max_points) +
-            "; check the pitch and tolerance, or raise the limit");
-}
-
 // Spiral block times are scheduled unless the job asks for one constant speed, turns the
 // machine's limits off, or the dialect writes no time per block. PVT programs run at one
 // speed too: the controller derives its velocities from the block times (pvt_rule.hpp),
@@ -235,10 +205,10 @@ MachineDescription machine_for(const Job& job, const std::string& machine_file) 
   const JobPlan& plan = *job.plan;
   const bool spiral = plan.strategy.mode == Strategy::Mode::kSpiral;
   if (spiral && !m.has(Axis::kC))
-    throw InputError(job.file, "strategy.mode spiral needs a C axis; machine '" + m.name +
-                                   "' has none (use mode: profile, or another machine)");
+    throw InputError(job.place("machine"), "strategy.mode spiral needs a C axis; machine '" + m.name +
+                                               "' has none (use mode: profile, or another machine)");
   if (plan.strategy.b_mode == BMode::kFollow && !m.has(Axis::kB))
-    throw InputError(job.file,
+    throw InputError(job.place("strategy.b_axis"),
                      "strategy.b_axis: follow needs a B axis; machine '" + m.name + "' has none");
   if (!spiral) {
     // Profile turning programs X and Z only; the spindle runs at speed.
@@ -259,8 +229,18 @@ PreparedJob prepare_job(const Job& job) {
       !std::filesystem::path(machine_ref).is_absolute())
     machine_ref = (std::filesystem::path(job.file).parent_path() / machine_ref).string();
   PreparedJob p;
-  p.machine = machine_for(job, find_machine_file(machine_ref));
-  p.plugin = PostPlugin::load(p.machine.plugin);
+  std::string machine_file;
+  try {
+    machine_file = find_machine_file(machine_ref);
+  } catch (const InputError& e) {
+    throw InputError(job.place("machine"), e.what());  // at the job's `machine:`
+  }
+  p.machine = machine_for(job, machine_file);
+  try {
+    p.plugin = PostPlugin::load(p.machine.plugin);
+  } catch (const InputError& e) {
+    throw InputError(p.machine.plugin_place, e.what());  // at the machine's `plugin:`
+  }
   return p;
 }
 
@@ -327,7 +307,6 @@ RunReport execute_job(const Job& job, const PreparedJob& prepared, const std::st
   report.enforce_dynamics = plan.cutting.enforce_dynamics;
 
   std::vector<double> stock = plan.cutting.roughing_depths;
-  check_point_bound(job, plan, stock.size() + 1);
   long long points_so_far = 0;
   stock.push_back(0.0);  // the finishing pass
   std::vector<std::unique_ptr<PostProgram>> programs;
@@ -374,7 +353,7 @@ RunReport execute_job(const Job& job, const PreparedJob& prepared, const std::st
       if (!(so.band > 0)) so.band = 3 * pitch;
       if (!(so.margin > 0)) so.margin = pitch;
       if (!spiral)
-        throw InputError(job.file, "the cut simulation needs a spiral (strategy.mode: spiral)");
+        throw InputError(job.place("strategy.mode"), "the cut simulation needs a spiral (strategy.mode: spiral)");
       simulator = std::make_unique<CutSimulator>(surface, plan.tool.tool.nose_radius, so);
       stage.set_simulator(simulator.get());
     }

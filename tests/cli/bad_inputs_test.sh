@@ -101,6 +101,21 @@ job=$(variant arc_many 's/chord: {tolerance: 0.001, max_angle_deg: 5}/equal_arc:
 echo "limits: {max_points: 1000000}" >> "$job"
 refused "an arc step over the point limit" "$job" "$job:15:25:" "limits.max_points"
 
+job=$(variant rpm 's/spindle_rpm: 20/spindle_rpm: 1e9/')
+refused "1e9 rpm" "$job" "$job:17:16:" "spindle_rpm must be within (0, 20000]"
+job=$(variant long_name "s/^name: plate/name: $(printf 'n%.0s' {1..300})/")
+refused "a 300-character name" "$job" "$job:1:7:" "at most 100"
+job=$(variant waviness 's/^  clearance_angle_deg: 10/&\n  waviness: [[0, 0.6]]/')
+refused "a waviness larger than the nose" "$job" "$job:10:18:" "smaller than a tenth of the nose radius"
+
+# Errors found after reading, at the key that causes them.
+job=$(variant xz "s|^machine: .*|machine: iso-lathe-xz|")
+refused "a spiral on an X-Z machine" "$job" "$job:18:10:" "needs a C axis"
+job=$(variant follow 's/^strategy:/strategy:\n  b_axis: follow/')
+refused "B following on a 3-axis machine" "$job" "$job:11:11:" "needs a B axis"
+job=$(variant no_machine "s|^machine: .*|machine: no-such-lathe|")
+refused "a missing machine" "$job" "$job:18:10:" "no no-such-lathe.yaml"
+
 # Machine and dialect settings.
 machine_variant() {
   sed "$2" "$tmp/machine.yaml" > "$tmp/$1.machine.yaml"
@@ -113,6 +128,11 @@ m=$(machine_variant feed 's/^  approach_feed: .*/  approach_feed: 1e300/')
 refused "an approach feed of 1e300" "$m.yaml" "$m.machine.yaml:13:18:" "'approach_feed' is 1e300"
 m=$(machine_variant dialect_dup 's/^  retract: .*/  retract: 1\n  retract: 2/')
 refused "a dialect key twice" "$m.yaml" "$m.machine.yaml:13:3:" "'retract' appears twice"
+
+m=$(machine_variant unknown_setting 's/^  retract: .*/&\n  colour: red/')
+refused "an unknown dialect key" "$m.yaml" "$m.machine.yaml:13:11:" "unknown setting 'colour'"
+m=$(machine_variant plugin_path 's/^plugin: iso/plugin: ..\/iso/')
+refused "a plugin path with .." "$m.yaml" "$m.machine.yaml:3:9:" "a name, not a path"
 
 echo "$cases cases"
 exit $fail

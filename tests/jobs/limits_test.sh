@@ -9,7 +9,7 @@ freeturn=$1 src=$2
 tmp=$(mktemp -d)
 trap 'rm -rf "$tmp"' EXIT
 fail=0 passed=0
-for case in "max_points 1000 needs at least 12000 points" \
+for case in "max_points 1000 asks for at least 12000 points" \
             "max_points 12000 limits.max_points" \
             "max_file_mb 0.1 would be larger than limits.max_file_mb"; do
   read -r key value message <<< "$case"

@@ -28,7 +28,31 @@ Aperture read_aperture(const YAML::Node& node, const std::string& file) {
   return a;
 }
 
+// Every map key's dotted path and its value's place (sequences by index: "a.b[2]").
+void record_places(const YAML::Node& node, const std::string& prefix, const std::string& file,
+                   std::map<std::string, SourceLocation>& places) {
+  if (node.IsMap()) {
+    for (auto it = node.begin(); it != node.end(); ++it) {
+      if (!it->first.IsScalar()) continue;
+      const std::string key = prefix.empty() ? it->first.Scalar() : prefix + "." + it->first.Scalar();
+      places.emplace(key, location_of(it->second, file));
+      record_places(it->second, key, file, places);
+    }
+  } else if (node.IsSequence()) {
+    for (std::size_t i = 0; i < node.size(); ++i) {
+      const std::string key = prefix + "[" + std::to_string(i) + "]";
+      places.emplace(key, location_of(node[i], file));
+      record_places(node[i], key, file, places);
+    }
+  }
+}
+
 }  // namespace
+
+SourceLocation Job::place(const std::string& key) const {
+  const auto it = places.find(key);
+  return it != places.end() ? it->second : SourceLocation{file, 0, 0};
+}
 
 Job load_job(const std::string& path, std::uintmax_t max_bytes) {
   const YAML::Node root = load_yaml_file(path, max_bytes);
@@ -37,6 +61,10 @@ Job load_job(const std::string& path, std::uintmax_t max_bytes) {
   Job job;
   job.file = path;
   job.name = map.text("name");
+  // It names files (with the machine's name and a suffix): a file system takes 255 bytes.
+  if (job.name.size() > 100)
+    map.fail("name", "the job name has " + std::to_string(job.name.size()) +
+                         " characters; it names files, so at most 100");
   if (!is_file_name_safe(job.name))
     map.fail("name", "job name '" + job.name +
                          "' must use only letters, digits, '-', '_' and '.' (it names files)");
@@ -44,6 +72,7 @@ Job load_job(const std::string& path, std::uintmax_t max_bytes) {
   job.surface = surface_from_yaml(map.child("surface"), path, job.aperture.outer_radius);
   job.plan = detail::read_job_plan(map, job.aperture);
   map.finish();
+  record_places(root, "", path, job.places);
   return job;
 }
 

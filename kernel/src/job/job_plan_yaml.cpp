@@ -51,8 +51,9 @@ void read_tool(MapReader& job, JobPlan& plan, const Aperture& aperture) {
       // different tool (or millimetres typed for micrometres).
       if (!(std::abs(v) < 0.1 * g.nose_radius))
         throw InputError(location_of(e[1], job.file()),
-                         "tool.waviness error " + e[1].Scalar() + " mm must be smaller than a tenth of the nose radius (" +
-                             e[1].Scalar() + " vs " + std::to_string(g.nose_radius) + " mm)");
+                         "tool.waviness error " + e[1].Scalar() +
+                             " mm must be smaller than a tenth of the nose radius " +
+                             t.node()["nose_radius"].Scalar() + " mm");
       g.waviness.emplace_back(a * kRadians, v);
     }
   }
@@ -66,22 +67,17 @@ void read_tool(MapReader& job, JobPlan& plan, const Aperture& aperture) {
   t.finish();
 }
 
-// The fewest points a rule can give over the aperture: the spiral's length over the
-// plane, π(R_o² − R_i²)/pitch (a surface's slope only lengthens it), over the arc step;
-// its turns times the points per turn; a profile's radial length over its step. Refused
-// before planning when over limits.max_points, at the key that sets the step.
-void refuse_too_many_points(MapReader& m, const std::string& key, double points,
-                            const JobPlan& plan) {
-  if (!(points > static_cast<double>(plan.limits.max_points))) return;
-  char text[160];
-  std::snprintf(text, sizeof text,
-                "this asks for at least %.3g points over the aperture, over limits.max_points "
-                "(%lld): a typo in a step or pitch?",
-                points, plan.limits.max_points);
-  m.fail(key, std::string("strategy.points: ") + text);
-}
+// The fewest points a pass can have over the aperture, and the key whose step sets it:
+// the spiral's length over the plane, π(R_o² − R_i²)/pitch (a surface's slope only
+// lengthens it), over the arc step; its turns times the points per turn (the angle cap
+// bounds the chord rule's); a profile's radial length over its step.
+struct PointEstimate {
+  double per_pass = 0;
+  SourceLocation place;
+  std::string key;
+};
 
-void read_points(MapReader& s, JobPlan& plan, const Aperture& aperture) {
+void read_points(MapReader& s, JobPlan& plan, const Aperture& aperture, PointEstimate& estimate) {
   CutterPointOptions& p = plan.strategy.points;
   const bool spiral = plan.strategy.mode == Strategy::Mode::kSpiral;
   const double ro = aperture.outer_radius, ri = aperture.inner_radius;
@@ -94,7 +90,7 @@ void read_points(MapReader& s, JobPlan& plan, const Aperture& aperture) {
     const double n = m.positive("per_rev");
     if (n != std::floor(n) || n < 3 || n > 1e7) m.fail("per_rev", "per_rev must be an integer from 3 to 10000000");
     p.points_per_revolution = static_cast<int>(n);
-    refuse_too_many_points(m, "per_rev", turns * n, plan);
+    estimate = {turns * n, location_of(m.node()["per_rev"], s.file()), "equal_angle.per_rev"};
     m.finish();
     ++rules;
   }
@@ -104,7 +100,7 @@ void read_points(MapReader& s, JobPlan& plan, const Aperture& aperture) {
     // From 10 nm (far below any chord tolerance) to 10 mm.
     p.arc_length = m.in_range("length", 1e-5, 10, false, " mm");
     const double length = spiral ? std::numbers::pi * (ro * ro - ri * ri) / plan.strategy.pitch : ro - ri;
-    refuse_too_many_points(m, "length", length / p.arc_length, plan);
+    estimate = {length / p.arc_length, location_of(m.node()["length"], s.file()), "equal_arc.length"};
     m.finish();
     ++rules;
   }
@@ -115,8 +111,11 @@ void read_points(MapReader& s, JobPlan& plan, const Aperture& aperture) {
     p.tolerance = m.in_range("tolerance", 1e-7, 0.1, false, " mm");
     p.max_angle_step = m.in_range("max_angle_deg", 5.0, 0.001, 90, false, "°") * kRadians;
     p.max_radial_step = m.in_range("max_radial_step", 0.5, 1e-5, 100, false, " mm");
-    if (spiral) refuse_too_many_points(m, "max_angle_deg", turns * 2 * std::numbers::pi / p.max_angle_step, plan);
-    else refuse_too_many_points(m, "max_radial_step", (ro - ri) / p.max_radial_step, plan);
+    const std::string cap = spiral ? "max_angle_deg" : "max_radial_step";
+    estimate.per_pass = spiral ? turns * std::ceil(2 * std::numbers::pi / p.max_angle_step)
+                               : (ro - ri) / p.max_radial_step;
+    estimate.place = location_of(m.has(cap) ? m.node()[cap] : m.node(), s.file());
+    estimate.key = "chord." + cap;
     m.finish();
     ++rules;
   }
@@ -124,7 +123,8 @@ void read_points(MapReader& s, JobPlan& plan, const Aperture& aperture) {
   pm.finish();
 }
 
-void read_strategy(MapReader& job, JobPlan& plan, const Aperture& aperture) {
+void read_strategy(MapReader& job, JobPlan& plan, const Aperture& aperture,
+                   PointEstimate& estimate) {
   MapReader s(job.child("strategy"), job.file(), "strategy");
   Strategy& st = plan.strategy;
   const std::string mode = s.text("mode");
@@ -171,7 +171,7 @@ void read_strategy(MapReader& job, JobPlan& plan, const Aperture& aperture) {
       s.fail("direction", "direction must be edge_to_centre or centre_to_edge");
     st.centre_to_edge = d == "centre_to_edge";
   }
-  read_points(s, plan, aperture);
+  read_points(s, plan, aperture, estimate);
   if (st.mode == Strategy::Mode::kProfile && st.points.rule == CutterPointRule::kEqualAngle)
     s.fail("points", "equal_angle points need a spiral; profile mode takes equal_arc or chord");
   if (s.has("b_axis")) {
@@ -185,8 +185,11 @@ void read_strategy(MapReader& job, JobPlan& plan, const Aperture& aperture) {
 void read_cutting(MapReader& job, JobPlan& plan) {
   MapReader c(job.child("cutting"), job.file(), "cutting");
   Cutting& cut = plan.cutting;
-  if (plan.strategy.mode == Strategy::Mode::kSpiral) cut.spindle_rpm = c.positive("spindle_rpm");
-  else cut.feed = c.positive("feed");
+  // Ultraprecision spindles turn up to about 10 000 rpm; slide feeds stay under 10 m/min.
+  if (plan.strategy.mode == Strategy::Mode::kSpiral)
+    cut.spindle_rpm = c.in_range("spindle_rpm", 0, 20000, true, " rpm");
+  else
+    cut.feed = c.in_range("feed", 0, 10000, true, " mm/min");
   if (const auto r = c.optional_child("roughing")) {
     if (!r->IsSequence()) throw InputError(location_of(*r, job.file()), "cutting.roughing must be a list of stock depths (mm)");
     for (std::size_t i = 0; i < r->size(); ++i) {
@@ -250,10 +253,25 @@ std::optional<JobPlan> read_job_plan(MapReader& job, const Aperture& aperture) {
     return std::nullopt;
   }
   JobPlan plan;
-  read_limits(job, plan);  // the point estimate (read_points) is held to them
+  PointEstimate estimate;
   read_tool(job, plan, aperture);
-  read_strategy(job, plan, aperture);
+  read_strategy(job, plan, aperture, estimate);
   read_cutting(job, plan);
+  read_limits(job, plan);
+  // Before any work: a typo in a step or pitch is refused at once, at its key, rather
+  // than after minutes of planning (the planner stops at the limit too).
+  const double passes = static_cast<double>(plan.cutting.roughing_depths.size() + 1);
+  if (estimate.per_pass * passes > static_cast<double>(plan.limits.max_points)) {
+    const double points = std::ceil(estimate.per_pass * passes);
+    char text[240];
+    std::snprintf(text, sizeof text,
+                  points < 1e15 ? "strategy.points.%s asks for at least %.0f points (%.0f passes), "
+                                  "over limits.max_points (%lld): a typo in a step or the pitch?"
+                                : "strategy.points.%s asks for at least %.3g points (%.0f passes), "
+                                  "over limits.max_points (%lld): a typo in a step or the pitch?",
+                  estimate.key.c_str(), points, passes, plan.limits.max_points);
+    throw InputError(estimate.place, text);
+  }
   plan.machine = job.text("machine");
   read_outputs(job, plan);
   if (plan.strategy.b_mode == BMode::kFollow) plan.tool.b_mode = BMode::kFollow;

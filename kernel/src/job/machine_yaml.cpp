@@ -25,6 +25,14 @@ MachineDescription load_machine(const std::string& path, std::uintmax_t max_byte
   m.file_place = SourceLocation{path, 0, 0};
   m.name = map.text("name");
   m.plugin = map.text("plugin");
+  // It names a shared library in the plugin folder: a name, never a path.
+  for (const char ch : m.plugin)
+    if (!((ch >= 'a' && ch <= 'z') || (ch >= '0' && ch <= '9') || ch == '_' || ch == '-') ||
+        m.plugin.size() > 64)
+      map.fail("plugin", "machine.plugin '" + m.plugin +
+                             "' must be a post-processor's name: lower-case letters, digits, '_' "
+                             "and '-', at most 64 (a name, not a path)");
+  m.plugin_place = location_of(root["plugin"], path);
   const YAML::Node axes = map.child("axes");
   if (!axes.IsSequence() || axes.size() < 2 || axes.size() > 4)
     throw InputError(location_of(axes, path), "machine.axes must list 2 to 4 axes");

@@ -2,11 +2,13 @@
 // The job: what a user asks freeturn to do, read from YAML (docs/job-schema.md).
 // The schema grows with the planner, tools and machines; unknown keys are errors.
 
+#include <map>
 #include <memory>
 #include <optional>
 #include <string>
 #include <vector>
 
+#include "freeturn/core/error.hpp"
 #include "freeturn/job/yaml_limits.hpp"
 #include "freeturn/path/base_plan.hpp"
 #include "freeturn/path/cutter_points.hpp"
@@ -72,6 +74,12 @@ struct Job {
   Aperture aperture;
   std::unique_ptr<Surface> surface;
   std::optional<JobPlan> plan;  // present when the job has tool, strategy, cutting, machine
+  // Where each value stands in the file, by its dotted key ("strategy.mode",
+  // "tool.nose_radius"): errors found later, while planning or posting, are reported there.
+  std::map<std::string, SourceLocation> places;
+
+  // The place of `key`'s value, or the file alone when the job does not give it.
+  SourceLocation place(const std::string& key) const;
 };
 
 // Reads and validates a job file. Throws InputError ("file:line:col: what") on bad input.

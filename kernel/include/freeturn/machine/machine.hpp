@@ -52,6 +52,7 @@ struct MachineDescription {
   // Where the machine file states them: the file, the dialect's map and each of its keys
   // (a plugin's refusal of a setting is reported at the setting).
   SourceLocation file_place;
+  SourceLocation plugin_place;
   SourceLocation dialect_place;
   std::vector<std::pair<std::string, SourceLocation>> dialect_key_places;
 
