@@ -1,5 +1,7 @@
 // freeturn: YAML job in, NC program out. This file dispatches subcommands.
 
+#include <signal.h>
+
 #include <cstdio>
 #include <cstring>
 #include <exception>
@@ -9,6 +11,7 @@
 #include "commands.hpp"
 #include "freeturn/core/error.hpp"
 #include "freeturn/core/version.hpp"
+#include "freeturn/io/atomic_file.hpp"
 
 namespace {
 
@@ -41,9 +44,32 @@ void print_help(std::FILE* out) {
                "3 a post-processor plugin crashed or hung (nothing written)\n");
 }
 
+// SIGTERM (a job scheduler, `timeout`) or SIGINT (Ctrl-C) mid-run: the outputs not yet
+// committed are removed, as an error would remove them, and the signal then ends the
+// process as it would have (its exit status says so). Async-signal-safe: unlink, signal,
+// raise.
+extern "C" void end_on_signal(int number) {
+  freeturn::AtomicFile::remove_all_temporaries();
+  ::signal(number, SIG_DFL);
+  ::raise(number);
+}
+
+void remove_outputs_on_termination() {
+  struct sigaction action {};
+  action.sa_handler = end_on_signal;
+  sigemptyset(&action.sa_mask);
+  for (const int number : {SIGTERM, SIGINT, SIGHUP}) {
+    // A signal the caller ignores (a shell's background job ignores SIGINT) stays ignored.
+    struct sigaction current {};
+    if (sigaction(number, nullptr, &current) == 0 && current.sa_handler == SIG_IGN) continue;
+    sigaction(number, &action, nullptr);
+  }
+}
+
 }  // namespace
 
 int main(int argc, char** argv) {
+  remove_outputs_on_termination();
   std::vector<std::string> args(argv + 1, argv + argc);
   if (args.empty()) {
     print_help(stderr);

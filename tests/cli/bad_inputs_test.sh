@@ -134,5 +134,23 @@ refused "an unknown dialect key" "$m.yaml" "$m.machine.yaml:13:11:" "unknown set
 m=$(machine_variant plugin_path 's/^plugin: iso/plugin: ..\/iso/')
 refused "a plugin path with .." "$m.yaml" "$m.machine.yaml:3:9:" "a name, not a path"
 
+# SIGTERM and SIGINT mid-run remove the temporaries, as an error does. (Job control on:
+# without it a background job ignores SIGINT, and freeturn leaves an ignored signal so.)
+set -m
+slow=$(variant slow 's/chord: {tolerance: 0.001, max_angle_deg: 5}/equal_arc: {length: 0.00002}/')
+for signal in TERM INT; do
+  rm -rf "$tmp/out"
+  "$freeturn" run "$slow" -o "$tmp/out" --quiet 2> /dev/null &
+  pid=$!
+  for _ in $(seq 100); do [[ -n "$(ls -A "$tmp/out" 2> /dev/null)" ]] && break; sleep 0.05; done
+  [[ -n "$(ls -A "$tmp/out" 2> /dev/null)" ]] || { echo "FAIL: SIG$signal: the run wrote nothing to interrupt"; fail=1; }
+  kill -s "$signal" "$pid"
+  wait "$pid"
+  code=$?
+  [[ "$code" -gt 128 ]] || { echo "FAIL: SIG$signal: exit $code, expected death by the signal"; fail=1; }
+  [[ -z "$(ls -A "$tmp/out")" ]] || { echo "FAIL: SIG$signal left $(ls -A "$tmp/out")"; fail=1; }
+done
+set +m
+
 echo "$cases cases"
 exit $fail
