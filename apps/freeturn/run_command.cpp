@@ -435,8 +435,27 @@ RunReport execute_job(const Job& job, const PreparedJob& prepared, const std::st
 // A constant-speed spiral (timing: constant_rpm, or a dialect without block times) runs at
 // the highest speed every block allows, up to the job's: found by planning once without
 // writing (velocity scales with the rpm, acceleration with its square), then written.
+RunReport run_job_at_requested_speed(const Job& job, const PreparedJob& prepared,
+                                     const std::string& out_dir, bool quiet, bool write,
+                                     const SimulationOptions* simulation);
+
+// A limit of the job's own (limits.max_points, limits.max_file_mb) that stops the run is
+// reported at its place in the job file: the errors name the key as their place.
 RunReport run_job(const Job& job, const PreparedJob& prepared, const std::string& out_dir,
                   bool quiet, bool write, const SimulationOptions* simulation = nullptr) {
+  try {
+    return run_job_at_requested_speed(job, prepared, out_dir, quiet, write, simulation);
+  } catch (const CheckFailure&) {
+    throw;
+  } catch (const InputError& e) {
+    if (e.where().rfind("limits.", 0) != 0) throw;
+    throw InputError(job.place(e.where()), e.where() + ": " + e.problem());
+  }
+}
+
+RunReport run_job_at_requested_speed(const Job& job, const PreparedJob& prepared,
+                                     const std::string& out_dir, bool quiet, bool write,
+                                     const SimulationOptions* simulation) {
   const JobPlan& plan = *job.plan;
   const double requested = plan.cutting.spindle_rpm;
   if (plan.strategy.mode == Strategy::Mode::kSpiral && plan.cutting.enforce_dynamics &&

@@ -66,8 +66,10 @@ PostProgram::~PostProgram() {
 void PostProgram::check_output(const char* stage) {
   const std::string who =
       "post-processor '" + std::string(plugin_.post().name) + "' (" + plugin_.path() + ")";
+  // The size limit is the job's: the error names its key (the command line reports it at
+  // the key's place in the job file).
   if (!refused_.empty())
-    throw InputError(who, std::string(stage) + ": " + refused_ + "; no NC file was written");
+    throw InputError("limits.max_file_mb", refused_ + " (" + who + ", " + stage + "); no NC file was written");
   if (!guard_.ok())
     throw InputError(who, std::string(stage) + ": wrote a number no machine may get: " +
                               guard_.reason() + "; no NC file was written");

@@ -134,6 +134,34 @@ refused "an unknown dialect key" "$m.yaml" "$m.machine.yaml:13:11:" "unknown set
 m=$(machine_variant plugin_path 's/^plugin: iso/plugin: ..\/iso/')
 refused "a plugin path with .." "$m.yaml" "$m.machine.yaml:3:9:" "a name, not a path"
 
+# An inline NURBS: a knot or weight fault at the knot or weight itself.
+sampled() {  # description, job, expected prefix, word
+  cases=$((cases + 1))
+  rm -rf "$tmp/out"
+  "$freeturn" sample "$2" -o "$tmp/out" > /dev/null 2> "$tmp/err"
+  local code=$?
+  [[ "$code" == 2 ]] || { echo "FAIL: $1: exit $code, expected 2"; fail=1; }
+  [[ "$(head -c ${#3} "$tmp/err")" == "$3" ]] || { echo "FAIL: $1: stderr does not start with '$3':"; cat "$tmp/err"; fail=1; }
+  grep -qF -- "$4" "$tmp/err" || { echo "FAIL: $1: '$4' not in:"; cat "$tmp/err"; fail=1; }
+  [[ -z "$(ls -A "$tmp/out" 2> /dev/null)" ]] || { echo "FAIL: $1: left $(ls -A "$tmp/out")"; fail=1; }
+}
+cat > "$tmp/nurbs.yaml" <<'YAML'
+name: n
+aperture:
+  outer_radius: 0.4
+surface:
+  type: nurbs
+  degree_u: 1
+  degree_v: 1
+  knots_u: [0, 0, 1, 1]
+  knots_v: [0, 0, 0.5, 1, 1]
+  points: [[-1, -1, 0], [-1, 0, 0], [-1, 1, 0], [1, -1, 0], [1, 0, 0], [1, 1, 0]]
+  weights: [1, 1, 1, 1, -2, 1]
+YAML
+sampled "a negative weight" "$tmp/nurbs.yaml" "$tmp/nurbs.yaml:11:25:" "surface.weights[4]"
+sed 's/knots_v: \[0, 0, 0.5, 1, 1\]/knots_v: [0, 0, 0.7, 0.5, 1]/; s/-2/1/' "$tmp/nurbs.yaml" > "$tmp/knots.yaml"
+sampled "decreasing knots" "$tmp/knots.yaml" "$tmp/knots.yaml:9:24:" "surface.knots_v[3]"
+
 # SIGTERM and SIGINT mid-run remove the temporaries, as an error does. (Job control on:
 # without it a background job ignores SIGINT, and freeturn leaves an ignored signal so.)
 set -m

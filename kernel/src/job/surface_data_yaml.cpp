@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <cstdio>
 #include <filesystem>
 #include <map>
 #include <string>
@@ -125,7 +126,33 @@ std::unique_ptr<Surface> read_nurbs_surface(MapReader& map) {
   try {
     s = nurbs::NurbsSurface(pu, pv, ku, kv, points, weights);
   } catch (const InputError& e) {
-    map.fail("points", e.where() + ": " + e.problem());
+    // The kernel names the datum ("u knot 4", "weight 1,2", "control point 0,3"): the
+    // error goes to it in the file, not to the whole surface.
+    const std::string& where = e.where();
+    const auto index_after = [&](const std::string& prefix, int& a, int& b) {
+      if (where.rfind(prefix, 0) != 0) return false;
+      return std::sscanf(where.c_str() + prefix.size(), "%d,%d", &a, &b) >= 1;
+    };
+    int a = -1, b = -1;
+    std::string key = "points";
+    long element = -1;
+    if (where.rfind("u ", 0) == 0 || where.rfind("v ", 0) == 0) {
+      key = where[0] == 'u' ? "knots_u" : "knots_v";
+      if (index_after(where.substr(0, 2) + "knot ", a, b)) element = a;
+    } else if (index_after("weight ", a, b)) {
+      key = "weights";
+      element = b >= 0 ? static_cast<long>(a) * nv + b : a;
+    } else if (where.rfind("weights", 0) == 0) {
+      key = "weights";
+    } else if (index_after("control point ", a, b)) {
+      element = b >= 0 ? static_cast<long>(a) * nv + b : a;
+    }
+    const YAML::Node list = map.node()[key];
+    if (element >= 0 && list && list.IsSequence() && element < static_cast<long>(list.size()))
+      throw InputError(location_of(list[static_cast<std::size_t>(element)], map.file()),
+                       "surface." + key + "[" + std::to_string(element) + "] (" + where + ") " +
+                           e.problem());
+    map.fail(key, "surface." + key + ": " + where + ": " + e.problem());
   }
   return height_field(map, "points", std::move(s));
 }

@@ -283,7 +283,8 @@ std::unique_ptr<Surface> surface_from_yaml(const YAML::Node& node, const std::st
   const double base_radius = surface->defined_radius();
   surface = read_placement(map, std::move(surface));
   map.finish();
-  if (base_radius < outer_radius && !map.has("decenter") && !map.has("tilt_deg") &&
+  // Rounding aside (an edge found to 1e-12 of itself): data that reaches the aperture does.
+  if (base_radius * (1 + 1e-12) < outer_radius && !map.has("decenter") && !map.has("tilt_deg") &&
       !map.has("align_normal"))
     map.fail(is_data_type(type)      ? (map.has("iges")   ? "iges"
                                          : map.has("file") ? "file"

@@ -191,9 +191,11 @@ int NurbsHeightField::section_creases(double theta, double rho_lo, double rho_hi
 
 double NurbsHeightField::boundary_distance() const {
   const nurbs::NurbsSurface& s = locator_.surface();
-  // Each edge as a fine polyline in x-y; chords of a convex boundary lie inside it, so
-  // the distance is a slight underestimate, never an overestimate there. An edge that
-  // collapses to a point (a pole) or is a seam of a closed direction is not a boundary.
+  // Each edge as a fine polyline in x-y finds the basin of the edge's nearest point, and a
+  // golden-section search on the edge itself then finds that point: the distance is the
+  // edge's own (a polyline alone put a circular edge of radius 5 mm at 4.99992 mm, and
+  // refused an aperture the data covers). An edge that collapses to a point (a pole) or is
+  // a seam of a closed direction is not a boundary.
   const int n = 64 * std::max(s.count_u(), s.count_v());
   double best = std::numeric_limits<double>::infinity();
   for (int edge = 0; edge < 4; ++edge) {
@@ -203,21 +205,39 @@ double NurbsHeightField::boundary_distance() const {
                          : edge == 1 ? s.back_u()
                          : edge == 2 ? s.front_v()
                                      : s.back_v();
-    const auto at = [&](int k) {
+    const auto at = [&](double k) {  // k in [0, n] along the edge
       const double t = along_v ? s.front_v() + (s.back_v() - s.front_v()) * k / n
                                : s.front_u() + (s.back_u() - s.front_u()) * k / n;
       const nurbs::Vector3d p = along_v ? s.point(fixed, t) : s.point(t, fixed);
       return Eigen::Vector2d(p.x(), p.y());
     };
-    double length = 0, edge_best = std::numeric_limits<double>::infinity();
+    double length = 0, polyline_best = std::numeric_limits<double>::infinity();
+    int nearest = 0;
     Eigen::Vector2d previous = at(0);
     for (int k = 1; k <= n; ++k) {
       const Eigen::Vector2d p = at(k);
       length += (p - previous).norm();
-      edge_best = std::min(edge_best, segment_distance(previous, p));
+      const double d = segment_distance(previous, p);
+      if (d < polyline_best) polyline_best = d, nearest = k;
       previous = p;
     }
-    if (length > 1e-9 * scale_) best = std::min(best, edge_best);
+    if (!(length > 1e-9 * scale_)) continue;
+    // The segment nearest the origin and its neighbours bracket the edge's nearest point.
+    constexpr double kGolden = 0.6180339887498949;
+    double lo = std::max(0, nearest - 2), hi = std::min(n, nearest + 1);
+    const auto distance = [&](double k) { return at(k).norm(); };
+    double edge_best = std::min(distance(lo), distance(hi));
+    double x1 = hi - kGolden * (hi - lo), x2 = lo + kGolden * (hi - lo);
+    double f1 = distance(x1), f2 = distance(x2);
+    for (int it = 0; it < 80 && hi - lo > 1e-13 * n; ++it) {
+      if (f1 < f2) {
+        hi = x2, x2 = x1, f2 = f1, x1 = hi - kGolden * (hi - lo), f1 = distance(x1);
+      } else {
+        lo = x1, x1 = x2, f1 = f2, x2 = lo + kGolden * (hi - lo), f2 = distance(x2);
+      }
+    }
+    edge_best = std::min({edge_best, f1, f2});
+    best = std::min(best, edge_best);
   }
   return best;
 }
