@@ -34,9 +34,9 @@ class MoorePost {
         !s.whole_number_in("time_decimals", 6.0, 1, 9, time_decimals, message))
       throw PostError(message);
     // A child file per handful of points would be thousands of files for one part.
-    if (child_blocks_ != 0 && child_blocks_ < 1000)
+    if (child_blocks_ != 0 && child_blocks_ < 100)
       throw PostError("dialect setting 'child_blocks' is " + s.text("child_blocks", "") +
-                      ": 0 (one program) or at least 1000 points per child file");
+                      ": 0 (one program) or at least 100 points per child file");
     time_decimals_ = static_cast<int>(time_decimals);
     header_ = freeturn::post::unescape_lines(
         s.text("header", "G71 G01 G18 G40 G63 G90 G94 G54\\nT0101\\nG53 Z-180.\\nM80\\nG09 C0.0\\nG92 C0.0"));

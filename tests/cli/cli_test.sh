@@ -63,30 +63,30 @@ echo "hello, world" > "$tmp/d.txt"
 contains "iso post listed" "$tmp/stdout" "libfreeturn_post_iso.so)  ok"
 contains "iso machine listed" "$tmp/stdout" "iso-lathe-xzcb           axes XZCB  C accumulating, B -60…60°"
 
-# run and check at a spindle speed the machine cannot follow (100 000 rpm on the iso lathe):
+# run and check at a spindle speed the machine cannot follow (20 000 rpm, the most a job may ask, on the iso lathe):
 # - scheduled (the default), each block slows to what the limits allow: the program is
-#   written and passes, its cycle far above 60·turns/100000 s;
+#   written and passes, its cycle far above 60·turns/20000 s;
 # - timing: constant_rpm, the program runs at the highest speed every block allows;
-# - enforce_dynamics: false, it is written at 100 000 rpm, but run exits 1 and says UNSAFE
+# - enforce_dynamics: false, it is written at 20 000 rpm, but run exits 1 and says UNSAFE
 #   with the limit, and check says UNSAFE (never PASS) and exits 1.
-sed 's/spindle_rpm: 20/spindle_rpm: 100000/' "$src/configs/jobs/oap_segment.yaml" > "$tmp/fast.yaml"
+sed 's/spindle_rpm: 20/spindle_rpm: 20000/' "$src/configs/jobs/oap_segment.yaml" > "$tmp/fast.yaml"
 "$freeturn" run "$tmp/fast.yaml" -o "$tmp/fast" > "$tmp/stdout" 2> "$tmp/err"; expect "run too fast, scheduled" 0 $?
 contains "scheduled run passes" "$tmp/fast/report.json" '"verdict": "PASS"'
 contains "scheduled run says so" "$tmp/fast/report.json" '"scheduled": true'
 "$freeturn" check "$tmp/fast.yaml" > "$tmp/stdout"; expect "check too fast, scheduled" 0 $?
 contains "check pass" "$tmp/stdout" "PASS: "
-sed 's/spindle_rpm: 100000/spindle_rpm: 100000\n  timing: constant_rpm/' "$tmp/fast.yaml" > "$tmp/constant.yaml"
+sed 's/spindle_rpm: 20000/spindle_rpm: 20000\n  timing: constant_rpm/' "$tmp/fast.yaml" > "$tmp/constant.yaml"
 "$freeturn" run "$tmp/constant.yaml" -o "$tmp/constant" > /dev/null 2> "$tmp/err"; expect "constant rpm" 0 $?
 rpm=$(sed -n 's/.*"spindle_rpm": \([0-9.e+-]*\).*/\1/p' "$tmp/constant/report.json")
 max=$(sed -n 's/.*"max_rpm": \([0-9.e+-]*\).*/\1/p' "$tmp/constant/report.json" | tail -1)
-awk -v a="$rpm" -v b="$max" 'BEGIN { exit !(a > 0 && a < 100000 && a == b) }' ||
+awk -v a="$rpm" -v b="$max" 'BEGIN { exit !(a > 0 && a < 20000 && a == b) }' ||
   { echo "FAIL: constant rpm: programmed $rpm rpm, highest feasible $max"; fail=1; }
-sed 's/spindle_rpm: 100000/spindle_rpm: 100000\n  enforce_dynamics: false/' "$tmp/fast.yaml" > "$tmp/unsafe.yaml"
+sed 's/spindle_rpm: 20000/spindle_rpm: 20000\n  enforce_dynamics: false/' "$tmp/fast.yaml" > "$tmp/unsafe.yaml"
 "$freeturn" run "$tmp/unsafe.yaml" -o "$tmp/unsafe" > /dev/null 2> "$tmp/err"; expect "run over the limits" 1 $?
-contains "run says UNSAFE with the limit" "$tmp/err" "UNSAFE: finish: at 100000 rpm the program exceeds the machine's limits"
+contains "run says UNSAFE with the limit" "$tmp/err" "UNSAFE: finish: at 20000 rpm the program exceeds the machine's limits"
 contains "the unsafe report says so" "$tmp/unsafe/report.json" '"verdict": "UNSAFE"'
 "$freeturn" check "$tmp/unsafe.yaml" > "$tmp/stdout"; expect "check over the limits" 1 $?
-contains "check verdict" "$tmp/stdout" "UNSAFE: finish: at 100000 rpm"
+contains "check verdict" "$tmp/stdout" "UNSAFE: finish: at 20000 rpm"
 if grep -q "^PASS" "$tmp/stdout"; then echo "FAIL: check printed PASS for an unsafe program"; fail=1; fi
 # The CL data is written round-trip exact: each contact's θ is atan2(y, x) of its own point
 # to 1e-12 mm along the arc (nine fixed decimals were 2.5 nm off at r = 5 mm).

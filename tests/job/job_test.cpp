@@ -113,7 +113,7 @@ TEST_SUITE("job") {
 
   TEST_CASE("a missing file is an input error naming it") {
     CHECK_THROWS_WITH_AS(load_job("/nonexistent/job.yaml"),
-                         "/nonexistent/job.yaml: cannot open the file for reading", InputError);
+                         "/nonexistent/job.yaml: no such file", InputError);
   }
 }
 
@@ -131,7 +131,7 @@ TEST_SUITE("job") {
     };
     const Case cases[] = {
         {head + "tool: {nose_radius: -0.5}\n" + good_strategy + good_rest,
-         "job.yaml:4:21: tool.nose_radius must be greater than 0, not -0.5"},
+         "job.yaml:4:21: tool.nose_radius must be within (0, 100] mm, not -0.5"},
         {head + "tool: {nose_radius: .nan}\n" + good_strategy + good_rest,
          "job.yaml:4:21: tool.nose_radius must be a finite number"},
         {head + "tool: {nose_radius: 0.5, colour: red}\n" + good_strategy + good_rest,
