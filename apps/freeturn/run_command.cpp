@@ -445,8 +445,10 @@ RunReport run_job(const Job& job, const PreparedJob& prepared, const std::string
                   bool quiet, bool write, const SimulationOptions* simulation = nullptr) {
   try {
     return run_job_at_requested_speed(job, prepared, out_dir, quiet, write, simulation);
-  } catch (const CheckFailure&) {
-    throw;
+  } catch (const CheckFailure& e) {
+    if (e.cause().empty()) throw;
+    throw CheckFailure(job.place(e.cause()).to_string(),
+                       e.cause() + ": " + e.where() + ": " + e.problem(), e.cause());
   } catch (const InputError& e) {
     if (e.where().rfind("limits.", 0) != 0) throw;
     throw InputError(job.place(e.where()), e.where() + ": " + e.problem());

@@ -5,8 +5,12 @@ namespace freeturn {
 std::string SourceLocation::to_string() const {
   std::string s = file;
   if (line > 0) {
-    s += (s.empty() ? "" : ":") + std::to_string(line);
-    if (column > 0) s += ":" + std::to_string(column);
+    if (!s.empty()) s += ':';
+    s += std::to_string(line);
+    if (column > 0) {
+      s += ':';
+      s += std::to_string(column);
+    }
   }
   return s;
 }

@@ -136,7 +136,8 @@ void BlockScheduler::plan(bool /*final*/) {
       s = largest_feasible(b.upper, [&](double v) { return pair_ok(b.d, v, next_d, next_s); });
     }
     if (!(s > 0))
-      throw CheckFailure(place_of(b.record), "no block time lets the machine follow it");
+      throw CheckFailure(place_of(b.record), "no block time lets the machine follow it",
+                         "cutting.spindle_rpm");
     b.speed = s;
     if (k + 1 < pending_.size()) {
       pending_[k + 1].ref_prev = s;
@@ -154,7 +155,8 @@ void BlockScheduler::plan(bool /*final*/) {
     const double s = largest_feasible_from(
         known, b.speed, [&](double v) { return pair_ok(prev_d, prev_s, b.d, v); });
     if (!(s > 0))
-      throw CheckFailure(place_of(b.record), "no block time lets the machine follow it");
+      throw CheckFailure(place_of(b.record), "no block time lets the machine follow it",
+                         "cutting.spindle_rpm");
     b.speed = s;
     b.ref_prev = prev_s;
     b.ref_self = s;

@@ -85,11 +85,16 @@ void ToolChecker::found(ToolCheck check, double value, double limit, const Cutte
     here.x = cl.contact.point.x();
     here.y = cl.contact.point.y();
     const bool curvature = check == ToolCheck::kLocalGouge;
+    // The tool's setting each check holds against the design.
+    static const char* const kCause[kToolCheckCount] = {
+        "tool.included_angle_deg", "tool.clearance_angle_deg", "tool.nose_radius",
+        "tool.nose_radius",        "tool.centre_height",       ""};
     throw CheckFailure(where_text(here),
                      std::string(tool_check_name(check)) + " check: " + value_text(check, value) +
                          (curvature ? " is below the nose radius " +
                                           std::to_string(compensation_.tool.nose_radius) + " mm"
-                                    : " exceeds the limit " + value_text(check, limit)));
+                                    : " exceeds the limit " + value_text(check, limit)),
+                       kCause[i]);
   }
 }
 

@@ -37,9 +37,18 @@ class InputError : public std::runtime_error {
 // The program a job describes would break a check: a gouge, a contact or clearance angle,
 // a travel or B limit, a dynamic limit. The job is well formed; the cut is not safe. The
 // command line answers it with exit 1 (a check failed), not 2 (bad input).
+// `cause` names the setting whose value the check holds against the design, as a dotted
+// job key ("tool.nose_radius"), when there is one: the command line reports the failure
+// at that key's place in the job file, with where on the path it happens.
 class CheckFailure : public InputError {
  public:
-  using InputError::InputError;
+  CheckFailure(std::string where, const std::string& what, std::string cause = {})
+      : InputError(std::move(where), what), cause_(std::move(cause)) {}
+
+  const std::string& cause() const { return cause_; }
+
+ private:
+  std::string cause_;
 };
 
 }  // namespace freeturn
