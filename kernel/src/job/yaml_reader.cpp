@@ -9,7 +9,6 @@
 #include <sstream>
 #include <string_view>
 #include <utility>
-#include <vector>
 
 namespace freeturn {
 
@@ -124,6 +123,37 @@ void check_tree(const YAML::Node& node, const std::string& text, const std::stri
   }
 }
 
+// A document marker ("---" or "..." at the start of a line, then a blank or the end of the
+// line: YAML ends any scalar there) after content, or content after a "...", begins a
+// second document. The first document may open with "---".
+void refuse_second_document(const std::string& text, const std::string& file) {
+  bool content = false, ended = false;
+  int line = 0;
+  for (std::size_t at = 0; at < text.size(); at = std::min(text.find('\n', at), text.size()) + 1) {
+    ++line;
+    const std::size_t end = std::min(text.find('\n', at), text.size());
+    std::string_view l(text.data() + at, end - at);
+    if (!l.empty() && l.back() == '\r') l.remove_suffix(1);
+    const auto marker = [&](std::string_view m) {
+      return l.starts_with(m) && (l.size() == 3 || l[3] == ' ' || l[3] == '\t');
+    };
+    const std::size_t first = l.find_first_not_of(" \t");
+    const bool blank = first == std::string_view::npos || l[first] == '#';
+    if (marker("---") && !content && !ended) {
+      content = true;  // the first document's explicit start
+      continue;
+    }
+    if (marker("---") || (ended && !blank))
+      throw InputError(SourceLocation{file, line, 1},
+                       "a second YAML document: a job or machine file holds one");
+    if (marker("...")) {
+      ended = true;
+      continue;
+    }
+    if (!blank) content = true;
+  }
+}
+
 }  // namespace
 
 YAML::Node load_yaml_file(const std::string& path, std::uintmax_t max_bytes) {
@@ -147,30 +177,18 @@ YAML::Node load_yaml_file(const std::string& path, std::uintmax_t max_bytes) {
   buffer << in.rdbuf();
   const std::string text = buffer.str();
   refuse_stray_bytes(text, path);
-  std::vector<YAML::Node> documents;
+  refuse_second_document(text, path);
+  YAML::Node root;
   try {
-    documents = YAML::LoadAll(text);
+    // Load, not LoadAll: LoadAll (yaml-cpp 0.7) can loop without end on a stray ',' at the
+    // top level; the markers above settle how many documents there are.
+    root = YAML::Load(text);
   } catch (const YAML::ParserException& e) {
     SourceLocation loc{path, e.mark.line + 1, e.mark.column + 1};
     throw InputError(loc, "YAML syntax error: " + e.msg);
   }
-  if (documents.size() > 1) {
-    // The second document begins at its "---" (or right after the first one's "...").
-    SourceLocation loc = location_of(documents[1], path);
-    for (std::size_t at = 0, line = 1; at < text.size(); ++line) {
-      const std::size_t end = std::min(text.find('\n', at), text.size());
-      const std::string_view l(text.data() + at, end - at);
-      if (line > 1 && (l.starts_with("---") || l.starts_with("..."))) {
-        loc = SourceLocation{path, static_cast<int>(line), 1};
-        break;
-      }
-      at = end + 1;
-    }
-    throw InputError(loc, "a second YAML document: a job or machine file holds one");
-  }
-  if (documents.empty()) return YAML::Node();
-  check_tree(documents[0], text, path, 0);
-  return documents[0];
+  check_tree(root, text, path, 0);
+  return root;
 }
 
 MapReader::MapReader(const YAML::Node& node, std::string file, std::string what)
