@@ -450,6 +450,10 @@ RunReport run_job(const Job& job, const PreparedJob& prepared, const std::string
     throw CheckFailure(job.place(e.cause()).to_string(),
                        e.cause() + ": " + e.where() + ": " + e.problem(), e.cause());
   } catch (const InputError& e) {
+    if (!e.cause().empty())
+      throw InputError(job.place(e.cause()).to_string(),
+                       e.cause() + ": " + (e.where().empty() ? "" : e.where() + ": ") + e.problem(),
+                       e.cause());
     if (e.where().rfind("limits.", 0) != 0) throw;
     throw InputError(job.place(e.where()), e.where() + ": " + e.problem());
   }
@@ -610,7 +614,9 @@ int run_check(const std::vector<std::string>& args) {
         r.alpha_max_deg >= 0 ? (", α_max " + std::to_string(r.alpha_max_deg) + "°").c_str() : "");
     for (const std::string& w : r.warnings) std::printf("warning: %s\n", w.c_str());
     return kExitOk;
-  } catch (const InputError& e) {
+  } catch (const CheckFailure& e) {
+    // A check the program would fail: exit 1. Bad input found while planning is exit 2,
+    // as in `run`.
     std::printf("FAIL: %s\n", e.what());
     return kExitCheckFailed;
   }

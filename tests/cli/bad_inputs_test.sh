@@ -113,6 +113,8 @@ job=$(variant xz "s|^machine: .*|machine: iso-lathe-xz|")
 refused "a spiral on an X-Z machine" "$job" "$job:18:10:" "needs a C axis"
 job=$(variant follow 's/^strategy:/strategy:\n  b_axis: follow/')
 refused "B following on a 3-axis machine" "$job" "$job:11:11:" "needs a B axis"
+job=$(variant profile 's/mode: spiral/mode: profile/; s/spindle_rpm: 20/feed: 10/; /^  spiral: planar/d; /^  pitch: 0.05/d; s/^  radius: 50.0/&\n  decenter: {x: 3}/')
+refused "profile mode on a surface that is not revolved" "$job" "$job:12:9:" "not rotationally symmetric"
 job=$(variant no_machine "s|^machine: .*|machine: no-such-lathe|")
 refused "a missing machine" "$job" "$job:18:10:" "no no-such-lathe.yaml"
 

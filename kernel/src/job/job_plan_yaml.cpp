@@ -257,6 +257,8 @@ std::optional<JobPlan> read_job_plan(MapReader& job, const Aperture& aperture) {
   read_tool(job, plan, aperture);
   read_strategy(job, plan, aperture, estimate);
   read_cutting(job, plan);
+  plan.machine = job.text("machine");
+  read_outputs(job, plan);
   read_limits(job, plan);
   // Before any work: a typo in a step or pitch is refused at once, at its key, rather
   // than after minutes of planning (the planner stops at the limit too).
@@ -272,8 +274,19 @@ std::optional<JobPlan> read_job_plan(MapReader& job, const Aperture& aperture) {
                   estimate.key.c_str(), points, passes, plan.limits.max_points);
     throw InputError(estimate.place, text);
   }
-  plan.machine = job.text("machine");
-  read_outputs(job, plan);
+  // The CL file holds every point of the finishing pass, 16 numbers a row: at least 64
+  // bytes each (most rows take 250). Over limits.max_file_mb it is refused now, not
+  // after minutes of planning.
+  const double cl_bytes = 64 * estimate.per_pass;
+  if (plan.outputs.cl_csv && cl_bytes > plan.limits.max_file_mb * 1048576.0) {
+    char text[240];
+    std::snprintf(text, sizeof text,
+                  "strategy.points.%s asks for at least %.0f points, a CL file of at least %.3g MB, "
+                  "over limits.max_file_mb (%g MB)",
+                  estimate.key.c_str(), std::ceil(estimate.per_pass), cl_bytes / 1048576.0,
+                  plan.limits.max_file_mb);
+    throw InputError(estimate.place, text);
+  }
   if (plan.strategy.b_mode == BMode::kFollow) plan.tool.b_mode = BMode::kFollow;
   return plan;
 }

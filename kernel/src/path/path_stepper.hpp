@@ -408,7 +408,8 @@ void distribute(Path& path, const CutterPointOptions& o, Emit&& emit) {
                          (exhausted ? "cannot meet the chord tolerance "
                                     : "no step meets the chord tolerance ") +
                              std::to_string(o.tolerance * 1e3) +
-                             (exhausted ? " µm: the path is not smooth here" : " µm"));
+                             (exhausted ? " µm: the path is not smooth here" : " µm"),
+                         "strategy.points.chord.tolerance");
       }
       trial = best;
       new_error = best_new;

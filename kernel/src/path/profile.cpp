@@ -90,7 +90,8 @@ PathSummary plan_profile(const Surface& design, const ProfileOptions& o, Contact
                              std::to_string(phi * 180 / std::numbers::pi) + "°",
                          "the design surface is not rotationally symmetric: its sag differs from "
                          "the profile by " + std::to_string(dz * 1e3) +
-                             " µm; cut it with a spiral");
+                             " µm; cut it with a spiral",
+                         "strategy.mode");
     }
   }
   ProfilePath path(design, o);

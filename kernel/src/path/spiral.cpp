@@ -89,7 +89,8 @@ class SpiralPath {
                                                BaseSurface::normal(bp, theta), 0.0);
       if (hit.status != Status::kOk || !hit.point.allFinite())
         throw InputError(where(theta, bp.rho),
-                         "the projection along the base normal misses the design surface");
+                         "the projection along the base normal misses the design surface",
+                         "strategy.spiral");
       return hit.point.x() * std::cos(theta) + hit.point.y() * std::sin(theta) - target;
     };
     double a = guess, fa = miss(a);
@@ -114,14 +115,16 @@ class SpiralPath {
       contact_r = bp.rho;
       design_.sag_gradient(contact_r * c, contact_r * sn, z, zx, zy);
       if (!std::isfinite(z))
-        throw InputError(where(theta, bp.rho), "the design surface is undefined here");
+        throw InputError(where(theta, bp.rho), "the design surface is undefined here",
+                         "aperture.outer_radius");
     } else {
       const Eigen::Vector3d origin = BaseSurface::point(bp, theta);
       const Eigen::Vector3d direction = BaseSurface::normal(bp, theta);
       const HeightFieldHit hit = intersect_ray(design_, origin, direction, lambda_);
       if (hit.status != Status::kOk || !hit.point.allFinite())
         throw InputError(where(theta, bp.rho),
-                         "the projection along the base normal misses the design surface");
+                         "the projection along the base normal misses the design surface",
+                         "strategy.spiral");
       s.warm = hit.t;
       // The base normal lies in the radial plane at θ, so the contact does too.
       contact_r = std::max(0.0, hit.point.x() * c + hit.point.y() * sn);

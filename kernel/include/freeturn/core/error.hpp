@@ -25,30 +25,33 @@ class InputError : public std::runtime_error {
   InputError(std::string where, const std::string& what);
   InputError(const SourceLocation& where, const std::string& what);
   explicit InputError(const std::string& what) : InputError(std::string(), what) {}
+  // `cause` names the job setting whose value leads to the error, as a dotted key
+  // ("strategy.mode", "tool.nose_radius"), when the error is found while planning or
+  // posting, far from the file: the command line reports it at that key's place in the
+  // job file, with `where` (the place on the path) after it.
+  InputError(std::string where, const std::string& what, std::string cause)
+      : InputError(std::move(where), what) {
+    cause_ = std::move(cause);
+  }
 
   const std::string& where() const { return where_; }
   const std::string& problem() const { return problem_; }
+  const std::string& cause() const { return cause_; }
 
  private:
   std::string where_;
   std::string problem_;
+  std::string cause_;
 };
 
 // The program a job describes would break a check: a gouge, a contact or clearance angle,
 // a travel or B limit, a dynamic limit. The job is well formed; the cut is not safe. The
 // command line answers it with exit 1 (a check failed), not 2 (bad input).
-// `cause` names the setting whose value the check holds against the design, as a dotted
-// job key ("tool.nose_radius"), when there is one: the command line reports the failure
-// at that key's place in the job file, with where on the path it happens.
+// Its cause is the setting the check holds against the design ("tool.nose_radius").
 class CheckFailure : public InputError {
  public:
   CheckFailure(std::string where, const std::string& what, std::string cause = {})
-      : InputError(std::move(where), what), cause_(std::move(cause)) {}
-
-  const std::string& cause() const { return cause_; }
-
- private:
-  std::string cause_;
+      : InputError(std::move(where), what, std::move(cause)) {}
 };
 
 }  // namespace freeturn
