@@ -454,7 +454,8 @@ RunReport run_job(const Job& job, const PreparedJob& prepared, const std::string
       throw InputError(job.place(e.cause()).to_string(),
                        e.cause() + ": " + (e.where().empty() ? "" : e.where() + ": ") + e.problem(),
                        e.cause());
-    if (e.where().rfind("limits.", 0) != 0) throw;
+    // An error whose place is a key the job gives ("cutting.spindle_rpm") goes there.
+    if (!job.places.count(e.where()) && e.where().rfind("limits.", 0) != 0) throw;
     throw InputError(job.place(e.where()), e.where() + ": " + e.problem());
   }
 }

@@ -64,7 +64,8 @@ BasePlan plan_base_surface(const Surface& design, double inner, double outer,
     const Eigen::Vector3d t = plan.axis.direction();
     const HeightFieldHit hit = intersect_ray(design, plan.axis.point(), t, 0.0);
     if (hit.status != Status::kOk)
-      throw InputError("base axis", "the searched axis does not cross the design surface");
+      throw InputError("base axis", "the searched axis does not cross the design surface",
+                       "strategy.base_surface.search_axis");
     plan.design_about_axis = std::make_unique<TransformedSurface>(
         std::make_unique<BorrowedSurface>(design), hit.point.x(), hit.point.y(),
         Eigen::Matrix3d(Eigen::Quaterniond::FromTwoVectors(t, Eigen::Vector3d::UnitZ())));

@@ -27,7 +27,8 @@ std::vector<SurfaceSample> sample_aperture(const Surface& surface, double inner_
       surface.sag_gradient(x, y, z, zx, zy);
       if (!(std::isfinite(z) && std::isfinite(zx) && std::isfinite(zy)))
         throw InputError("(x, y) = (" + std::to_string(x) + ", " + std::to_string(y) + ") mm",
-                         "the design surface is undefined inside the aperture");
+                         "the design surface is undefined inside the aperture",
+                         "aperture.outer_radius");
       out.push_back({{x, y, z}, Eigen::Vector3d(-zx, -zy, 1).normalized()});
     }
   }

@@ -81,7 +81,8 @@ PathSummary plan_profile(const Surface& design, const ProfileOptions& o, Contact
     const double r = o.inner_radius + (o.outer_radius - o.inner_radius) * i / 32.0;
     const double z0 = design.sag(r, 0.0);
     if (!std::isfinite(z0))
-      throw InputError("r = " + std::to_string(r) + " mm", "the design surface is undefined here");
+      throw InputError("r = " + std::to_string(r) + " mm", "the design surface is undefined here",
+                       "aperture.outer_radius");
     for (int j = 1; j < 64; ++j) {
       const double phi = 2 * std::numbers::pi * j / 64;
       const double dz = std::abs(design.sag(r * std::cos(phi), r * std::sin(phi)) - z0);

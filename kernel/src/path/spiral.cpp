@@ -167,8 +167,9 @@ PathSummary plan_spiral(const Surface& design, const BaseSurface& base,
   if (!(o.outer_radius > o.inner_radius && o.inner_radius >= 0))
     throw InputError("aperture", "needs 0 ≤ inner radius < outer radius");
   if (o.outer_radius > base.rho_max() * (1 + 1e-12))
-    throw InputError("aperture", "the base surface ends at ρ = " + std::to_string(base.rho_max()) +
-                                     " mm, inside the outer radius");
+    throw InputError("", "the base surface ends at ρ = " + std::to_string(base.rho_max()) +
+                                     " mm, inside the outer radius",
+                     "aperture.outer_radius");
   if (o.points.rule == CutterPointRule::kEqualAngle && o.points.points_per_revolution < 3)
     throw InputError("points_per_revolution", "must be at least 3");
   SpiralPath path(design, base, o);
