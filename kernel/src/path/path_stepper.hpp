@@ -98,14 +98,6 @@ class SegmentMotion {
   double h_ = 0, va_[4] = {0, 0, 0, 0}, vb_[4] = {0, 0, 0, 0};  // X, C, Z, B
 };
 
-// The largest distance of the interpolated motion from the band's centre (the design
-// raised by the path's stand-off) over one segment, signed (> 0: above it; < 0: below,
-// and below the design itself where it passes the stand-off): samples (8 intervals; 32
-// on a surface with creases, where the peak is a sharp tent at the crease), then a
-// parabola through the largest and its neighbours. Where the parabola mispredicts the
-// value at its own vertex, the deviation is not smooth there and a golden-section search
-// of the bracket finds the peak instead.
-//
 // The largest of the deviation over one segment, signed (> 0: above; < 0: below):
 // samples (8 intervals; 32 on a surface with creases, where the peak is a sharp tent at
 // the crease), then a parabola through the largest and its neighbours. Where the parabola
@@ -428,7 +420,8 @@ void distribute(Path& path, const CutterPointOptions& o, Emit&& emit) {
           trial = transition;
           step = trial.tau - current.tau;
         } else {
-          measure(trial, kFull);
+          new_error = best_new;  // measure(transition) may have replaced them
+          previous_error = best_previous;
         }
       }
     }
