@@ -9,6 +9,20 @@
 #include "number_text.hpp"
 
 namespace freeturn {
+namespace {
+
+// The next space-separated field of `rest`, removed from it; empty at the end.
+std::string_view next_field(std::string_view& rest) {
+  const std::size_t start = rest.find_first_not_of(' ');
+  if (start == std::string_view::npos) return {};
+  rest.remove_prefix(start);
+  const std::string_view field = rest.substr(0, rest.find(' '));
+  rest.remove_prefix(field.size());
+  return field;
+}
+
+}  // namespace
+
 
 std::vector<Eigen::Vector3d> read_xyz_points(const std::string& path) {
   std::ifstream in(path);
@@ -29,12 +43,7 @@ std::vector<Eigen::Vector3d> read_xyz_points(const std::string& path) {
     int count = 0;
     bool ok = true;
     std::string_view rest(line);
-    while (true) {
-      const std::size_t start = rest.find_first_not_of(' ');
-      if (start == std::string_view::npos) break;
-      rest.remove_prefix(start);
-      const std::string_view field = rest.substr(0, rest.find(' '));
-      rest.remove_prefix(field.size());
+    for (std::string_view field = next_field(rest); !field.empty(); field = next_field(rest)) {
       double x;
       // NaN or infinity is a number that is not finite, not a column name: a first row of
       // them must not pass for a header and vanish.
@@ -53,12 +62,8 @@ std::vector<Eigen::Vector3d> read_xyz_points(const std::string& path) {
       continue;
     }
     if (header_allowed && count == 0) {  // a header of column names, none a number
-      for (std::string_view fields(line); !fields.empty();) {
-        const std::size_t start = fields.find_first_not_of(' ');
-        if (start == std::string_view::npos) break;
-        fields.remove_prefix(start);
-        const std::string_view field = fields.substr(0, fields.find(' '));
-        fields.remove_prefix(field.size());
+      std::string_view fields(line);
+      for (std::string_view field = next_field(fields); !field.empty(); field = next_field(fields)) {
         double x;
         if (detail::parse_number(field, x))
           throw InputError(SourceLocation{path, n, 0},

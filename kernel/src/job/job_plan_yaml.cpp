@@ -267,10 +267,8 @@ std::optional<JobPlan> read_job_plan(MapReader& job, const Aperture& aperture) {
     const double points = std::ceil(estimate.per_pass * passes);
     char text[240];
     std::snprintf(text, sizeof text,
-                  points < 1e15 ? "strategy.points.%s asks for at least %.0f points (%.0f passes), "
-                                  "over limits.max_points (%lld): a typo in a step or the pitch?"
-                                : "strategy.points.%s asks for at least %.3g points (%.0f passes), "
-                                  "over limits.max_points (%lld): a typo in a step or the pitch?",
+                  "strategy.points.%s asks for at least %.15g points (%.0f passes), over "
+                  "limits.max_points (%lld): a typo in a step or the pitch?",
                   estimate.key.c_str(), points, passes, plan.limits.max_points);
     throw InputError(estimate.place, text);
   }
@@ -281,7 +279,7 @@ std::optional<JobPlan> read_job_plan(MapReader& job, const Aperture& aperture) {
   if (plan.outputs.cl_csv && cl_bytes > plan.limits.max_file_mb * 1048576.0) {
     char text[240];
     std::snprintf(text, sizeof text,
-                  "strategy.points.%s asks for at least %.0f points, a CL file of at least %.3g MB, "
+                  "strategy.points.%s asks for at least %.15g points, a CL file of at least %.3g MB, "
                   "over limits.max_file_mb (%g MB)",
                   estimate.key.c_str(), std::ceil(estimate.per_pass), cl_bytes / 1048576.0,
                   plan.limits.max_file_mb);
