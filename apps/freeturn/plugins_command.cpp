@@ -2,6 +2,7 @@
 #include <cstdio>
 #include <filesystem>
 
+#include "cli_options.hpp"
 #include "commands.hpp"
 #include "freeturn/core/error.hpp"
 #include "freeturn/job/machine_yaml.hpp"
@@ -14,6 +15,7 @@ int run_plugins(const std::vector<std::string>& args) {
     std::fprintf(stderr, "usage: freeturn plugins\n");
     return kExitBadInput;
   }
+  const std::uintmax_t yaml_bound = yaml_byte_bound();
   const auto plugins = find_plugins();
   if (plugins.empty()) std::printf("no post-processors found\n");
   for (const auto& [name, path] : plugins) {
@@ -29,7 +31,7 @@ int run_plugins(const std::vector<std::string>& args) {
       for (const auto& entry : std::filesystem::directory_iterator(folder, ec)) {
         if (entry.path().extension() != ".yaml") continue;
         try {
-          const MachineDescription m = load_machine(entry.path().string());
+          const MachineDescription m = load_machine(entry.path().string(), yaml_bound);
           if (m.plugin != name) continue;
           std::string layout;
           for (const AxisSpec& a : m.axes) layout += axis_letter(a.axis);

@@ -201,7 +201,7 @@ struct PreparedJob {
 };
 
 MachineDescription machine_for(const Job& job, const std::string& machine_file) {
-  MachineDescription m = load_machine(machine_file);
+  MachineDescription m = load_machine(machine_file, cli::yaml_byte_bound());
   const JobPlan& plan = *job.plan;
   const bool spiral = plan.strategy.mode == Strategy::Mode::kSpiral;
   if (spiral && !m.has(Axis::kC))
@@ -517,7 +517,7 @@ int run_run(const std::vector<std::string>& args) {
       throw InputError("usage", "unexpected argument '" + args[i] + "'; usage: " + kRunUsage);
   }
   if (job_path.empty()) throw InputError("usage", kRunUsage);
-  const Job job = load_job(job_path);
+  const Job job = load_job(job_path, cli::yaml_byte_bound());
   const PreparedJob prepared = prepare_job(job);
   const RunReport r =
       run_job(job, prepared, out_dir, quiet, true, simulate ? &simulation : nullptr);
@@ -549,7 +549,7 @@ int run_simulate(const std::vector<std::string>& args) {
     }
   }
   if (job_path.empty()) throw InputError("usage", kSimulateUsage);
-  const Job job = load_job(job_path);
+  const Job job = load_job(job_path, cli::yaml_byte_bound());
   const PreparedJob prepared = prepare_job(job);
   const RunReport r = run_job(job, prepared, out_dir, true, true, &simulation);
   const SimulationResult& s = *r.simulation;
@@ -602,7 +602,7 @@ int run_check(const std::vector<std::string>& args) {
   }
   if (job_path.empty()) throw InputError("usage", "freeturn check JOB.yaml");
   // Bad input (the job, the machine, the plugin) is exit 2; a job that would fail is 1.
-  const Job job = load_job(job_path);
+  const Job job = load_job(job_path, cli::yaml_byte_bound());
   const PreparedJob prepared = prepare_job(job);
   check_dialect_settings(job, prepared);
   try {

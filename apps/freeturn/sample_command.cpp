@@ -34,7 +34,7 @@ int run_sample(const std::vector<std::string>& args) {
   }
   if (job_path.empty()) throw InputError("usage", "freeturn sample JOB.yaml [-o DIR] [--grid N]");
 
-  const Job job = load_job(job_path);
+  const Job job = load_job(job_path, cli::yaml_byte_bound());
   std::error_code ec;
   std::filesystem::create_directories(out_dir, ec);
   if (ec) throw InputError(out_dir, "cannot create the output folder: " + ec.message());

@@ -308,9 +308,13 @@ void MapReader::finish() const {
   }
 }
 
-void MapReader::fail(const std::string& key, const std::string& what) const {
+SourceLocation MapReader::place(const std::string& key) const {
   YAML::Node value = std::as_const(node_)[key];
-  throw InputError(location_of(value ? value : node_, file_), what);
+  return location_of(value ? value : node_, file_);
+}
+
+void MapReader::fail(const std::string& key, const std::string& what) const {
+  throw InputError(place(key), what);
 }
 
 }  // namespace freeturn

@@ -19,6 +19,13 @@ std::string where(const CutterLocation& cl) {
   return buf;
 }
 
+// A limit crossed is reported where the machine file states it, then the bound and the
+// place on the path: "m.yaml:5:33: machine axis X max 3: θ = …, r = …".
+std::string at_bound(const SourceLocation& place, const std::string& bound, const CutterLocation& cl) {
+  const std::string file_place = place.to_string();
+  return (file_place.empty() ? "" : file_place + ": ") + bound + ": " + where(cl);
+}
+
 std::string number(double v) {
   char buf[32];
   std::snprintf(buf, sizeof buf, "%.6g", v);
@@ -55,15 +62,27 @@ void AxisMapper::check_block(const AxisRecord& r, const CutterLocation& cl) {
     const double v = values[static_cast<int>(s.axis)];
     if (!std::isfinite(v))
       throw InputError(where(cl), std::string(axis_letter(s.axis)) + " is not a finite number");
-    if (v < s.min || v > s.max)
-      throw CheckFailure(where(cl), std::string(axis_letter(s.axis)) + " = " + number(v) +
-                                      " is outside its travel [" + number(s.min) + ", " +
-                                      number(s.max) + "] on machine '" + machine_.name + "'");
+    if (v < s.min || v > s.max) {
+      const bool above = v > s.max;
+      throw CheckFailure(at_bound(above ? s.max_place : s.min_place,
+                                  std::string("machine axis ") + axis_letter(s.axis) +
+                                      (above ? " max " : " min ") + number(above ? s.max : s.min),
+                                  cl),
+                         std::string(axis_letter(s.axis)) + " = " + number(v) +
+                             " is outside its travel [" + number(s.min) + ", " + number(s.max) +
+                             "] on machine '" + machine_.name + "'");
+    }
   }
-  if (machine_.has(Axis::kB) && (r.b < machine_.b_min_deg || r.b > machine_.b_max_deg))
-    throw CheckFailure(where(cl), "B = " + number(r.b) + "° is outside the tool-rotation limits [" +
-                                    number(machine_.b_min_deg) + "°, " +
-                                    number(machine_.b_max_deg) + "°]");
+  if (machine_.has(Axis::kB) && (r.b < machine_.b_min_deg || r.b > machine_.b_max_deg)) {
+    const bool above = r.b > machine_.b_max_deg;
+    throw CheckFailure(
+        at_bound(above ? machine_.b_max_place : machine_.b_min_place,
+                 std::string("machine b_axis ") + (above ? "max_deg " : "min_deg ") +
+                     number(above ? machine_.b_max_deg : machine_.b_min_deg),
+                 cl),
+        "B = " + number(r.b) + "° is outside the tool-rotation limits [" +
+            number(machine_.b_min_deg) + "°, " + number(machine_.b_max_deg) + "°]");
+  }
 }
 
 void AxisMapper::write(std::span<const CutterLocation> chunk) {

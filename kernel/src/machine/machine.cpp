@@ -10,8 +10,10 @@ const char* axis_letter(Axis axis) {
 }
 
 SourceLocation MachineDescription::place_of_setting_in(const std::string& message) const {
-  for (const auto& [key, place] : dialect_key_places)
-    if (message.find("'" + key + "'") != std::string::npos) return place;
+  const bool unknown = message.rfind("unknown setting", 0) == 0;
+  for (const SettingPlace& s : dialect_key_places)
+    if (message.find("'" + s.key + "'") != std::string::npos)
+      return unknown ? s.key_place : s.value_place;
   return dialect_place.file.empty() ? file_place : dialect_place;
 }
 

@@ -58,6 +58,8 @@ class MapReader {
   // Rejects keys that were not read.
   void finish() const;
 
+  // The place of the value of `key`, or of the map if the key is absent.
+  SourceLocation place(const std::string& key) const;
   // An error located at the value of `key` (or at the map if the key is absent).
   [[noreturn]] void fail(const std::string& key, const std::string& what) const;
 

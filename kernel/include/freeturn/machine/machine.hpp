@@ -31,6 +31,9 @@ struct AxisSpec {
   int decimals = 6;
   double max_velocity = std::numeric_limits<double>::infinity();      // mm/s or °/s
   double max_acceleration = std::numeric_limits<double>::infinity();  // mm/s² or °/s²
+  // Where the machine file states min and max (the axis's entry when it leaves one out):
+  // a block outside the travel is reported at the bound it crosses.
+  SourceLocation min_place, max_place;
 };
 
 struct MachineDescription {
@@ -40,6 +43,7 @@ struct MachineDescription {
   bool c_wrapped = true;       // C written in [0, 360) (else accumulating)
   double b_min_deg = -90, b_max_deg = 90;
   double pivot_distance = 0;   // mm, B pivot to nose centre
+  SourceLocation b_min_place, b_max_place;  // where b_axis states min_deg and max_deg
   Interpolation interpolation = Interpolation::kLinear;
   double max_block_rate = std::numeric_limits<double>::infinity();  // blocks per second
   // How the program states speed: inverse time (each block's duration: G93) or feed per
@@ -54,10 +58,15 @@ struct MachineDescription {
   SourceLocation file_place;
   SourceLocation plugin_place;
   SourceLocation dialect_place;
-  std::vector<std::pair<std::string, SourceLocation>> dialect_key_places;
+  struct SettingPlace {
+    std::string key;
+    SourceLocation key_place, value_place;
+  };
+  std::vector<SettingPlace> dialect_key_places;
 
-  // The place of the dialect setting a plugin's message names ('key'), else of the
-  // dialect's map, else of the file.
+  // The place of the dialect setting a plugin's message names ('key'): its key when the
+  // message says the setting is unknown, else its value; failing that the dialect's map,
+  // else the file.
   SourceLocation place_of_setting_in(const std::string& message) const;
 
   bool has(Axis axis) const;
