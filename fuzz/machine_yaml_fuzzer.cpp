@@ -29,7 +29,7 @@ extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size
     }();
     const freeturn::PostPlugin& plugin = *plugins[m.plugin == "moore" ? 0 : m.plugin == "iso" ? 1 : 2];
     const std::string out = freeturn::fuzz::scratch_file(".nc");
-    freeturn::PostProgram program(plugin, m, freeturn::ProgramSettings{"fuzz", 10, 5, 3, 1 << 20}, out);
+    freeturn::PostProgram program(plugin, m, freeturn::ProgramSettings{"fuzz", 10, 5, 3, 1 << 20, 1.0, 1}, out);
     const freeturn::AxisRecord blocks[] = {{1.0, 0.5, 0, 0, 0}, {0.9, 0.4, 10, 0, 0.1}, {0.8, 0.3, 20, 0, 0.1}};
     program.write(blocks);
     // Destroyed unfinished: nothing is committed.

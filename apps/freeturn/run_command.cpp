@@ -34,6 +34,7 @@
 #include "freeturn/path/spiral.hpp"
 #include "freeturn/post_format.hpp"
 #include "freeturn/post_program.hpp"
+#include "freeturn/tool/clearance.hpp"
 #include "freeturn/tool/tool_compensator.hpp"
 #include "freeturn/verify/cut_simulation.hpp"
 #include "freeturn/verify/residual_output.hpp"
@@ -195,6 +196,20 @@ bool scheduling(const Job& job, const MachineDescription& machine) {
          !machine.constant_block_time && machine.interpolation != Interpolation::kCubic;
 }
 
+// The highest the programmed point rises over the job's aperture (kernel Z, mm): the base
+// of the height a post approaches and retracts at (tool/clearance.hpp).
+double kernel_ceiling(const Job& job, const CompensationOptions& compensation, const Surface& design) {
+  const JobPlan& plan = *job.plan;
+  return program_z_ceiling(design, job.aperture.inner_radius, job.aperture.outer_radius,
+                           compensation,
+                           stand_off_for(plan.strategy.points, plan.tool.tool.nose_radius));
+}
+
+double machine_z(const MachineDescription& machine, double z) {
+  const AxisSpec& a = machine.spec(Axis::kZ);
+  return a.sign * z + a.offset;
+}
+
 struct PreparedJob {
   MachineDescription machine;
   std::unique_ptr<PostPlugin> plugin;
@@ -307,6 +322,9 @@ RunReport execute_job(const Job& job, const PreparedJob& prepared, const std::st
   report.enforce_dynamics = plan.cutting.enforce_dynamics;
 
   std::vector<double> stock = plan.cutting.roughing_depths;
+  // The clearance base the post approaches and retracts beyond: above every block of
+  // every pass (a roughing pass's design is raised by its stock).
+  const double ceiling = write && plan.outputs.nc ? kernel_ceiling(job, compensation, design) : 0.0;
   long long points_so_far = 0;
   stock.push_back(0.0);  // the finishing pass
   std::vector<std::unique_ptr<PostProgram>> programs;
@@ -326,7 +344,9 @@ RunReport execute_job(const Job& job, const PreparedJob& prepared, const std::st
       programs.push_back(std::make_unique<PostProgram>(
           *plugin, machine,
           ProgramSettings{job.name + suffix, motion.spindle_rpm, motion.feed, -1,
-                          static_cast<long long>(plan.limits.max_file_mb * 1048576.0)},
+                          static_cast<long long>(plan.limits.max_file_mb * 1048576.0),
+                          machine_z(machine, ceiling + stock[pass]),
+                          static_cast<int>(machine.spec(Axis::kZ).sign)},
           out(job.name + "." + machine.name + suffix + ".nc")));
       post = programs.back().get();
     }
@@ -447,6 +467,12 @@ RunReport run_job(const Job& job, const PreparedJob& prepared, const std::string
     return run_job_at_requested_speed(job, prepared, out_dir, quiet, write, simulation);
   } catch (const CheckFailure& e) {
     if (e.cause().empty()) throw;
+    const MachineDescription& m = prepared.machine;
+    if (e.cause() == "machine.b_axis.min_deg" || e.cause() == "machine.b_axis.max_deg")
+      throw CheckFailure((e.cause() == "machine.b_axis.min_deg" ? m.b_limit_places.min
+                                                                 : m.b_limit_places.max)
+                             .to_string(),
+                         e.cause() + ": " + e.where() + ": " + e.problem(), e.cause());
     throw CheckFailure(job.place(e.cause()).to_string(),
                        e.cause() + ": " + e.where() + ": " + e.problem(), e.cause());
   } catch (const InputError& e) {
@@ -574,15 +600,31 @@ int run_simulate(const std::vector<std::string>& args) {
 // The plugin reads its dialect settings when a program is created: check creates one in
 // a private temporary folder and drops it unwritten, so that settings `run` would refuse
 // are refused here too, at their place in the machine file (exit 2).
+// One record at the clearance base is written too, so that an approach the machine's
+// travel cannot take is refused as `run` refuses it.
 void check_dialect_settings(const Job& job, const PreparedJob& prepared) {
   const std::filesystem::path folder = std::filesystem::temp_directory_path() /
                                        ("freeturn-check-" + std::to_string(getpid()));
   std::filesystem::create_directories(folder);
   try {
-    const PostProgram probe(*prepared.plugin, prepared.machine,
-                            ProgramSettings{job.name, job.plan->cutting.spindle_rpm,
-                                            job.plan->cutting.feed, -1, -1},
-                            (folder / "settings-check.nc").string());
+    const MachineDescription& m = prepared.machine;
+    CompensationOptions compensation = job.plan->tool;
+    compensation.pivot_distance = m.has(Axis::kB) ? m.pivot_distance : 0.0;
+    const double stock = job.plan->cutting.roughing_depths.empty()
+                             ? 0.0
+                             : *std::max_element(job.plan->cutting.roughing_depths.begin(),
+                                                 job.plan->cutting.roughing_depths.end());
+    const double top = machine_z(m, kernel_ceiling(job, compensation, *job.surface) + stock);
+    PostProgram probe(*prepared.plugin, m,
+                      ProgramSettings{job.name, job.plan->cutting.spindle_rpm, job.plan->cutting.feed,
+                                      -1, -1, top, static_cast<int>(m.spec(Axis::kZ).sign)},
+                      (folder / "settings-check.nc").string());
+    const AxisSpec& x = m.spec(Axis::kX);
+    AxisRecord record;
+    record.x = std::clamp(0.0, x.min, x.max);
+    record.z = top;
+    if (m.has(Axis::kB)) record.b = std::clamp(0.0, m.b_min_deg, m.b_max_deg);
+    if (job.plan->outputs.nc) probe.write(std::span<const AxisRecord>(&record, 1));
   } catch (...) {
     std::error_code ignored;
     std::filesystem::remove_all(folder, ignored);

@@ -168,6 +168,7 @@ void NcGuard::check_line(std::string_view line) {
       word += ", ";
       word += number_text(r.max);
       word += "]";
+      crossed_ = {letter, v > r.max};
       return refuse(word);
     }
     i = j - 1;

@@ -32,6 +32,8 @@ PostProgram::PostProgram(const PostPlugin& plugin, const MachineDescription& mac
   info_.feed = settings_.feed;
   info_.feed_per_minute = machine_.feed_per_minute ? 1 : 0;
   info_.block_count = settings_.block_count;
+  info_.top_z = settings_.top_z;
+  info_.z_away = settings_.z_away;
   writer_ = {this, &PostProgram::write_bytes, &PostProgram::open_file, &PostProgram::select_main};
   {
     PluginWatch::Call call(watch_, "create");
@@ -70,9 +72,23 @@ void PostProgram::check_output(const char* stage) {
   // the key's place in the job file).
   if (!refused_.empty())
     throw InputError("limits.max_file_mb", refused_ + " (" + who + ", " + stage + "); no NC file was written");
-  if (!guard_.ok())
-    throw InputError(who, std::string(stage) + ": wrote a number no machine may get: " +
-                              guard_.reason() + "; no NC file was written");
+  if (!guard_.ok()) {
+    const std::string what = std::string(stage) + ": wrote a number no machine may get: " +
+                             guard_.reason() + "; no NC file was written";
+    // Every record was inside the travel before the plugin saw it: a word past it is the
+    // plugin's own move (an approach or a retract, from its settings and the clearance
+    // base), reported at the bound it crosses in the machine file.
+    const NcGuard::Crossed crossed = guard_.crossed();
+    for (const AxisSpec& a : machine_.axes)
+      if (crossed.letter == axis_letter(a.axis)[0]) {
+        const auto& places = machine_.travel_places[static_cast<int>(a.axis)];
+        const SourceLocation& place = crossed.upper ? places.max : places.min;
+        if (!place.file.empty())
+          throw InputError(place, std::string("machine axis ") + crossed.letter +
+                                      (crossed.upper ? " max: " : " min: ") + who + " " + what);
+      }
+    throw InputError(who, what);
+  }
 }
 
 void PostProgram::fail(const char* stage) const {
@@ -94,6 +110,14 @@ void PostProgram::write(std::span<const AxisRecord> chunk) {
     if (!refused.empty())
       throw InputError("NC guard (machine '" + machine_.name + "')",
                        refused + "; no NC file was written");
+    // The plugin approaches and retracts beyond top_z: a block past it would be cut into
+    // by those moves.
+    if ((chunk[k].z - settings_.top_z) * settings_.z_away > 0)
+      throw InputError("NC guard (machine '" + machine_.name + "')",
+                       "block " + std::to_string(blocks_written_ + static_cast<long long>(k) + 1) +
+                           ": Z " + std::to_string(chunk[k].z) +
+                           " rises past the clearance base " + std::to_string(settings_.top_z) +
+                           " the approach and retract are planned from; no NC file was written");
     blocks_[k] = {chunk[k].x, chunk[k].z, chunk[k].c, chunk[k].b, chunk[k].time};
   }
   blocks_written_ += static_cast<long long>(chunk.size());

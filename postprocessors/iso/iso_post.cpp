@@ -19,10 +19,14 @@ class IsoPost {
           freeturn::post::FlatSettings& settings)
       : info_(info), out_(out) {
     std::string message;
-    // The approach comes down from `retract` above the first point, never from below.
+    // Approach and retract run `retract` beyond the host's clearance base (top_z: no block
+    // rises past it), so no rapid move on the way in or out touches the part.
     if (!settings.number_in("retract", 1.0, 0.01, 500, retract_, message) ||
         !settings.number_in("approach_feed", 20.0, 0.001, 10000, approach_feed_, message))
       throw PostError(message);
+    for (int i = 0; i < info.layout.count; ++i)
+      if (info.layout.letters[i] == 'Z') z_decimals_ = info.layout.decimals[i];
+    clear_z_ = freeturn::post::clearance_z(info.top_z, info.z_away, retract_, z_decimals_);
   }
 
   void begin() {
@@ -36,14 +40,13 @@ class IsoPost {
       if (first_) {
         // Approach: up, over, then down at a slow feed, then inverse-time feed.
         first_ = false;
-        first_z_ = b[k].z;
         line_ = "G0 ";
-        append_word(line_, 'Z', b[k].z + retract_, 6);
+        append_word(line_, 'Z', clear_z_, z_decimals_);
         line_ += "\nG0";
         for (int i = 0; i < info_.layout.count; ++i)
           if (info_.layout.letters[i] != 'Z') word(b[k], i);
         line_ += "\nG1 ";
-        append_word(line_, 'Z', b[k].z, 6);
+        append_word(line_, 'Z', b[k].z, z_decimals_);
         line_ += " F";
         append_number(line_, approach_feed_, 3);
         if (info_.feed_per_minute) {
@@ -70,7 +73,7 @@ class IsoPost {
 
   void end() {
     std::string tail = "G94\nG0 ";
-    append_word(tail, 'Z', first_z_ + retract_, 6);
+    append_word(tail, 'Z', clear_z_, z_decimals_);
     out_.put(tail + "\nM2\n%\n");
   }
 
@@ -85,7 +88,8 @@ class IsoPost {
   const ft_program_info& info_;
   const freeturn::post::Output& out_;
   double retract_ = 1.0, approach_feed_ = 20;
-  double first_z_ = 0;
+  double clear_z_ = 0;
+  int z_decimals_ = 6;
   bool first_ = true;
   std::string line_;  // reused: no allocation per block
 };

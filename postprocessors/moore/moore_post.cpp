@@ -25,9 +25,9 @@ class MoorePost {
       : info_(info), out_(out) {
     std::string message;
     double time_decimals = 6;
-    // The approach comes down from `retract` above the first point: above it, never below
-    // (a negative retract would move at rapid inside the part). G93's F is the block time:
-    // with no decimals every short block would read F0.
+    // Approach and retract run `retract` beyond the host's clearance base (top_z: no block
+    // rises past it), so no move on the way in or out touches the part. G93's F is the
+    // block time: with no decimals every short block would read F0.
     if (!s.number_in("retract", 1.0, 0.01, 500, retract_, message) ||
         !s.number_in("approach_feed", 200.0, 0.001, 10000, approach_feed_, message) ||
         !s.whole_number_in("child_blocks", 0.0, 0, 1e8, child_blocks_, message) ||
@@ -45,6 +45,9 @@ class MoorePost {
     bool has_c = false;
     for (int i = 0; i < info.layout.count; ++i) has_c = has_c || info.layout.letters[i] == 'C';
     if (!has_c) throw PostError("the moore post writes slow-tool-servo programs: the machine needs a C axis");
+    for (int i = 0; i < info.layout.count; ++i)
+      if (info.layout.letters[i] == 'Z') z_decimals_ = info.layout.decimals[i];
+    clear_z_ = freeturn::post::clearance_z(info.top_z, info.z_away, retract_, z_decimals_);
   }
 
   void begin() {
@@ -58,15 +61,17 @@ class MoorePost {
     for (std::size_t k = 0; k < count; ++k) {
       line_.clear();
       if (first_) {
-        // Approach in feed per minute, above the first point, then down to it.
+        // Approach in feed per minute: to the clearance height, over the first point at
+        // it, then down to the point.
         first_ = false;
-        first_z_ = b[k].z;
         ft_block above = b[k];
-        above.z += retract_;
-        line_ = "G94 G01";
-        words(above);
+        above.z = clear_z_;
+        line_ = "G94 G01 ";
+        append_word(line_, 'Z', clear_z_, z_decimals_);
         line_ += " F";
         append_number(line_, approach_feed_, 3);
+        line_ += "\n";
+        words(above);
         line_ += "\n";
         words(b[k]);
         out_.put(line_ + "\n");
@@ -104,7 +109,7 @@ class MoorePost {
     if (child_blocks_ > 0 && in_child_ > 0) out_.put("M99\n");
     if (children_ > 0) out_.select_main();
     std::string tail = "G94\nG01 ";
-    append_word(tail, 'Z', first_z_ + retract_, 6);
+    append_word(tail, 'Z', clear_z_, z_decimals_);
     tail += " F";
     append_number(tail, approach_feed_, 3);
     out_.put(tail + "\n" + footer_ + "\n");
@@ -131,7 +136,8 @@ class MoorePost {
   double retract_ = 1.0, approach_feed_ = 200, child_blocks_ = 0;
   int time_decimals_ = 6;
   bool first_ = true;
-  double last_time_ = -1, first_z_ = 0;
+  double last_time_ = -1, clear_z_ = 0;
+  int z_decimals_ = 6;
   long long in_child_ = 0;
   int children_ = 0;
   std::string line_;  // reused: no allocation per block

@@ -132,9 +132,52 @@ m=$(machine_variant dialect_dup 's/^  retract: .*/  retract: 1\n  retract: 2/')
 refused "a dialect key twice" "$m.yaml" "$m.machine.yaml:13:3:" "'retract' appears twice"
 
 m=$(machine_variant unknown_setting 's/^  retract: .*/&\n  colour: red/')
-refused "an unknown dialect key" "$m.yaml" "$m.machine.yaml:13:11:" "unknown setting 'colour'"
+refused "an unknown dialect key" "$m.yaml" "$m.machine.yaml:13:3:" "unknown setting 'colour'"
+m=$(machine_variant z_travel 's/min: -50, max: 50, decimals: 6/min: -50, max: 1.2, decimals: 6/')
+refused "an approach height beyond the Z travel" "$m.yaml" "$m.machine.yaml:6:39:" "machine axis Z max" "Z1.54"
 m=$(machine_variant plugin_path 's/^plugin: iso/plugin: ..\/iso/')
 refused "a plugin path with .." "$m.yaml" "$m.machine.yaml:3:9:" "a name, not a path"
+
+# A cut the machine cannot make (exit 1, nothing written) is reported at the limit it
+# crosses in the machine file, with the place on the path.
+failed() {  # description, job, expected prefix, words...
+  local what="$1" job="$2" where="$3"
+  shift 3
+  cases=$((cases + 1))
+  for command in check run; do
+    rm -rf "$tmp/out"
+    mkdir -p "$tmp/out"
+    local args=("$job")
+    [[ "$command" == run ]] && args+=(-o "$tmp/out")
+    "$freeturn" "$command" "${args[@]}" > "$tmp/err" 2>&1
+    local code=$?
+    [[ "$code" == 1 ]] || { echo "FAIL: $what ($command): exit $code, expected 1"; cat "$tmp/err"; fail=1; continue; }
+    grep -qF -- "FAIL: $where" "$tmp/err" || { echo "FAIL: $what ($command): no 'FAIL: $where' in:"; cat "$tmp/err"; fail=1; }
+    for word in "$@"; do
+      grep -qF -- "$word" "$tmp/err" || { echo "FAIL: $what ($command): '$word' not in:"; cat "$tmp/err"; fail=1; }
+    done
+    [[ -z "$(ls -A "$tmp/out")" ]] || { echo "FAIL: $what ($command): left $(ls -A "$tmp/out")"; fail=1; }
+  done
+}
+m=$(machine_variant x_travel 's/min: -100, max: 100, decimals: 6/min: -100, max: 1.5, decimals: 6/')
+failed "X travel shorter than the aperture" "$m.yaml" "$m.machine.yaml:5:40:" "machine axis X max 1.5" "r = 2" "outside its travel"
+cp "$src/postprocessors/iso/machines/iso-lathe-xzcb.yaml" "$tmp/xzcb.yaml"
+sed -i 's/min_deg: -60, max_deg: 60/min_deg: -0.5, max_deg: 60/' "$tmp/xzcb.yaml"
+sed "s|^machine: .*|machine: $tmp/xzcb.yaml|; s/^strategy:/strategy:\n  b_axis: follow/" "$base" > "$tmp/b_limit.yaml"
+failed "B beyond its limits" "$tmp/b_limit.yaml" "$tmp/xzcb.yaml:10:19:" "machine.b_axis.min_deg" "B = -2.29" "tool-rotation limits [-0.5"
+
+# The size bound on job and machine files is FREETURN_MAX_YAML_MB.
+cases=$((cases + 1))
+{ cat "$base"; printf '# %02000d\n' 0; } > "$tmp/padded.yaml"  # 2.4 kB
+FREETURN_MAX_YAML_MB=0.003 "$freeturn" check "$tmp/padded.yaml" > /dev/null 2> "$tmp/err" ||
+  { echo "FAIL: FREETURN_MAX_YAML_MB=0.003 refuses a 2.4 kB job"; cat "$tmp/err"; fail=1; }
+FREETURN_MAX_YAML_MB=0.001 "$freeturn" check "$tmp/padded.yaml" > /dev/null 2> "$tmp/err"
+code=$?
+[[ $code == 2 ]] && grep -qF "$tmp/padded.yaml: the file has" "$tmp/err" && grep -qF "1048-byte bound" "$tmp/err" ||
+  { echo "FAIL: FREETURN_MAX_YAML_MB=0.001: exit $code"; cat "$tmp/err"; fail=1; }
+FREETURN_MAX_YAML_MB=lots "$freeturn" check "$base" > /dev/null 2> "$tmp/err"
+[[ $? == 2 ]] && grep -qF "FREETURN_MAX_YAML_MB: must be a size in MiB" "$tmp/err" ||
+  { echo "FAIL: FREETURN_MAX_YAML_MB=lots"; cat "$tmp/err"; fail=1; }
 
 # An inline NURBS: a knot or weight fault at the knot or weight itself.
 sampled() {  # description, job, expected prefix, word

@@ -9,9 +9,9 @@ namespace freeturn::test {
 inline MachineDescription moore_250upl_xzc() {
   MachineDescription m;
   m.name = "moore-nanotech-250upl";
-  m.axes = {{Axis::kX, 1, 0, -75, 75, 6, 25, 500, {}, {}},
-            {Axis::kZ, 1, 0, -75, 75, 6, 25, 2000, {}, {}},
-            {Axis::kC, 1, 0, -1e300, 1e300, 5, 3000, 30000, {}, {}}};
+  m.axes = {{Axis::kX, 1, 0, -75, 75, 6, 25, 500},
+            {Axis::kZ, 1, 0, -75, 75, 6, 25, 2000},
+            {Axis::kC, 1, 0, -1e300, 1e300, 5, 3000, 30000}};
   m.c_wrapped = true;
   m.max_block_rate = 2000;
   return m;

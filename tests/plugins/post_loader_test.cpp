@@ -11,6 +11,7 @@
 #include "freeturn/path/spiral.hpp"
 #include "freeturn/post_program.hpp"
 #include "freeturn/surface/even_asphere.hpp"
+#include "freeturn/tool/clearance.hpp"
 #include "freeturn/tool/tool_compensator.hpp"
 #include "test_files.hpp"
 
@@ -29,7 +30,7 @@ TEST_SUITE("plugins") {
     CHECK_THROWS_WITH_AS(PostPlugin::load_file(kFixtures + "/missing.so"),
                          doctest::Contains("cannot load the post-processor"), InputError);
     CHECK_THROWS_WITH_AS(PostPlugin::load_file(kFixtures + "/libfreeturn_post_bad_abi.so"),
-                         doctest::Contains("post-processor ABI version 99; this freeturn needs version 2"),
+                         doctest::Contains("post-processor ABI version 99; this freeturn needs version 3"),
                          InputError);
     CHECK_THROWS_WITH_AS(PostPlugin::load_file(kFixtures + "/libfreeturn_post_no_entry.so"),
                          doctest::Contains("does not export freeturn_post_entry"), InputError);
@@ -86,8 +87,13 @@ TEST_SUITE("plugins") {
       const std::string path = dir.file(std::string("job.") + c.machine + ".nc");
       AxisCollector expected;
       std::vector<std::string> written;
+      // The sag rises to 3²/(30 (1 + √(1 − 0.5·9/900))) = 0.150188 mm at r = 3.
+      const double sag_top = 9 / (30 * (1 + std::sqrt(1 - 0.5 * 9 / 900)));
+      const double ceiling = program_z_ceiling(asphere, 0, 3, comp, 0);
+      const double point = comp.pivot_distance > 0 ? comp.pivot_distance : 0;
+      CHECK(ceiling == doctest::Approx(sag_top + 0.5 + point + kCeilingMargin).epsilon(1e-9));
       {
-        PostProgram program(*plugin, m, {"job", 20, 0}, path);
+        PostProgram program(*plugin, m, {"job", 20, 0, -1, -1, ceiling, 1}, path);
         struct Tee final : AxisSink {
           AxisSink *a = nullptr, *b = nullptr;
           void write(std::span<const AxisRecord> chunk) override {
@@ -140,6 +146,29 @@ TEST_SUITE("plugins") {
       CHECK(worst[1] <= 0.5e-6 * (1 + 1e-9));
       CHECK(worst[2] <= 0.5e-5 * (1 + 1e-9));
       CHECK(worst[3] <= 0.5e-5 * (1 + 1e-9));
+      // The way in and out: every move that is not a record's runs at the clearance
+      // height, `retract` (1 mm in these machines) above the highest record, or comes
+      // straight down from it to the first record.
+      if (m.plugin == "precitech") continue;  // its approach is the header template's
+      double highest = -1e300;
+      for (const AxisRecord& r : expected.records) highest = std::max(highest, r.z);
+      CHECK(highest <= ceiling);
+      int clear_moves = 0;
+      double z = -1e300;  // modal
+      for (std::size_t k = 0; k < blocks.size(); ++k) {
+        std::map<char, double> v;
+        bool home = false;
+        for (const NcWord& w : blocks[k].words) {
+          if (w.numeric) v[w.letter] = w.value;
+          home = home || (w.numeric && w.letter == 'G' && w.value == 53);
+        }
+        if (home || (!v.count('Z') && !v.count('X'))) continue;
+        if (v.count('Z')) z = v.at('Z');
+        if (z <= highest + 1e-9) continue;
+        CHECK(z >= ceiling + 1.0 - 1e-9);
+        ++clear_moves;
+      }
+      CHECK(clear_moves >= 3);  // to the height, over the first record, and away at the end
     }
   }
 
@@ -150,7 +179,7 @@ TEST_SUITE("plugins") {
     test::TempDir dir;
     const std::string path = dir.file("profile.nc");
     {
-      PostProgram program(*plugin, m, {"profile", 0, 2.5}, path);
+      PostProgram program(*plugin, m, {"profile", 0, 2.5, -1, -1, 0.2, 1}, path);
       std::vector<AxisRecord> r = {{3, 0.2, 0, 0, 0}, {2, 0.1, 0, 0, 24}, {1, 0.05, 0, 0, 24}};
       program.write(r);
       program.finish();
@@ -171,7 +200,7 @@ TEST_SUITE("plugins") {
     const MachineDescription m = load_machine(kMachines + "/precitech-nanoform-250.yaml");
     const auto plugin = PostPlugin::load_file(kPlugins + "/libfreeturn_post_precitech.so");
     test::TempDir dir;
-    PostProgram program(*plugin, m, {"job", 20, 0}, dir.file("p.nc"));
+    PostProgram program(*plugin, m, {"job", 20, 0, -1, -1, 0, 1}, dir.file("p.nc"));
     std::vector<AxisRecord> r = {{1, 0, 0, 0, 0}, {0.9, 0, 10, 0, 0.1}, {0.8, 0, 20, 0, 0.2}};
     CHECK_THROWS_WITH_AS(program.write(r), doctest::Contains("block times vary"), InputError);
   }

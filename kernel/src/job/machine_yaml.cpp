@@ -46,8 +46,7 @@ MachineDescription load_machine(const std::string& path, std::uintmax_t max_byte
     s.min = a.number("min", -std::numeric_limits<double>::infinity());
     s.max = a.number("max", std::numeric_limits<double>::infinity());
     if (a.has("min") && a.has("max") && !(s.min < s.max)) a.fail("max", "max must exceed min");
-    s.min_place = a.place("min");
-    s.max_place = a.place("max");
+    m.travel_places[static_cast<int>(s.axis)] = {a.place("min"), a.place("max")};
     const double decimals = a.number("decimals", 6.0);
     if (decimals != std::floor(decimals) || decimals < 0 || decimals > 12)
       a.fail("decimals", "decimals must be an integer from 0 to 12");
@@ -75,8 +74,7 @@ MachineDescription load_machine(const std::string& path, std::uintmax_t max_byte
     m.b_min_deg = br.number("min_deg");
     m.b_max_deg = br.number("max_deg");
     if (!(m.b_min_deg < m.b_max_deg)) br.fail("max_deg", "max_deg must exceed min_deg");
-    m.b_min_place = br.place("min_deg");
-    m.b_max_place = br.place("max_deg");
+    m.b_limit_places = {br.place("min_deg"), br.place("max_deg")};
     m.pivot_distance = br.non_negative("pivot_distance", 0.0);
     br.finish();
   } else if (m.has(Axis::kB)) {

@@ -64,7 +64,8 @@ void AxisMapper::check_block(const AxisRecord& r, const CutterLocation& cl) {
       throw InputError(where(cl), std::string(axis_letter(s.axis)) + " is not a finite number");
     if (v < s.min || v > s.max) {
       const bool above = v > s.max;
-      throw CheckFailure(at_bound(above ? s.max_place : s.min_place,
+      const MachineDescription::BoundPlaces& places = machine_.travel_places[static_cast<int>(s.axis)];
+      throw CheckFailure(at_bound(above ? places.max : places.min,
                                   std::string("machine axis ") + axis_letter(s.axis) +
                                       (above ? " max " : " min ") + number(above ? s.max : s.min),
                                   cl),
@@ -76,7 +77,7 @@ void AxisMapper::check_block(const AxisRecord& r, const CutterLocation& cl) {
   if (machine_.has(Axis::kB) && (r.b < machine_.b_min_deg || r.b > machine_.b_max_deg)) {
     const bool above = r.b > machine_.b_max_deg;
     throw CheckFailure(
-        at_bound(above ? machine_.b_max_place : machine_.b_min_place,
+        at_bound(above ? machine_.b_limit_places.max : machine_.b_limit_places.min,
                  std::string("machine b_axis ") + (above ? "max_deg " : "min_deg ") +
                      number(above ? machine_.b_max_deg : machine_.b_min_deg),
                  cl),

@@ -89,6 +89,17 @@ void ToolChecker::found(ToolCheck check, double value, double limit, const Cutte
     static const char* const kCause[kToolCheckCount] = {
         "tool.included_angle_deg", "tool.clearance_angle_deg", "tool.nose_radius",
         "tool.nose_radius",        "tool.centre_height",       ""};
+    if (check == ToolCheck::kBLimits) {
+      // The machine's limit, not the tool's: the command line reports it where the
+      // machine file states the bound crossed.
+      const bool below = cl.b < options_.b_min;
+      throw CheckFailure(where_text(here),
+                         "B limits check: B = " + value_text(check, cl.b) +
+                             " is outside the tool-rotation limits [" +
+                             value_text(check, options_.b_min) + ", " +
+                             value_text(check, options_.b_max) + "]",
+                         below ? "machine.b_axis.min_deg" : "machine.b_axis.max_deg");
+    }
     throw CheckFailure(where_text(here),
                      std::string(tool_check_name(check)) + " check: " + value_text(check, value) +
                          (curvature ? " is below the nose radius " +

@@ -35,6 +35,13 @@ class NcGuard {
 
   bool ok() const { return reason_.empty(); }
   const std::string& reason() const { return reason_; }  // with "file:line: "
+  // The bound a written axis word crossed: its letter (0 for any other refusal) and
+  // whether it was the upper one.
+  struct Crossed {
+    char letter = 0;
+    bool upper = false;
+  };
+  Crossed crossed() const { return crossed_; }
   long long file_bytes() const { return files_[current_].bytes; }
 
  private:
@@ -53,6 +60,7 @@ class NcGuard {
   std::vector<File> files_;
   std::size_t current_ = 0;
   std::string reason_;
+  Crossed crossed_;
 };
 
 }  // namespace freeturn

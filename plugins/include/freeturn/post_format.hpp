@@ -79,6 +79,15 @@ inline void append_number(std::string& line, double value, int decimals) {
   line.append(buf, static_cast<std::size_t>(n));
 }
 
+// The height to approach and retract at (ft_program_info: top_z, z_away): `retract` beyond
+// the clearance base, rounded away from the part at `decimals` so that the written word is
+// never nearer the part than asked.
+inline double clearance_z(double top_z, int z_away, double retract, int decimals) {
+  const double scale = std::pow(10.0, decimals);
+  const double z = (top_z + z_away * retract) * scale;
+  return (z_away > 0 ? std::ceil(z) : std::floor(z)) / scale;
+}
+
 // A setting's value as written in the machine YAML: "\n" is a line break, "\\" a
 // backslash (the host escapes both so that each setting stays on one line).
 inline std::string unescape_lines(const std::string& s) {

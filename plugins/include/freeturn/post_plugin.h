@@ -18,7 +18,7 @@
 extern "C" {
 #endif
 
-#define FREETURN_POST_ABI_VERSION 2
+#define FREETURN_POST_ABI_VERSION 3
 #define FREETURN_POST_ENTRY "freeturn_post_entry"
 
 /* One block in machine units: mm for X and Z, degrees for C and B (C already wrapped if
@@ -45,6 +45,11 @@ typedef struct ft_program_info {
   double feed;                   /* mm/min in profile mode */
   int feed_per_minute;           /* 1: program feed per minute (X-Z only); 0: inverse time */
   long long block_count;         /* blocks the program will receive */
+  /* The clearance base: no block's Z goes past top_z on the side away from the part
+   * (the host checks it), so a move at top_z + z_away * retract clears the part whatever
+   * X, C and B do. Approach and retract there, never relative to one block (version 3). */
+  double top_z;                  /* machine Z (mm) */
+  int z_away;                    /* +1: a larger machine Z is away from the part; -1: smaller */
 } ft_program_info;
 
 /* The host's output. `write` appends to the current file; `open_file` starts another one

@@ -28,6 +28,10 @@ struct ProgramSettings {
   double spindle_rpm = 0, feed = 0;
   long long block_count = -1;     // −1 when not known in advance
   long long max_file_bytes = -1;  // a file growing past this is refused (−1: no limit)
+  // The clearance base handed to the plugin (post_plugin.h, top_z): a bound on every
+  // block's machine Z on the side z_away points to; a block past it is refused.
+  double top_z = 0;
+  int z_away = 1;
 };
 
 class PostProgram final : public AxisSink {

@@ -9,6 +9,7 @@
 #include "freeturn/path/spiral.hpp"
 #include "freeturn/post_program.hpp"
 #include "freeturn/surface/even_asphere.hpp"
+#include "freeturn/tool/clearance.hpp"
 #include "freeturn/tool/tool_compensator.hpp"
 
 int main(int argc, char** argv) {
@@ -32,7 +33,8 @@ int main(int argc, char** argv) {
     checks.outer_radius = 3;
     MotionOptions motion;
     motion.spindle_rpm = 20;
-    PostProgram program(*plugin, m, {"asphere", 20, 0}, argv[3]);
+    const double ceiling = program_z_ceiling(asphere, 0, 3, c, stand_off_for(o.points, 0.5));
+    PostProgram program(*plugin, m, {"asphere", 20, 0, -1, -1, ceiling, 1}, argv[3]);
     AxisMapper mapper(m, motion, program);
     ToolCompensator compensator(asphere, c, checks, mapper);
     plan_spiral(asphere, BaseSurface::plane(3), o, compensator);

@@ -31,9 +31,6 @@ struct AxisSpec {
   int decimals = 6;
   double max_velocity = std::numeric_limits<double>::infinity();      // mm/s or °/s
   double max_acceleration = std::numeric_limits<double>::infinity();  // mm/s² or °/s²
-  // Where the machine file states min and max (the axis's entry when it leaves one out):
-  // a block outside the travel is reported at the bound it crosses.
-  SourceLocation min_place, max_place;
 };
 
 struct MachineDescription {
@@ -43,7 +40,14 @@ struct MachineDescription {
   bool c_wrapped = true;       // C written in [0, 360) (else accumulating)
   double b_min_deg = -90, b_max_deg = 90;
   double pivot_distance = 0;   // mm, B pivot to nose centre
-  SourceLocation b_min_place, b_max_place;  // where b_axis states min_deg and max_deg
+  // Where the machine file states each bound (the axis's entry when it leaves one out): a
+  // block past a limit is reported at the bound it crosses. travel_places by Axis;
+  // b_limit_places for b_axis min_deg and max_deg.
+  struct BoundPlaces {
+    SourceLocation min, max;
+  };
+  BoundPlaces travel_places[4];
+  BoundPlaces b_limit_places;
   Interpolation interpolation = Interpolation::kLinear;
   double max_block_rate = std::numeric_limits<double>::infinity();  // blocks per second
   // How the program states speed: inverse time (each block's duration: G93) or feed per
