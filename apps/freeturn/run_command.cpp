@@ -235,6 +235,26 @@ MachineDescription machine_for(const Job& job, const std::string& machine_file) 
   return m;
 }
 
+// Every block carries each axis word, at least a letter, a digit, the point and the
+// declared decimals, and ends its line: the fewest points a pass can have (read with the
+// job) make an NC program at least that many bytes. Past limits.max_file_mb the job is
+// refused before any planning, at the key that sets the step.
+void refuse_oversized_program(const Job& job, const MachineDescription& machine) {
+  const JobPlan& plan = *job.plan;
+  if (!plan.outputs.nc) return;
+  double block_bytes = 1;
+  for (const AxisSpec& a : machine.axes) block_bytes += 2 + a.decimals + (a.decimals > 0 ? 1 : 0);
+  const double bytes = plan.estimate.per_pass * block_bytes;
+  if (!(bytes > plan.limits.max_file_mb * 1048576.0)) return;
+  char text[320];
+  std::snprintf(text, sizeof text,
+                "%s asks for at least %.15g points a pass: an NC program of at least %.3g MB on "
+                "machine '%s' (%.0f bytes a block at least), over limits.max_file_mb (%g MB)",
+                plan.estimate.key.c_str(), std::ceil(plan.estimate.per_pass), bytes / 1048576.0,
+                machine.name.c_str(), block_bytes, plan.limits.max_file_mb);
+  throw InputError(job.place(plan.estimate.key), text);
+}
+
 PreparedJob prepare_job(const Job& job) {
   if (!job.plan)
     throw InputError(job.file,
@@ -251,6 +271,7 @@ PreparedJob prepare_job(const Job& job) {
     throw InputError(job.place("machine"), e.what());  // at the job's `machine:`
   }
   p.machine = machine_for(job, machine_file);
+  refuse_oversized_program(job, p.machine);
   try {
     p.plugin = PostPlugin::load(p.machine.plugin);
   } catch (const InputError& e) {

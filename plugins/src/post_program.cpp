@@ -160,10 +160,12 @@ int PostProgram::write_bytes(void* context, const char* data, size_t size) {
     const std::string_view bytes(data, size);
     self->guard_.feed(bytes);
     if (!self->guard_.ok()) return 1;
-    if (self->settings_.max_file_bytes >= 0 &&
-        self->guard_.file_bytes() > self->settings_.max_file_bytes) {
+    self->program_bytes_ += static_cast<long long>(size);
+    if (self->settings_.max_file_bytes >= 0 && self->program_bytes_ > self->settings_.max_file_bytes) {
       self->refused_ =
-          self->current_->path() + " would be larger than limits.max_file_mb = " +
+          "the program (" + self->files_.front()->path() + " and its " +
+          std::to_string(self->files_.size() - 1) +
+          " child files) would be larger than limits.max_file_mb = " +
           std::to_string(static_cast<double>(self->settings_.max_file_bytes) / (1 << 20)) + " MB";
       return 1;
     }

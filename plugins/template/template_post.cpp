@@ -3,7 +3,9 @@
 //   g++ -std=c++20 -O2 -fPIC -shared -fvisibility=hidden -I<prefix>/include
 //       template_post.cpp -o libfreeturn_post_template.so
 // It writes one line per block, "X… Z… C… (B…) T…" with each axis at its machine's
-// decimals and the block time in seconds.
+// decimals and the block time in seconds, and no approach or retract: a dialect that
+// writes them moves at post::clearance_z(info->top_z, info->z_away, retract, decimals),
+// clear of the whole part (docs/writing-a-post.md, "The way in and out").
 #include <cstdio>
 #include <string>
 

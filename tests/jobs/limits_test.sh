@@ -2,7 +2,10 @@
 # Resource limits: a job over limits.max_points is refused before any planning when the
 # bound says so (120 points per turn at the 3° cap × 100 turns > 1000), or as soon as
 # the count passes it (12 000 allowed, 12 001 made); a CL file over limits.max_file_mb is
-# refused when the job is read (at least 64 bytes a point), an NC file while it is written. Each run exits 2 with the limit's name and writes nothing.
+# refused when the job is read (at least 64 bytes a point); an NC program when the machine
+# is known (12 000 points of at least 27 bytes on an X-Z-C lathe: 0.309 MB > 0.2), or while
+# it is written (0.4 MB: the estimate passes, the 0.6 MB program does not). Each run exits
+# 2 with the limit's name and writes nothing.
 # usage: limits_test.sh <freeturn> <source dir>
 set -u
 freeturn=$1 src=$2
@@ -12,13 +15,14 @@ fail=0 passed=0
 for case in "max_points 1000 asks for at least 12000 points" \
             "max_points 12000 limits.max_points" \
             "max_file_mb 0.1 a CL file of at least" \
-            "max_file_mb 0.2 would be larger than limits.max_file_mb"; do
+            "max_file_mb 0.2 an NC program of at least 0.309 MB" \
+            "max_file_mb 0.4 would be larger than limits.max_file_mb"; do
   read -r key value message <<< "$case"
   limit="$key: $value"
   cp "$src/configs/jobs/oap_segment.yaml" "$tmp/job.yaml"
   # The NC program's own limit is met as it is written: without the CL file, whose size
   # the reader bounds before planning.
-  [[ "$value" == 0.2 ]] && sed -i 's/^outputs: .*/outputs: {cl_csv: false}/' "$tmp/job.yaml"
+  [[ "$key" == max_file_mb && "$value" != 0.1 ]] && sed -i 's/^outputs: .*/outputs: {cl_csv: false}/' "$tmp/job.yaml"
   printf 'limits: {%s}\n' "$limit" >> "$tmp/job.yaml"
   rm -rf "$tmp/out"
   start=$(date +%s%N)
@@ -32,5 +36,5 @@ for case in "max_points 1000 asks for at least 12000 points" \
   echo "$limit: refused after $ms ms"
   if ((ok)); then passed=$((passed + 1)); else fail=1; sed 's/^/  /' "$tmp/err"; fi
 done
-echo "$passed passed, $((4 - passed)) failed"
+echo "$passed passed, $((5 - passed)) failed"
 exit $fail

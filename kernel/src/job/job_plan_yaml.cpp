@@ -71,13 +71,13 @@ void read_tool(MapReader& job, JobPlan& plan, const Aperture& aperture) {
 // the spiral's length over the plane, π(R_o² − R_i²)/pitch (a surface's slope only
 // lengthens it), over the arc step; its turns times the points per turn (the angle cap
 // bounds the chord rule's); a profile's radial length over its step.
-struct PointEstimate {
+struct StepEstimate {
   double per_pass = 0;
   SourceLocation place;
   std::string key;
 };
 
-void read_points(MapReader& s, JobPlan& plan, const Aperture& aperture, PointEstimate& estimate) {
+void read_points(MapReader& s, JobPlan& plan, const Aperture& aperture, StepEstimate& estimate) {
   CutterPointOptions& p = plan.strategy.points;
   const bool spiral = plan.strategy.mode == Strategy::Mode::kSpiral;
   const double ro = aperture.outer_radius, ri = aperture.inner_radius;
@@ -124,7 +124,7 @@ void read_points(MapReader& s, JobPlan& plan, const Aperture& aperture, PointEst
 }
 
 void read_strategy(MapReader& job, JobPlan& plan, const Aperture& aperture,
-                   PointEstimate& estimate) {
+                   StepEstimate& estimate) {
   MapReader s(job.child("strategy"), job.file(), "strategy");
   Strategy& st = plan.strategy;
   const std::string mode = s.text("mode");
@@ -253,7 +253,7 @@ std::optional<JobPlan> read_job_plan(MapReader& job, const Aperture& aperture) {
     return std::nullopt;
   }
   JobPlan plan;
-  PointEstimate estimate;
+  StepEstimate estimate;
   read_tool(job, plan, aperture);
   read_strategy(job, plan, aperture, estimate);
   read_cutting(job, plan);
@@ -286,6 +286,7 @@ std::optional<JobPlan> read_job_plan(MapReader& job, const Aperture& aperture) {
     throw InputError(estimate.place, text);
   }
   if (plan.strategy.b_mode == BMode::kFollow) plan.tool.b_mode = BMode::kFollow;
+  plan.estimate = {estimate.per_pass, "strategy.points." + estimate.key};
   return plan;
 }
 

@@ -6,7 +6,8 @@
 //
 // Everything crosses NcGuard both ways (records before the plugin sees them, text after
 // it wrote them), every plugin call runs under PluginWatch (a crash or hang ends the run
-// with the plugin's name and no output), and a file past max_file_bytes is refused.
+// with the plugin's name and no output), and a program past max_file_bytes (its files
+// together) is refused.
 
 #include <map>
 #include <memory>
@@ -27,7 +28,7 @@ struct ProgramSettings {
   std::string name;  // the job's name
   double spindle_rpm = 0, feed = 0;
   long long block_count = -1;     // −1 when not known in advance
-  long long max_file_bytes = -1;  // a file growing past this is refused (−1: no limit)
+  long long max_file_bytes = -1;  // a program (its files together) growing past this is refused (−1: no limit)
   // The clearance base handed to the plugin (post_plugin.h, top_z): a bound on every
   // block's machine Z on the side z_away points to; a block past it is refused.
   double top_z = 0;
@@ -72,6 +73,7 @@ class PostProgram final : public AxisSink {
   PluginWatch watch_;
   std::string refused_;  // the size limit's refusal, raised after the call
   long long blocks_written_ = 0;
+  long long program_bytes_ = 0;  // over all its files
 };
 
 // The machine file for a name (on the machine search path) or a path (absolute, or with

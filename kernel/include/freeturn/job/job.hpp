@@ -55,7 +55,15 @@ struct Outputs {
 // shop's disk or DNC link. Exceeded, the run stops and nothing is written.
 struct Limits {
   long long max_points = 100'000'000;  // cutter locations over all passes
-  double max_file_mb = 2048;           // any one output file (NC program, CL file)
+  double max_file_mb = 2048;           // each NC program (its files together), the CL file
+};
+
+// The fewest cutter points a pass can have, worked out from the job's step settings (the
+// pitch, the angle, arc or radial steps and the aperture) when it is read, and the key
+// that sets them: the limits are checked against it before any planning.
+struct PointEstimate {
+  double per_pass = 0;
+  std::string key;  // "strategy.points.equal_arc.length"
 };
 
 struct JobPlan {
@@ -66,6 +74,7 @@ struct JobPlan {
   std::string machine;  // a machine name or a path to its YAML
   Outputs outputs;
   Limits limits;
+  PointEstimate estimate;
 };
 
 struct Job {
