@@ -8,7 +8,7 @@
 #include <vector>
 
 #include "freeturn/job/machine_yaml.hpp"
-#include "freeturn/post_program.hpp"
+#include "freeturn/post/post_program.hpp"
 
 namespace {
 

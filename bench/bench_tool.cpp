@@ -8,6 +8,7 @@
 
 #include "freeturn/path/spiral.hpp"
 #include "freeturn/surface/zernike.hpp"
+#include "freeturn/tool/clearance.hpp"
 #include "freeturn/tool/tool_compensator.hpp"
 
 namespace {
@@ -55,9 +56,18 @@ void BM_CompensateAndCheck(benchmark::State& state) {
   state.SetItemsProcessed(state.iterations() * static_cast<long>(chunk.size()));
 }
 
+// The clearance base a run computes once before posting (129 × 360 sags and the pattern
+// search from the 8 best): its cost against the planning it precedes.
+void BM_ProgramZCeiling(benchmark::State& state) {
+  freeturn::CompensationOptions c;
+  c.tool.nose_radius = 0.5;
+  for (auto _ : state) benchmark::DoNotOptimize(freeturn::program_z_ceiling(surface(), 0, 4, c, 0));
+}
+
 }  // namespace
 
 // Argument: samples of the global gouge check along the edge (0: that check off).
 BENCHMARK(BM_CompensateAndCheck)->Arg(0)->Arg(16);
+BENCHMARK(BM_ProgramZCeiling)->Unit(benchmark::kMillisecond);
 
 BENCHMARK_MAIN();

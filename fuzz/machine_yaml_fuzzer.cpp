@@ -11,8 +11,8 @@
 
 #include "freeturn/core/error.hpp"
 #include "freeturn/job/machine_yaml.hpp"
-#include "freeturn/post_loader.hpp"
-#include "freeturn/post_program.hpp"
+#include "freeturn/post/post_loader.hpp"
+#include "freeturn/post/post_program.hpp"
 #include "fuzz_input_file.hpp"
 
 extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size) {

@@ -6,7 +6,7 @@
 #include "commands.hpp"
 #include "freeturn/core/error.hpp"
 #include "freeturn/job/machine_yaml.hpp"
-#include "freeturn/post_loader.hpp"
+#include "freeturn/post/post_loader.hpp"
 
 namespace freeturn::cli {
 

@@ -1,4 +1,4 @@
-#include "freeturn/post_loader.hpp"
+#include "freeturn/post/post_loader.hpp"
 
 #include <dlfcn.h>
 #include <unistd.h>

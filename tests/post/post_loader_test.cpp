@@ -9,7 +9,7 @@
 #include "freeturn/job/machine_yaml.hpp"
 #include "freeturn/machine/axis_mapper.hpp"
 #include "freeturn/path/spiral.hpp"
-#include "freeturn/post_program.hpp"
+#include "freeturn/post/post_program.hpp"
 #include "freeturn/surface/even_asphere.hpp"
 #include "freeturn/tool/clearance.hpp"
 #include "freeturn/tool/tool_compensator.hpp"

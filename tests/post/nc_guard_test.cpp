@@ -6,8 +6,8 @@
 
 #include "freeturn/core/error.hpp"
 #include "freeturn/job/machine_yaml.hpp"
-#include "freeturn/nc_guard.hpp"
-#include "freeturn/post_program.hpp"
+#include "freeturn/post/nc_guard.hpp"
+#include "freeturn/post/post_program.hpp"
 #include "test_files.hpp"
 
 using namespace freeturn;

@@ -1,4 +1,4 @@
-#include "freeturn/plugin_watch.hpp"
+#include "freeturn/post/plugin_watch.hpp"
 
 #include <signal.h>
 #include <unistd.h>

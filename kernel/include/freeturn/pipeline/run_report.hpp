@@ -1,22 +1,20 @@
 #pragma once
-// What `freeturn run` reports: figures per pass, gathered while the pass streams (in
-// bounded memory: the plot series are decimated as they grow), then report.json and a
-// self-contained report.html with inline SVG plots.
+// What a run reports (the model behind report.json and report.html, report_files.hpp):
+// figures per pass, gathered while the pass streams (in bounded memory: the plot series
+// are decimated as they grow), and the verdict.
 
 #include <memory>
 #include <string>
 #include <vector>
 
-#include "freeturn/io/output_set.hpp"
-#include "freeturn/verify/cut_simulation.hpp"
-#include "freeturn/verify/residual_output.hpp"
-
 #include "freeturn/machine/axis_mapper.hpp"
 #include "freeturn/machine/block_schedule.hpp"
 #include "freeturn/path/cutter_points.hpp"
 #include "freeturn/tool/tool_checks.hpp"
+#include "freeturn/verify/cut_simulation.hpp"
+#include "freeturn/verify/residual_output.hpp"
 
-namespace freeturn::cli {
+namespace freeturn {
 
 struct PlotPoint {
   double x, y, z, r, chord;
@@ -89,23 +87,4 @@ struct RunReport {
 // Fills r.unsafe from the passes' figures (call once every pass is done).
 void judge(RunReport& r);
 
-// Writes both files into `outputs`, to be put in place with the rest of the run.
-void write_report(const RunReport& r, const std::string& json_path, const std::string& html_path,
-                  OutputSet& outputs);
-
-// A progress line on a terminal: points done, rate, estimated time left (from θ or r).
-class Progress {
- public:
-  Progress(bool enabled, std::string label);
-  void update(double theta, double r, long points);
-  void done();
-
- private:
-  bool enabled_;
-  std::string label_;
-  double start_ = 0, last_print_ = 0;
-  double interval_ = 0.25;  // s between updates
-  double first_r_ = -1;
-};
-
-}  // namespace freeturn::cli
+}  // namespace freeturn

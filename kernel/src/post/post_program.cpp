@@ -1,4 +1,4 @@
-#include "freeturn/post_program.hpp"
+#include "freeturn/post/post_program.hpp"
 
 #include <filesystem>
 

@@ -1,4 +1,4 @@
-#include "freeturn/nc_guard.hpp"
+#include "freeturn/post/nc_guard.hpp"
 
 #include <cctype>
 #include <charconv>

@@ -18,9 +18,9 @@
 #include "freeturn/io/output_set.hpp"
 #include "freeturn/machine/axis_record.hpp"
 #include "freeturn/machine/machine.hpp"
-#include "freeturn/nc_guard.hpp"
-#include "freeturn/plugin_watch.hpp"
-#include "freeturn/post_loader.hpp"
+#include "freeturn/post/nc_guard.hpp"
+#include "freeturn/post/plugin_watch.hpp"
+#include "freeturn/post/post_loader.hpp"
 
 namespace freeturn {
 

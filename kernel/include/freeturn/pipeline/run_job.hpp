@@ -1,0 +1,66 @@
+#pragma once
+// A job run end to end, as the command line runs it (docs/pipeline.md).
+//
+// The pipeline streams: planner → tool compensation and checks → machine axes and limits
+// → post-processor plugin, chunk by chunk. Each pass (roughing passes, then the finish)
+// is its own program; every output is written under a temporary name and put in place
+// only when the whole job has succeeded, all as one set (io/output_set.hpp), so a job
+// that fails midway leaves nothing.
+//
+// Errors are exceptions: InputError for bad input (the job, the machine, the plugin, a
+// limit), at the file:line:col of the setting that causes it; CheckFailure for a check
+// the job sets to error (nothing written). A program that is written but not safe to cut
+// (a check downgraded to a warning found something) comes back with its reasons in
+// RunReport::unsafe. Nothing is printed: progress and warnings go to the observer.
+
+#include <cstdint>
+#include <optional>
+#include <string>
+#include <vector>
+
+#include "freeturn/job/job.hpp"
+#include "freeturn/job/yaml_limits.hpp"
+#include "freeturn/pipeline/run_report.hpp"
+#include "freeturn/verify/cut_simulation.hpp"
+
+namespace freeturn {
+
+struct RunOptions {
+  std::string output_dir = ".";
+  // Also cut the finishing pass in simulation (verify/cut_simulation.hpp) and write its
+  // residual (grid CSV, coloured PLY) with its figures in the report.
+  std::optional<SimulationOptions> simulation;
+  std::uintmax_t max_yaml_bytes = kMaxYamlBytes;  // the machine file's size bound
+};
+
+// What a run tells its caller while it works, on the calling thread. The defaults ignore it.
+class RunObserver {
+ public:
+  virtual ~RunObserver() = default;
+  virtual void warning(const std::string& text) { (void)text; }
+  // Once per chunk of a pass: the contact's θ (rad) and r (mm) reached, points so far.
+  virtual void progress(const std::string& pass, double theta, double r, long points) {
+    (void)pass, (void)theta, (void)r, (void)points;
+  }
+  virtual void pass_done(const std::string& pass) { (void)pass; }
+};
+
+struct RunResult {
+  RunReport report;                // figures, verdict, worst places
+  std::vector<std::string> files;  // the paths written, in the order they were put in place
+  bool safe() const { return report.unsafe.empty(); }
+};
+
+// Plans, checks and posts the job, and writes its outputs into options.output_dir.
+RunResult run_job(const Job& job, const RunOptions& options = {}, RunObserver* observer = nullptr);
+
+// Everything run_job does but writing: the report's figures and verdict. The plugin reads
+// its settings and takes one block at the clearance height, so settings and an approach
+// run_job would refuse are refused here too.
+RunReport check_job(const Job& job, const RunOptions& options = {}, RunObserver* observer = nullptr);
+
+// run_job with the finishing pass also cut in simulation.
+RunResult simulate_job(const Job& job, const SimulationOptions& simulation, RunOptions options = {},
+                       RunObserver* observer = nullptr);
+
+}  // namespace freeturn

@@ -1,0 +1,563 @@
+#include "freeturn/pipeline/run_job.hpp"
+
+#include <unistd.h>
+
+#include <algorithm>
+#include <charconv>
+#include <cmath>
+#include <cstdio>
+#include <cstdlib>
+#include <filesystem>
+#include <fstream>
+#include <memory>
+#include <numbers>
+#include <sstream>
+#include <string>
+#include <vector>
+
+#include "freeturn/core/error.hpp"
+#include "freeturn/io/atomic_file.hpp"
+#include "freeturn/io/mesh_export.hpp"
+#include "freeturn/io/output_set.hpp"
+#include "freeturn/job/job.hpp"
+#include "freeturn/job/machine_yaml.hpp"
+#include "freeturn/machine/axis_mapper.hpp"
+#include "freeturn/machine/block_schedule.hpp"
+#include "freeturn/path/profile.hpp"
+#include "freeturn/path/spiral.hpp"
+#include "freeturn/pipeline/report_files.hpp"
+#include "freeturn/post/post_program.hpp"
+#include "freeturn/tool/clearance.hpp"
+#include "freeturn/tool/tool_compensator.hpp"
+#include "freeturn/verify/cut_simulation.hpp"
+#include "freeturn/verify/residual_output.hpp"
+
+namespace freeturn {
+namespace {
+
+// The design raised by the stock a roughing pass leaves.
+class RaisedSurface final : public Surface {
+ public:
+  RaisedSurface(const Surface& s, double dz) : s_(s), dz_(dz) {}
+  const char* type() const override { return s_.type(); }
+  void sag_gradient(double x, double y, double& z, double& zx, double& zy) const override {
+    s_.sag_gradient(x, y, z, zx, zy);
+    z += dz_;
+  }
+  HeightDerivatives height_derivatives(double x, double y) const override {
+    HeightDerivatives h = s_.height_derivatives(x, y);
+    h.z += dz_;
+    return h;
+  }
+  double defined_radius() const override { return s_.defined_radius(); }
+  bool has_creases() const override { return s_.has_creases(); }
+  int section_creases(double theta, double lo, double hi, std::span<double> out) const override {
+    return s_.section_creases(theta, lo, hi, out);
+  }
+
+ private:
+  const Surface& s_;
+  double dz_;
+};
+
+// Between compensation and the machine: statistics for the report, the CL CSV rows (each
+// cutter location with the axis record the mapper made of it), progress to the observer.
+class PassStage final : public CutterSink, public AxisSink {
+ public:
+  PassStage(AxisSink& post, AtomicFile* csv, PassFigures& figures, RunObserver* observer)
+      : post_(post), csv_(csv), figures_(figures), observer_(observer) {}
+  void set_mapper(AxisMapper& m) { mapper_ = &m; }
+  // The job's limits: points over all passes (counted in *points_so_far), CL file bytes.
+  void set_limits(const Limits& limits, long long* points_so_far) {
+    limits_ = limits;
+    points_so_far_ = points_so_far;
+  }
+  void set_simulator(CutSimulator* s) { simulator_ = s; }
+
+  void write(std::span<const CutterLocation> chunk) override {
+    cls_ = chunk;
+    mapper_->write(chunk);  // calls back write(std::span<const AxisRecord>) below
+    if (simulator_) simulator_->write(chunk);
+  }
+
+  void write(std::span<const AxisRecord> records) override {
+    if (points_so_far_) {
+      *points_so_far_ += static_cast<long long>(records.size());
+      if (*points_so_far_ > limits_.max_points) {
+        std::string why = "the job passes ";
+        why += std::to_string(limits_.max_points);
+        why += " points at r = ";
+        why += std::to_string(cls_.back().contact.r);
+        why +=
+            " mm and is not done: more than limits.max_points allows (a pitch or tolerance typo?); "
+            "nothing was written";
+        throw InputError("limits.max_points", why);
+      }
+    }
+    post_.write(records);
+    for (std::size_t k = 0; k < records.size(); ++k) {
+      const CutterLocation& cl = cls_[k];
+      figures_.add(cl, records[k], k > 0 ? records[k - 1] : previous_);
+      if (csv_) row(cl, records[k]);
+    }
+    if (!records.empty()) previous_ = records.back();
+    if (observer_ && !cls_.empty())
+      observer_->progress(figures_.name, cls_.back().contact.theta, cls_.back().contact.r,
+                          figures_.points);
+  }
+
+  static void header(AtomicFile& csv) {
+    csv.write("theta,x,y,z,nx,ny,nz,tx,ty,tz,b_deg,X,Z,C,B,chord\n");
+  }
+
+ private:
+  void row(const CutterLocation& cl, const AxisRecord& r) {
+    line_.clear();
+    const double values[16] = {cl.contact.theta,
+                               cl.contact.point.x(),
+                               cl.contact.point.y(),
+                               cl.contact.point.z(),
+                               cl.contact.normal.x(),
+                               cl.contact.normal.y(),
+                               cl.contact.normal.z(),
+                               cl.nose_centre.x(),
+                               cl.nose_centre.y(),
+                               cl.nose_centre.z(),
+                               cl.b * 180 / std::numbers::pi,
+                               r.x,
+                               r.z,
+                               r.c,
+                               r.b,
+                               cl.contact.chord_error};
+    // Shortest round-trip text (std::to_chars): a number read back is the double written,
+    // so the CL data can be checked to the nanometre (nine fixed decimals put θ alone 2.5
+    // nm off at r = 5 mm).
+    for (int i = 0; i < 16; ++i) {
+      if (i) line_ += ',';
+      char buf[32];
+      const auto [end, ec] = std::to_chars(buf, buf + sizeof buf, values[i]);
+      line_.append(buf, ec == std::errc() ? end : buf);
+    }
+    line_ += '\n';
+    csv_bytes_ += static_cast<long long>(line_.size());
+    if (static_cast<double>(csv_bytes_) > limits_.max_file_mb * 1048576.0)
+      throw InputError("limits.max_file_mb",
+                       "the CL file would be larger than limits.max_file_mb = " +
+                           std::to_string(limits_.max_file_mb) + " MB; nothing was written");
+    csv_->write(line_);
+  }
+
+  AxisMapper* mapper_ = nullptr;
+  CutSimulator* simulator_ = nullptr;
+  AxisSink& post_;
+  AtomicFile* csv_;
+  PassFigures& figures_;
+  RunObserver* observer_;
+  std::span<const CutterLocation> cls_;
+  AxisRecord previous_;  // the last block of the previous chunk
+  std::string line_;
+  Limits limits_;
+  long long* points_so_far_ = nullptr;
+  long long csv_bytes_ = 0;
+};
+
+// Where the blocks go when nothing is written (check, and the constant-rpm probe): nowhere,
+// so that memory stays bounded whatever the path's length.
+class AxisDiscard final : public AxisSink {
+ public:
+  void write(std::span<const AxisRecord>) override {}
+};
+
+// What the machine's axes carry, for the planner's chord error (path/cutter_points.hpp).
+ToolMotion motion_of(const CompensationOptions& c) {
+  ToolMotion m;
+  m.nose_radius = c.tool.nose_radius;
+  m.axis_offset = c.pivot_distance > 0                         ? c.pivot_distance
+                  : c.tool.program_point == ProgramPoint::kTip ? -c.tool.nose_radius
+                                                               : 0.0;
+  m.b_follows = c.b_mode == BMode::kFollow;
+  m.edge_angle = c.edge_angle;
+  return m;
+}
+
+// Spiral block times are scheduled unless the job asks for one constant speed, turns the
+// machine's limits off, or the dialect writes no time per block. PVT programs run at one
+// speed too: the controller derives its velocities from the block times (pvt_rule.hpp),
+// so a schedule would change the cubics the chord error was measured on.
+bool scheduling(const Job& job, const MachineDescription& machine) {
+  const Cutting& c = job.plan->cutting;
+  return c.enforce_dynamics && c.timing == Cutting::Timing::kScheduled &&
+         !machine.constant_block_time && machine.interpolation != Interpolation::kCubic;
+}
+
+// The highest the programmed point rises over the job's aperture (kernel Z, mm): the base
+// of the height a post approaches and retracts at (tool/clearance.hpp).
+double kernel_ceiling(const Job& job, const CompensationOptions& compensation, const Surface& design) {
+  const JobPlan& plan = *job.plan;
+  return program_z_ceiling(design, job.aperture.inner_radius, job.aperture.outer_radius,
+                           compensation,
+                           stand_off_for(plan.strategy.points, plan.tool.tool.nose_radius));
+}
+
+double machine_z(const MachineDescription& machine, double z) {
+  const AxisSpec& a = machine.spec(Axis::kZ);
+  return a.sign * z + a.offset;
+}
+
+struct PreparedJob {
+  MachineDescription machine;
+  std::unique_ptr<PostPlugin> plugin;
+};
+
+MachineDescription machine_for(const Job& job, const std::string& machine_file,
+                               std::uintmax_t max_yaml_bytes) {
+  MachineDescription m = load_machine(machine_file, max_yaml_bytes);
+  const JobPlan& plan = *job.plan;
+  const bool spiral = plan.strategy.mode == Strategy::Mode::kSpiral;
+  if (spiral && !m.has(Axis::kC))
+    throw InputError(job.place("machine"), "strategy.mode spiral needs a C axis; machine '" + m.name +
+                                               "' has none (use mode: profile, or another machine)");
+  if (plan.strategy.b_mode == BMode::kFollow && !m.has(Axis::kB))
+    throw InputError(job.place("strategy.b_axis"),
+                     "strategy.b_axis: follow needs a B axis; machine '" + m.name + "' has none");
+  if (!spiral) {
+    // Profile turning programs X and Z only; the spindle runs at speed.
+    std::vector<AxisSpec> xz;
+    for (const AxisSpec& a : m.axes)
+      if (a.axis == Axis::kX || a.axis == Axis::kZ) xz.push_back(a);
+    m.axes = xz;
+  }
+  return m;
+}
+
+// Every block carries each axis word, at least a letter, a digit, the point and the
+// declared decimals, and ends its line: the fewest points a pass can have (read with the
+// job) make an NC program at least that many bytes. Past limits.max_file_mb the job is
+// refused before any planning, at the key that sets the step.
+void refuse_oversized_program(const Job& job, const MachineDescription& machine) {
+  const JobPlan& plan = *job.plan;
+  if (!plan.outputs.nc) return;
+  double block_bytes = 1;
+  for (const AxisSpec& a : machine.axes) block_bytes += 2 + a.decimals + (a.decimals > 0 ? 1 : 0);
+  const double bytes = plan.estimate.per_pass * block_bytes;
+  if (!(bytes > plan.limits.max_file_mb * 1048576.0)) return;
+  char text[320];
+  std::snprintf(text, sizeof text,
+                "%s asks for at least %.15g points a pass: an NC program of at least %.3g MB on "
+                "machine '%s' (%.0f bytes a block at least), over limits.max_file_mb (%g MB)",
+                plan.estimate.key.c_str(), std::ceil(plan.estimate.per_pass), bytes / 1048576.0,
+                machine.name.c_str(), block_bytes, plan.limits.max_file_mb);
+  throw InputError(job.place(plan.estimate.key), text);
+}
+
+PreparedJob prepare_job(const Job& job, std::uintmax_t max_yaml_bytes) {
+  if (!job.plan)
+    throw InputError(job.file,
+                     "the job has no tool, strategy, cutting and machine sections to run");
+  std::string machine_ref = job.plan->machine;
+  if (machine_ref.find('/') != std::string::npos &&
+      !std::filesystem::path(machine_ref).is_absolute())
+    machine_ref = (std::filesystem::path(job.file).parent_path() / machine_ref).string();
+  PreparedJob p;
+  std::string machine_file;
+  try {
+    machine_file = find_machine_file(machine_ref);
+  } catch (const InputError& e) {
+    throw InputError(job.place("machine"), e.what());  // at the job's `machine:`
+  }
+  p.machine = machine_for(job, machine_file, max_yaml_bytes);
+  refuse_oversized_program(job, p.machine);
+  try {
+    p.plugin = PostPlugin::load(p.machine.plugin);
+  } catch (const InputError& e) {
+    throw InputError(p.machine.plugin_place, e.what());  // at the machine's `plugin:`
+  }
+  return p;
+}
+
+// simulation: when set, the finishing pass is also cut in simulation and its residual
+// written (grid CSV, coloured PLY) with its figures in the report.
+RunResult execute_job(const Job& job, const PreparedJob& prepared, const std::string& out_dir,
+                      RunObserver* observer, bool write, const SimulationOptions* simulation = nullptr,
+                      double spindle_rpm = 0, bool probe = false) {
+  const JobPlan& plan = *job.plan;
+  const MachineDescription& machine = prepared.machine;
+  const auto& plugin = prepared.plugin;
+  const std::string& job_path = job.file;
+  if (write) {
+    std::error_code ec;
+    std::filesystem::create_directories(out_dir, ec);
+    if (ec) throw InputError(out_dir, "cannot create the output folder: " + ec.message());
+  }
+  const auto out = [&](const std::string& name) {
+    return (std::filesystem::path(out_dir) / name).string();
+  };
+
+  RunReport report;
+  report.job = job.name;
+  report.job_file = job_path;
+  {
+    std::ifstream in(job_path, std::ios::binary);
+    std::ostringstream text;
+    text << in.rdbuf();
+    report.job_text = text.str();
+  }
+  report.machine = machine.name;
+  report.plugin = plugin->path();
+
+  // The base surface and the frame the part is cut in.
+  const bool spiral = plan.strategy.mode == Strategy::Mode::kSpiral;
+  BasePlan base;
+  if (spiral) {
+    base = plan_base_surface(*job.surface, job.aperture.inner_radius, job.aperture.outer_radius,
+                             plan.strategy.base);
+    for (const std::string& w : base.warnings) {
+      report.warnings.push_back(w);
+      if (observer) observer->warning(w);
+    }
+    report.alpha_max_deg = base.quasi_revolution.max_angle * 180 / std::numbers::pi;
+    report.axis_moved = base.design_about_axis != nullptr;
+  }
+  const Surface& design = spiral ? base.design_to_cut(*job.surface) : *job.surface;
+
+  CompensationOptions compensation = plan.tool;
+  compensation.pivot_distance = machine.has(Axis::kB) ? machine.pivot_distance : 0.0;
+  ToolCheckOptions checks = plan.checks;
+  checks.b_min = machine.b_min_deg * std::numbers::pi / 180;
+  checks.b_max = machine.b_max_deg * std::numbers::pi / 180;
+  MotionOptions motion;
+  motion.spindle_rpm = !spiral ? 0.0 : spindle_rpm > 0 ? spindle_rpm : plan.cutting.spindle_rpm;
+  motion.feed = plan.cutting.feed;
+  // A spiral whose program carries a time per block is scheduled: the requested rpm is the
+  // highest speed, and each block slows only where the machine's limits demand it.
+  const bool scheduled = spiral && scheduling(job, machine);
+  motion.enforce_dynamics = plan.cutting.enforce_dynamics && !scheduled && !probe;
+  report.scheduled = scheduled;
+  report.requested_rpm = spiral ? plan.cutting.spindle_rpm : 0.0;
+  report.spindle_rpm = motion.spindle_rpm;
+  report.enforce_dynamics = plan.cutting.enforce_dynamics;
+
+  std::vector<double> stock = plan.cutting.roughing_depths;
+  // The clearance base the post approaches and retracts beyond: above every block of
+  // every pass (a roughing pass's design is raised by its stock).
+  const double ceiling = write && plan.outputs.nc ? kernel_ceiling(job, compensation, design) : 0.0;
+  long long points_so_far = 0;
+  stock.push_back(0.0);  // the finishing pass
+  std::vector<std::unique_ptr<PostProgram>> programs;
+  std::unique_ptr<AtomicFile> csv;
+  for (std::size_t pass = 0; pass < stock.size(); ++pass) {
+    const bool finishing = pass + 1 == stock.size();
+    const std::string suffix = finishing ? "" : ".rough-" + std::to_string(pass + 1);
+    const RaisedSurface surface(design, stock[pass]);
+    PassFigures& figures =
+        report.add_pass(finishing ? "finish" : "rough-" + std::to_string(pass + 1), stock[pass]);
+    figures.band_width = (job.aperture.outer_radius - job.aperture.inner_radius) / 64;
+    AxisDiscard discard;
+    AxisSink* post = &discard;
+    std::unique_ptr<BlockScheduler> scheduler;
+    if (write && plan.outputs.nc) {
+      programs.push_back(std::make_unique<PostProgram>(
+          *plugin, machine,
+          ProgramSettings{job.name + suffix, motion.spindle_rpm, motion.feed, -1,
+                          static_cast<long long>(plan.limits.max_file_mb * 1048576.0),
+                          machine_z(machine, ceiling + stock[pass]),
+                          static_cast<int>(machine.spec(Axis::kZ).sign)},
+          out(job.name + "." + machine.name + suffix + ".nc")));
+      post = programs.back().get();
+    }
+    if (write && finishing && plan.outputs.cl_csv) {
+      csv = std::make_unique<AtomicFile>(out(job.name + ".cl.csv"));
+      PassStage::header(*csv);
+    }
+    if (scheduled) {
+      scheduler = std::make_unique<BlockScheduler>(machine, *post);
+      post = scheduler.get();
+    }
+    PassStage stage(*post, finishing ? csv.get() : nullptr, figures, observer);
+    stage.set_limits(plan.limits, &points_so_far);
+    std::unique_ptr<CutSimulator> simulator;
+    if (finishing && simulation) {
+      SimulationOptions so = *simulation;
+      so.compensation = compensation;
+      so.interpolation = machine.interpolation;
+      so.inner_radius = job.aperture.inner_radius;
+      so.outer_radius = job.aperture.outer_radius;
+      const double pitch = spiral ? plan.strategy.pitch : 0.01;
+      if (!(so.radial_step > 0)) so.radial_step = pitch / 8;
+      if (!(so.band > 0)) so.band = 3 * pitch;
+      if (!(so.margin > 0)) so.margin = pitch;
+      if (!spiral)
+        throw InputError(job.place("strategy.mode"), "the cut simulation needs a spiral (strategy.mode: spiral)");
+      simulator = std::make_unique<CutSimulator>(surface, plan.tool.tool.nose_radius, so);
+      stage.set_simulator(simulator.get());
+    }
+    AxisMapper mapper(machine, motion, stage);
+    stage.set_mapper(mapper);
+    ToolCompensator compensator(surface, compensation, checks, stage);
+    PathSummary summary;
+    if (spiral) {
+      SpiralOptions o;
+      o.pitch = plan.strategy.pitch;
+      o.outer_radius = job.aperture.outer_radius;
+      o.inner_radius = job.aperture.inner_radius;
+      o.centre_to_edge = plan.strategy.centre_to_edge;
+      o.tool = motion_of(compensation);
+      o.points = plan.strategy.points;
+      o.points.interpolation = machine.interpolation;
+      summary = plan_spiral(surface, base.base, o, compensator);
+    } else {
+      ProfileOptions o;
+      o.outer_radius = job.aperture.outer_radius;
+      o.inner_radius = job.aperture.inner_radius;
+      o.tool = motion_of(compensation);
+      o.points = plan.strategy.points;
+      o.points.interpolation = machine.interpolation;
+      summary = plan_profile(surface, o, compensator);
+    }
+    if (scheduler) scheduler->finish();
+    if (observer) observer->pass_done(figures.name);
+    figures.finish(summary, mapper.report(), compensator.report());
+    if (scheduler) figures.take_schedule(scheduler->report());
+    if (simulator) {
+      report.simulation = std::make_shared<SimulationResult>(simulator->finish());
+      report.heat_map = std::make_shared<ResidualHeatMap>(
+          residual_heat_map(*report.simulation, job.aperture.inner_radius, 320));
+      report.simulated = true;
+    }
+    for (const std::string& w : figures.check_warnings) {
+      report.warnings.push_back(figures.name + ": " + w);
+      if (observer) observer->warning(figures.name + ": " + w);
+    }
+  }
+  judge(report);
+  if (!write) return {report, {}};
+  // Everything succeeded: write the rest, then put every file in place as one set
+  // (io/output_set.hpp: programs set aside, data files first, programs last).
+  OutputSet outputs;
+  if (report.simulation) {
+    write_residual_csv(*report.simulation, job.aperture.inner_radius,
+                       outputs.add(out(job.name + ".residual.csv")));
+    write_residual_ply(*report.simulation, design, job.aperture.inner_radius,
+                       outputs.add(out(job.name + ".residual.ply")));
+  }
+  if (plan.outputs.mesh) {
+    write_surface_mesh_obj(design, job.aperture.inner_radius, job.aperture.outer_radius, 64, 256,
+                           outputs.add(out(job.name + ".surface.obj")));
+    std::vector<Eigen::Vector3d> path;
+    for (const PlotPoint& p : report.passes.back().samples) path.emplace_back(p.x, p.y, p.z);
+    write_polyline_vtk(path, outputs.add(out(job.name + ".path.vtk")));
+  }
+  for (auto& p : programs) p->finish(outputs);
+  if (csv) outputs.adopt(std::move(csv), OutputSet::Role::kData);
+  if (plan.outputs.report) write_report(report, out("report.json"), out("report.html"), outputs);
+  std::vector<std::string> written = outputs.commit();
+  return {std::move(report), std::move(written)};
+}
+
+// A constant-speed spiral (timing: constant_rpm, or a dialect without block times) runs at
+// the highest speed every block allows, up to the job's: found by planning once without
+// writing (velocity scales with the rpm, acceleration with its square), then written.
+RunResult run_job_at_requested_speed(const Job& job, const PreparedJob& prepared,
+                                     const std::string& out_dir, RunObserver* observer, bool write,
+                                     const SimulationOptions* simulation);
+
+// A limit of the job's own (limits.max_points, limits.max_file_mb) that stops the run is
+// reported at its place in the job file: the errors name the key as their place.
+RunResult run_with_places(const Job& job, const PreparedJob& prepared, const std::string& out_dir,
+                          RunObserver* observer, bool write, const SimulationOptions* simulation) {
+  try {
+    return run_job_at_requested_speed(job, prepared, out_dir, observer, write, simulation);
+  } catch (const CheckFailure& e) {
+    if (e.cause().empty()) throw;
+    const MachineDescription& m = prepared.machine;
+    if (e.cause() == "machine.b_axis.min_deg" || e.cause() == "machine.b_axis.max_deg")
+      throw CheckFailure((e.cause() == "machine.b_axis.min_deg" ? m.b_limit_places.min
+                                                                 : m.b_limit_places.max)
+                             .to_string(),
+                         e.cause() + ": " + e.where() + ": " + e.problem(), e.cause());
+    throw CheckFailure(job.place(e.cause()).to_string(),
+                       e.cause() + ": " + e.where() + ": " + e.problem(), e.cause());
+  } catch (const InputError& e) {
+    if (!e.cause().empty())
+      throw InputError(job.place(e.cause()).to_string(),
+                       e.cause() + ": " + (e.where().empty() ? "" : e.where() + ": ") + e.problem(),
+                       e.cause());
+    // An error whose place is a key the job gives ("cutting.spindle_rpm") goes there.
+    if (!job.places.count(e.where()) && e.where().rfind("limits.", 0) != 0) throw;
+    throw InputError(job.place(e.where()), e.where() + ": " + e.problem());
+  }
+}
+
+RunResult run_job_at_requested_speed(const Job& job, const PreparedJob& prepared,
+                                     const std::string& out_dir, RunObserver* observer, bool write,
+                                     const SimulationOptions* simulation) {
+  const JobPlan& plan = *job.plan;
+  const double requested = plan.cutting.spindle_rpm;
+  if (plan.strategy.mode == Strategy::Mode::kSpiral && plan.cutting.enforce_dynamics &&
+      !scheduling(job, prepared.machine)) {
+    const RunResult probe = execute_job(job, prepared, out_dir, nullptr, false, nullptr, requested, true);
+    double rpm = requested;
+    for (const PassFigures& f : probe.report.passes) rpm = std::min(rpm, f.dynamics.max_rpm);
+    return execute_job(job, prepared, out_dir, observer, write, simulation, rpm);
+  }
+  return execute_job(job, prepared, out_dir, observer, write, simulation);
+}
+
+// The plugin reads its dialect settings when a program is created: check creates one in
+// a private temporary folder and drops it unwritten, so that settings `run` would refuse
+// are refused here too, at their place in the machine file.
+// One record at the clearance base is written too, so that an approach the machine's
+// travel cannot take is refused as `run` refuses it.
+void check_dialect_settings(const Job& job, const PreparedJob& prepared) {
+  const std::filesystem::path folder = std::filesystem::temp_directory_path() /
+                                       ("freeturn-check-" + std::to_string(getpid()));
+  std::filesystem::create_directories(folder);
+  try {
+    const MachineDescription& m = prepared.machine;
+    CompensationOptions compensation = job.plan->tool;
+    compensation.pivot_distance = m.has(Axis::kB) ? m.pivot_distance : 0.0;
+    const double stock = job.plan->cutting.roughing_depths.empty()
+                             ? 0.0
+                             : *std::max_element(job.plan->cutting.roughing_depths.begin(),
+                                                 job.plan->cutting.roughing_depths.end());
+    const double top = machine_z(m, kernel_ceiling(job, compensation, *job.surface) + stock);
+    PostProgram probe(*prepared.plugin, m,
+                      ProgramSettings{job.name, job.plan->cutting.spindle_rpm, job.plan->cutting.feed,
+                                      -1, -1, top, static_cast<int>(m.spec(Axis::kZ).sign)},
+                      (folder / "settings-check.nc").string());
+    const AxisSpec& x = m.spec(Axis::kX);
+    AxisRecord record;
+    record.x = std::clamp(0.0, x.min, x.max);
+    record.z = top;
+    if (m.has(Axis::kB)) record.b = std::clamp(0.0, m.b_min_deg, m.b_max_deg);
+    if (job.plan->outputs.nc) probe.write(std::span<const AxisRecord>(&record, 1));
+  } catch (...) {
+    std::error_code ignored;
+    std::filesystem::remove_all(folder, ignored);
+    throw;
+  }
+  std::error_code ignored;
+  std::filesystem::remove_all(folder, ignored);
+}
+
+}  // namespace
+
+RunResult run_job(const Job& job, const RunOptions& options, RunObserver* observer) {
+  const PreparedJob prepared = prepare_job(job, options.max_yaml_bytes);
+  return run_with_places(job, prepared, options.output_dir, observer, true,
+                         options.simulation ? &*options.simulation : nullptr);
+}
+
+RunReport check_job(const Job& job, const RunOptions& options, RunObserver* observer) {
+  const PreparedJob prepared = prepare_job(job, options.max_yaml_bytes);
+  check_dialect_settings(job, prepared);
+  return run_with_places(job, prepared, "", observer, false, nullptr).report;
+}
+
+RunResult simulate_job(const Job& job, const SimulationOptions& simulation, RunOptions options,
+                       RunObserver* observer) {
+  options.simulation = simulation;
+  return run_job(job, options, observer);
+}
+
+}  // namespace freeturn
