@@ -1,6 +1,7 @@
 // freeturn: YAML job in, NC program out. This file dispatches subcommands.
 
 #include <signal.h>
+#include <unistd.h>
 
 #include <cstdio>
 #include <cstring>
@@ -12,6 +13,7 @@
 #include "freeturn/core/error.hpp"
 #include "freeturn/core/version.hpp"
 #include "freeturn/io/atomic_file.hpp"
+#include "freeturn/post/plugin_watch.hpp"
 
 namespace {
 
@@ -44,6 +46,19 @@ void print_help(std::FILE* out) {
                "3 a post-processor plugin crashed or hung (nothing written)\n");
 }
 
+// A plugin that crashed or hung (post/plugin_watch.hpp): its message on stderr, exit 3.
+// The library has removed the run's temporaries already. Async-signal-safe: write, _exit.
+void end_on_plugin_fault(const char* message) {
+  std::size_t left = std::strlen(message);
+  while (left > 0) {
+    const ssize_t n = ::write(STDERR_FILENO, message, left);
+    if (n <= 0) break;
+    message += n;
+    left -= static_cast<std::size_t>(n);
+  }
+  ::_exit(freeturn::kExitPluginFault);
+}
+
 // SIGTERM (a job scheduler, `timeout`) or SIGINT (Ctrl-C) mid-run: the outputs not yet
 // committed are removed, as an error would remove them, and the signal then ends the
 // process as it would have (its exit status says so). Async-signal-safe: unlink, signal,
@@ -70,6 +85,7 @@ void remove_outputs_on_termination() {
 
 int main(int argc, char** argv) {
   remove_outputs_on_termination();
+  freeturn::set_plugin_fault_handler(end_on_plugin_fault);
   std::vector<std::string> args(argv + 1, argv + argc);
   if (args.empty()) {
     print_help(stderr);

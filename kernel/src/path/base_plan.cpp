@@ -6,31 +6,11 @@
 
 #include "freeturn/core/error.hpp"
 #include "freeturn/surface/height_field_queries.hpp"
+#include "freeturn/surface/raised_surface.hpp"
 #include "freeturn/surface/transformed_surface.hpp"
 
 namespace freeturn {
 namespace {
-
-// A non-owning view, so that a TransformedSurface can wrap the caller's design.
-class BorrowedSurface final : public Surface {
- public:
-  explicit BorrowedSurface(const Surface& s) : s_(s) {}
-  const char* type() const override { return s_.type(); }
-  void sag_gradient(double x, double y, double& z, double& zx, double& zy) const override {
-    s_.sag_gradient(x, y, z, zx, zy);
-  }
-  HeightDerivatives height_derivatives(double x, double y) const override {
-    return s_.height_derivatives(x, y);
-  }
-  double defined_radius() const override { return s_.defined_radius(); }
-  bool has_creases() const override { return s_.has_creases(); }
-  int section_creases(double theta, double lo, double hi, std::span<double> out) const override {
-    return s_.section_creases(theta, lo, hi, out);
-  }
-
- private:
-  const Surface& s_;
-};
 
 std::string degrees(double rad) { return std::to_string(rad * 180 / std::numbers::pi); }
 
@@ -67,7 +47,7 @@ BasePlan plan_base_surface(const Surface& design, double inner, double outer,
       throw InputError("base axis", "the searched axis does not cross the design surface",
                        "strategy.base_surface.search_axis");
     plan.design_about_axis = std::make_unique<TransformedSurface>(
-        std::make_unique<BorrowedSurface>(design), hit.point.x(), hit.point.y(),
+        std::make_unique<RaisedSurface>(design), hit.point.x(), hit.point.y(),
         Eigen::Matrix3d(Eigen::Quaterniond::FromTwoVectors(t, Eigen::Vector3d::UnitZ())));
     samples = sample_aperture(*plan.design_about_axis, inner, outer, o.radial_samples,
                               o.angular_samples);

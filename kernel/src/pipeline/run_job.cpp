@@ -27,6 +27,7 @@
 #include "freeturn/path/spiral.hpp"
 #include "freeturn/pipeline/report_files.hpp"
 #include "freeturn/post/post_program.hpp"
+#include "freeturn/surface/raised_surface.hpp"
 #include "freeturn/tool/clearance.hpp"
 #include "freeturn/tool/tool_compensator.hpp"
 #include "freeturn/verify/cut_simulation.hpp"
@@ -34,31 +35,6 @@
 
 namespace freeturn {
 namespace {
-
-// The design raised by the stock a roughing pass leaves.
-class RaisedSurface final : public Surface {
- public:
-  RaisedSurface(const Surface& s, double dz) : s_(s), dz_(dz) {}
-  const char* type() const override { return s_.type(); }
-  void sag_gradient(double x, double y, double& z, double& zx, double& zy) const override {
-    s_.sag_gradient(x, y, z, zx, zy);
-    z += dz_;
-  }
-  HeightDerivatives height_derivatives(double x, double y) const override {
-    HeightDerivatives h = s_.height_derivatives(x, y);
-    h.z += dz_;
-    return h;
-  }
-  double defined_radius() const override { return s_.defined_radius(); }
-  bool has_creases() const override { return s_.has_creases(); }
-  int section_creases(double theta, double lo, double hi, std::span<double> out) const override {
-    return s_.section_creases(theta, lo, hi, out);
-  }
-
- private:
-  const Surface& s_;
-  double dz_;
-};
 
 // Between compensation and the machine: statistics for the report, the CL CSV rows (each
 // cutter location with the axis record the mapper made of it), progress to the observer.
@@ -167,18 +143,6 @@ class AxisDiscard final : public AxisSink {
  public:
   void write(std::span<const AxisRecord>) override {}
 };
-
-// What the machine's axes carry, for the planner's chord error (path/cutter_points.hpp).
-ToolMotion motion_of(const CompensationOptions& c) {
-  ToolMotion m;
-  m.nose_radius = c.tool.nose_radius;
-  m.axis_offset = c.pivot_distance > 0                         ? c.pivot_distance
-                  : c.tool.program_point == ProgramPoint::kTip ? -c.tool.nose_radius
-                                                               : 0.0;
-  m.b_follows = c.b_mode == BMode::kFollow;
-  m.edge_angle = c.edge_angle;
-  return m;
-}
 
 // Spiral block times are scheduled unless the job asks for one constant speed, turns the
 // machine's limits off, or the dialect writes no time per block. PVT programs run at one
@@ -401,7 +365,7 @@ RunResult execute_job(const Job& job, const PreparedJob& prepared, const std::st
       o.outer_radius = job.aperture.outer_radius;
       o.inner_radius = job.aperture.inner_radius;
       o.centre_to_edge = plan.strategy.centre_to_edge;
-      o.tool = motion_of(compensation);
+      o.tool = tool_motion(compensation);
       o.points = plan.strategy.points;
       o.points.interpolation = machine.interpolation;
       summary = plan_spiral(surface, base.base, o, compensator);
@@ -409,7 +373,7 @@ RunResult execute_job(const Job& job, const PreparedJob& prepared, const std::st
       ProfileOptions o;
       o.outer_radius = job.aperture.outer_radius;
       o.inner_radius = job.aperture.inner_radius;
-      o.tool = motion_of(compensation);
+      o.tool = tool_motion(compensation);
       o.points = plan.strategy.points;
       o.points.interpolation = machine.interpolation;
       summary = plan_profile(surface, o, compensator);

@@ -3,6 +3,7 @@
 #include <signal.h>
 #include <unistd.h>
 
+#include <atomic>
 #include <cstdio>
 #include <cstdlib>
 #include <cstring>
@@ -31,20 +32,44 @@ void write_all(const char* text) {
   }
 }
 
+void default_fault_handler(const char* message) {
+  write_all(message);
+  ::_exit(kExitPluginFault);
+}
+
+std::atomic<PluginFaultHandler> g_fault_handler{nullptr};
+
+// Removes the run's temporaries and hands the message to the handler, which ends the
+// process (the default's _exit if it returns).
+[[noreturn]] void end_with(const char* message) {
+  AtomicFile::remove_all_temporaries();
+  const PluginFaultHandler handler = g_fault_handler.load();
+  (handler ? handler : default_fault_handler)(message);
+  ::_exit(kExitPluginFault);
+}
+
+// Appends `text` to the message in `out` (capacity `size`): strlen and memcpy only, safe
+// in a signal handler.
+void append(char* out, std::size_t size, const char* text) {
+  const std::size_t used = std::strlen(out), room = size - 1 - used, n = std::strlen(text);
+  std::memcpy(out + used, text, n < room ? n : room);
+  out[used + (n < room ? n : room)] = '\0';
+}
+
 extern "C" void on_crash(int signal) {
-  write_all(g_crash_message);
   const char* name = signal == SIGSEGV   ? "SIGSEGV"
                      : signal == SIGBUS  ? "SIGBUS"
                      : signal == SIGILL  ? "SIGILL"
                      : signal == SIGFPE  ? "SIGFPE"
                                          : "SIGABRT";
-  write_all(name);
-  write_all("); no NC file was written\n");
-  AtomicFile::remove_all_temporaries();
-  ::_exit(kExitPluginFault);
+  append(g_crash_message, sizeof g_crash_message, name);
+  append(g_crash_message, sizeof g_crash_message, "); no NC file was written\n");
+  end_with(g_crash_message);
 }
 
 }  // namespace
+
+void set_plugin_fault_handler(PluginFaultHandler handler) { g_fault_handler.store(handler); }
 
 PluginWatch::PluginWatch(std::string plugin_name) : name_(std::move(plugin_name)) {
   if (const char* v = std::getenv("FREETURN_PLUGIN_TIMEOUT")) {
@@ -86,9 +111,7 @@ void PluginWatch::watchdog() {
                     "freeturn: post-processor '%s' did not return from %s within %g s "
                     "(FREETURN_PLUGIN_TIMEOUT); no NC file was written\n",
                     name_.c_str(), call_, limit_);
-      write_all(message);
-      AtomicFile::remove_all_temporaries();
-      ::_exit(kExitPluginFault);
+      end_with(message);
     }
   }
 }

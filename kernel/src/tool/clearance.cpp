@@ -65,11 +65,12 @@ double program_z_ceiling(const Surface& surface, double inner_radius, double out
                          const CompensationOptions& o, double stand_off) {
   double waviness = 0;
   for (const auto& [psi, delta] : o.tool.waviness) waviness = std::max(waviness, delta);
-  double point = 0;  // the programmed point above the nose centre, at most
-  if (o.pivot_distance > 0)
-    point = o.pivot_distance;
-  else if (o.tool.program_point == ProgramPoint::kTip && o.b_mode == BMode::kFixed)
-    point = -o.tool.nose_radius * std::cos(o.b_fixed);
+  // The programmed point above the nose centre, at most: offset·cos B, with cos B ≤ 1 for
+  // a pivot above it, and a tip's −R cos B exact when B is fixed (else bounded by 0).
+  const double offset = programmed_point_offset(o);
+  const double point = offset > 0                      ? offset
+                       : o.b_mode == BMode::kFixed ? offset * std::cos(o.b_fixed)
+                                                       : 0.0;
   return highest_sag(surface, inner_radius, outer_radius) + o.tool.nose_radius + waviness +
          stand_off + point + kCeilingMargin;
 }

@@ -5,6 +5,20 @@
 
 namespace freeturn {
 
+double programmed_point_offset(const CompensationOptions& o) {
+  if (o.pivot_distance > 0) return o.pivot_distance;
+  return o.tool.program_point == ProgramPoint::kTip ? -o.tool.nose_radius : 0.0;
+}
+
+ToolMotion tool_motion(const CompensationOptions& o) {
+  ToolMotion m;
+  m.nose_radius = o.tool.nose_radius;
+  m.axis_offset = programmed_point_offset(o);
+  m.b_follows = o.b_mode == BMode::kFollow;
+  m.edge_angle = o.edge_angle;
+  return m;
+}
+
 CutterLocation compensate(const ContactPoint& contact, const CompensationOptions& o) {
   CutterLocation cl;
   cl.contact = contact;
@@ -22,14 +36,8 @@ CutterLocation compensate(const ContactPoint& contact, const CompensationOptions
   const double c_r = p_r + radius * u_r, c_z = contact.point.z() + radius * u_z;
   cl.nose_centre = {c_r * ct, c_r * st, c_z};
   const double a_r = std::sin(cl.b), a_z = std::cos(cl.b);
-  double x = c_r, z = c_z;
-  if (o.pivot_distance > 0) {
-    x += o.pivot_distance * a_r;
-    z += o.pivot_distance * a_z;
-  } else if (o.tool.program_point == ProgramPoint::kTip) {
-    x -= o.tool.nose_radius * a_r;
-    z -= o.tool.nose_radius * a_z;
-  }
+  const double offset = programmed_point_offset(o);
+  double x = c_r + offset * a_r, z = c_z + offset * a_z;
   cl.c = contact.theta;
   const double h = o.tool.centre_height;
   if (h != 0) {
@@ -50,10 +58,8 @@ Eigen::Vector2d nose_centre_from_axes(double x, double z, double b, const Compen
   const double a_r = std::sin(b), a_z = std::cos(b);
   const double h = o.tool.centre_height;
   if (h != 0) x = std::copysign(std::sqrt(x * x + h * h), x);
-  if (o.pivot_distance > 0) return {x - o.pivot_distance * a_r, z - o.pivot_distance * a_z};
-  if (o.tool.program_point == ProgramPoint::kTip)
-    return {x + o.tool.nose_radius * a_r, z + o.tool.nose_radius * a_z};
-  return {x, z};
+  const double offset = programmed_point_offset(o);
+  return {x - offset * a_r, z - offset * a_z};
 }
 
 }  // namespace freeturn

@@ -1,5 +1,5 @@
 #pragma once
-// A job run end to end, as the command line runs it (docs/pipeline.md).
+// A job run end to end, as the command line runs it (docs/conventions.md, "Layout").
 //
 // The pipeline streams: planner → tool compensation and checks → machine axes and limits
 // → post-processor plugin, chunk by chunk. Each pass (roughing passes, then the finish)

@@ -2,10 +2,15 @@
 // Calls into a post-processor plugin under watch. A plugin runs in freeturn's process, so
 // a crash there cannot be unwound from, and a hang would hold the run forever. During a
 // call, a crash signal (SIGSEGV, SIGBUS, SIGILL, SIGFPE, SIGABRT) or the call outliving
-// its time limit ends the process: a message naming the plugin and the call goes to
-// stderr, every temporary output file is removed (AtomicFile), and the exit code is
-// kExitPluginFault. No output of the run stays behind; files that were there before are
-// untouched.
+// its time limit removes every temporary output file (AtomicFile) and hands a message
+// naming the plugin and the call to the plugin fault handler, which must end the process:
+// no output of the run stays behind; files that were there before are untouched.
+//
+// The handler is the embedder's: the command line's writes the message to stderr and
+// exits with kExitPluginFault (3); a service may log elsewhere, or abort() for a core
+// file. It runs in a signal handler or on the watchdog thread, so it may only use
+// async-signal-safe calls (write(2), _exit, abort), and it must not return. Without one,
+// the library writes the message to stderr and _exits with kExitPluginFault.
 
 #include <chrono>
 #include <condition_variable>
@@ -16,6 +21,11 @@
 namespace freeturn {
 
 inline constexpr int kExitPluginFault = 3;
+
+using PluginFaultHandler = void (*)(const char* message);
+// Sets the process-wide handler (nullptr: the default above). Not thread-safe with a
+// plugin call in progress: set it once, before the first run.
+void set_plugin_fault_handler(PluginFaultHandler handler);
 
 class PluginWatch {
  public:

@@ -12,6 +12,7 @@
 // a B axis, its pivot c + L a(B). With the edge's centre height h above the spindle line,
 // the programmed radial position x becomes √(x² − h²) and the spindle angle θ − atan2(h, ·).
 
+#include "freeturn/path/cutter_points.hpp"
 #include "freeturn/tool/cutter_location.hpp"
 #include "freeturn/tool/tool_geometry.hpp"
 
@@ -29,6 +30,14 @@ struct CompensationOptions {
   double edge_angle = 0;  // rad, the nose point that touches when B follows (0: its centre)
   double pivot_distance = 0;  // L (mm): B pivot to nose centre; 0: program the nose point
 };
+
+// The programmed point's offset from the nose centre along the tool axis a(B): the pivot
+// distance L with a B pivot, −R for the tip, 0 for the nose centre. The one rule for it:
+// compensation, its inverse, the planner's motion and the clearance base all use it.
+double programmed_point_offset(const CompensationOptions& options);
+
+// What the machine's axes carry, for the planner's chord error (path/cutter_points.hpp).
+ToolMotion tool_motion(const CompensationOptions& options);
 
 // The cutter location for one contact point. No checks (tool_checks.hpp); no allocation.
 CutterLocation compensate(const ContactPoint& contact, const CompensationOptions& options);

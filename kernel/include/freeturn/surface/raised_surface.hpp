@@ -1,0 +1,35 @@
+#pragma once
+// A surface seen through a reference, raised along z by `raise` mm: the design a
+// roughing pass cuts (the stock it leaves above the finish), or, with raise 0, a
+// non-owning view of a caller's surface for a wrapper that wants to own its parent
+// (TransformedSurface). The viewed surface must outlive the view.
+
+#include "freeturn/surface/surface.hpp"
+
+namespace freeturn {
+
+class RaisedSurface final : public Surface {
+ public:
+  explicit RaisedSurface(const Surface& surface, double raise = 0) : s_(surface), raise_(raise) {}
+  const char* type() const override { return s_.type(); }
+  void sag_gradient(double x, double y, double& z, double& zx, double& zy) const override {
+    s_.sag_gradient(x, y, z, zx, zy);
+    z += raise_;
+  }
+  HeightDerivatives height_derivatives(double x, double y) const override {
+    HeightDerivatives h = s_.height_derivatives(x, y);
+    h.z += raise_;
+    return h;
+  }
+  double defined_radius() const override { return s_.defined_radius(); }
+  bool has_creases() const override { return s_.has_creases(); }
+  int section_creases(double theta, double lo, double hi, std::span<double> out) const override {
+    return s_.section_creases(theta, lo, hi, out);
+  }
+
+ private:
+  const Surface& s_;
+  double raise_;
+};
+
+}  // namespace freeturn
