@@ -65,3 +65,21 @@ if(FREETURN_BUILD_BENCH)
     freeturn_missing("Google Benchmark" libbenchmark-dev)
   endif()
 endif()
+
+# The Python module: Python 3.11 headers and pybind11 2.10 (python3-dev, pybind11-dev);
+# its tests use NumPy and pytest (python3-numpy, python3-pytest).
+if(FREETURN_PYTHON)
+  # Debian's Python, whose NumPy and pytest the packages install (not another one on PATH).
+  if(NOT DEFINED Python3_EXECUTABLE AND EXISTS /usr/bin/python3)
+    set(Python3_EXECUTABLE /usr/bin/python3)
+  endif()
+  find_package(Python3 3.9 QUIET COMPONENTS Interpreter Development.Module)
+  if(NOT Python3_Development.Module_FOUND)
+    freeturn_missing("the Python 3 headers" python3-dev)
+  endif()
+  set(PYBIND11_FINDPYTHON ON)
+  find_package(pybind11 2.10 QUIET CONFIG)
+  if(NOT pybind11_FOUND)
+    freeturn_missing("pybind11 2.10" pybind11-dev)
+  endif()
+endif()

@@ -22,6 +22,8 @@ packages=(
   libbenchmark-dev
   # The tests' independent NC reader (tests/jobs/nc_dynamics.py).
   python3
+  # The Python module (python/) and its tests.
+  python3-dev pybind11-dev python3-numpy python3-pytest
 )
 # Extra packages a caller (CI) wants too, e.g. FREETURN_EXTRA_PACKAGES="linuxcnc-uspace".
 read -r -a extra <<< "${FREETURN_EXTRA_PACKAGES:-}"

@@ -185,7 +185,13 @@ YAML::Node load_yaml_file(const std::string& path, std::uintmax_t max_bytes) {
   if (!in) throw InputError(path, "cannot open the file for reading");
   std::ostringstream buffer;
   buffer << in.rdbuf();
-  const std::string text = buffer.str();
+  return load_yaml_text(buffer.str(), path, max_bytes);
+}
+
+YAML::Node load_yaml_text(const std::string& text, const std::string& path, std::uintmax_t max_bytes) {
+  if (text.size() > max_bytes)
+    throw InputError(path, "the text has " + std::to_string(text.size()) + " bytes, over the " +
+                               std::to_string(max_bytes) + "-byte bound for YAML");
   refuse_stray_bytes(text, path);
   refuse_second_document(text, path);
   YAML::Node root;

@@ -71,6 +71,7 @@ class PassStage final : public CutterSink, public AxisSink {
       }
     }
     post_.write(records);
+    if (observer_) observer_->cutter_locations(figures_.name, cls_, records);
     for (std::size_t k = 0; k < records.size(); ++k) {
       const CutterLocation& cl = cls_[k];
       figures_.add(cl, records[k], k > 0 ? records[k - 1] : previous_);
@@ -516,6 +517,20 @@ RunReport check_job(const Job& job, const RunOptions& options, RunObserver* obse
   const PreparedJob prepared = prepare_job(job, options.max_yaml_bytes);
   check_dialect_settings(job, prepared);
   return run_with_places(job, prepared, "", observer, false, nullptr).report;
+}
+
+PlannedPath plan_job(const Job& job, const RunOptions& options) {
+  struct Collector final : RunObserver {
+    PlannedPath path;
+    void cutter_locations(const std::string& pass, std::span<const CutterLocation> locations,
+                          std::span<const AxisRecord> records) override {
+      if (pass != "finish") return;
+      path.locations.insert(path.locations.end(), locations.begin(), locations.end());
+      path.records.insert(path.records.end(), records.begin(), records.end());
+    }
+  } collector;
+  check_job(job, options, &collector);
+  return std::move(collector.path);
 }
 
 RunResult simulate_job(const Job& job, const SimulationOptions& simulation, RunOptions options,

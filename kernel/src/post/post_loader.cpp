@@ -37,18 +37,40 @@ std::vector<std::string> env_folders(const char* variable) {
 
 std::string library_name(const std::string& name) { return "libfreeturn_post_" + name + ".so"; }
 
-}  // namespace
+// The folder of libfreeturn.so, when the library is a shared object ("" when it is linked
+// into the executable): a program of a shop's own, or Python, finds the plugins and
+// machines installed beside the library wherever the program itself lives.
+std::string library_folder() {
+  Dl_info info{};
+  if (::dladdr(reinterpret_cast<void*>(&plugin_search_path), &info) == 0 || !info.dli_fname)
+    return {};
+  std::error_code ec;
+  const auto library = std::filesystem::canonical(info.dli_fname, ec);
+  const auto exe = std::filesystem::canonical("/proc/self/exe", ec);
+  if (library.empty() || library == exe) return {};
+  return library.parent_path().string();
+}
 
-std::vector<std::string> plugin_search_path() {
-  std::vector<std::string> out = env_folders("FREETURN_PLUGIN_PATH");
-  out.push_back(executable_folder() + "/../lib/freeturn");
+// The variable's folders, then beside the library (lib/<below>), then beside the
+// executable (bin/../lib/<below>).
+std::vector<std::string> search_path(const char* variable, const std::string& below_lib) {
+  std::vector<std::string> out = env_folders(variable);
+  const auto add = [&](const std::filesystem::path& folder) {
+    const std::string normal = folder.lexically_normal().string();
+    if (std::find(out.begin(), out.end(), normal) == out.end()) out.push_back(normal);
+  };
+  if (const std::string lib = library_folder(); !lib.empty())
+    add(std::filesystem::path(lib) / below_lib);
+  add(std::filesystem::path(executable_folder()) / "../lib" / below_lib);
   return out;
 }
 
+}  // namespace
+
+std::vector<std::string> plugin_search_path() { return search_path("FREETURN_PLUGIN_PATH", "freeturn"); }
+
 std::vector<std::string> machine_search_path() {
-  std::vector<std::string> out = env_folders("FREETURN_MACHINE_PATH");
-  out.push_back(executable_folder() + "/../share/freeturn/machines");
-  return out;
+  return search_path("FREETURN_MACHINE_PATH", "../share/freeturn/machines");
 }
 
 std::unique_ptr<PostPlugin> PostPlugin::load(const std::string& name) {

@@ -23,6 +23,10 @@ SourceLocation location_of(const YAML::Node& node, const std::string& file);
 // InputError at its line and column, or at the file for its kind and size.
 YAML::Node load_yaml_file(const std::string& path, std::uintmax_t max_bytes = kMaxYamlBytes);
 
+// The same for YAML text held in memory; `name` stands for the file in messages.
+YAML::Node load_yaml_text(const std::string& text, const std::string& name,
+                          std::uintmax_t max_bytes = kMaxYamlBytes);
+
 // Reads one YAML map. Call finish() after the last read: it rejects the keys that were
 // never asked for.
 class MapReader {

@@ -15,12 +15,15 @@
 
 #include <cstdint>
 #include <optional>
+#include <span>
 #include <string>
 #include <vector>
 
 #include "freeturn/job/job.hpp"
 #include "freeturn/job/yaml_limits.hpp"
+#include "freeturn/machine/axis_record.hpp"
 #include "freeturn/pipeline/run_report.hpp"
+#include "freeturn/tool/cutter_location.hpp"
 #include "freeturn/verify/cut_simulation.hpp"
 
 namespace freeturn {
@@ -43,6 +46,12 @@ class RunObserver {
     (void)pass, (void)theta, (void)r, (void)points;
   }
   virtual void pass_done(const std::string& pass) { (void)pass; }
+  // Each chunk of a pass's cutter locations with the machine blocks made of them (one
+  // record per location, in path order), as they stream: the CL data without a file.
+  virtual void cutter_locations(const std::string& pass, std::span<const CutterLocation> locations,
+                                std::span<const AxisRecord> records) {
+    (void)pass, (void)locations, (void)records;
+  }
 };
 
 struct RunResult {
@@ -58,6 +67,14 @@ RunResult run_job(const Job& job, const RunOptions& options = {}, RunObserver* o
 // its settings and takes one block at the clearance height, so settings and an approach
 // run_job would refuse are refused here too.
 RunReport check_job(const Job& job, const RunOptions& options = {}, RunObserver* observer = nullptr);
+
+// The finishing pass's cutter locations and machine blocks, planned and checked as
+// check_job does, without writing: the CL file's rows in memory.
+struct PlannedPath {
+  std::vector<CutterLocation> locations;
+  std::vector<AxisRecord> records;
+};
+PlannedPath plan_job(const Job& job, const RunOptions& options = {});
 
 // run_job with the finishing pass also cut in simulation.
 RunResult simulate_job(const Job& job, const SimulationOptions& simulation, RunOptions options = {},

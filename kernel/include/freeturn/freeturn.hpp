@@ -1,0 +1,11 @@
+#pragma once
+// freeturn as a library: a job read from YAML, run end to end, its report and files.
+// The modules' own headers (freeturn/<module>/…) give the parts: surfaces, NURBS, spiral
+// planning, compensation, machines, posts (docs/conventions.md, "Layout").
+
+#include "freeturn/core/error.hpp"
+#include "freeturn/core/version.hpp"
+#include "freeturn/job/job.hpp"
+#include "freeturn/pipeline/report_files.hpp"
+#include "freeturn/pipeline/run_job.hpp"
+#include "freeturn/pipeline/run_report.hpp"

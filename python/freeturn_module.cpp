@@ -1,0 +1,251 @@
+// freeturn from Python: jobs loaded and run, CL data as NumPy arrays, design surfaces
+// evaluated over NumPy arrays. A thin layer over the library (freeturn/freeturn.hpp);
+// errors become freeturn.InputError (and its subclass freeturn.CheckFailure) whose text
+// starts with the file:line:col, as the command line prints it.
+#include <pybind11/numpy.h>
+#include <pybind11/pybind11.h>
+#include <pybind11/stl.h>
+
+#include <cmath>
+#include <memory>
+#include <numbers>
+#include <string>
+
+#include "freeturn/freeturn.hpp"
+#include "freeturn/job/surface_yaml.hpp"
+#include "freeturn/job/yaml_reader.hpp"
+
+namespace py = pybind11;
+using namespace freeturn;
+
+namespace {
+
+using Array = py::array_t<double, py::array::c_style | py::array::forcecast>;
+
+// A dict (of dicts, lists, numbers, strings, booleans) as YAML, for surface().
+YAML::Node to_yaml(const py::handle& value) {
+  if (py::isinstance<py::dict>(value)) {
+    YAML::Node map(YAML::NodeType::Map);
+    for (const auto& [k, v] : value.cast<py::dict>()) map[py::str(k).cast<std::string>()] = to_yaml(v);
+    return map;
+  }
+  if (py::isinstance<py::list>(value) || py::isinstance<py::tuple>(value)) {
+    YAML::Node list(YAML::NodeType::Sequence);
+    for (const auto& v : value) list.push_back(to_yaml(v));
+    return list;
+  }
+  if (py::isinstance<py::bool_>(value)) return YAML::Node(value.cast<bool>() ? "true" : "false");
+  if (py::isinstance<py::int_>(value)) return YAML::Node(std::to_string(value.cast<long long>()));
+  if (py::isinstance<py::float_>(value)) {
+    char text[32];
+    std::snprintf(text, sizeof text, "%.17g", value.cast<double>());
+    return YAML::Node(std::string(text));
+  }
+  return YAML::Node(py::str(value).cast<std::string>());
+}
+
+// A design surface with the aperture it was checked over.
+struct PySurface {
+  std::unique_ptr<Surface> surface;
+  double outer_radius = 0;
+};
+
+PySurface make_surface(const py::object& spec, double outer_radius) {
+  YAML::Node node = py::isinstance<py::str>(spec)
+                        ? load_yaml_text(spec.cast<std::string>(), "<surface>")
+                        : to_yaml(spec);
+  // A whole job's text or dict: its surface over its aperture.
+  if (node.IsMap() && node["surface"]) {
+    if (outer_radius <= 0 && node["aperture"] && node["aperture"]["outer_radius"])
+      outer_radius = node["aperture"]["outer_radius"].as<double>();
+    node = node["surface"];
+  }
+  return {surface_from_yaml(node, "<surface>", outer_radius), outer_radius};
+}
+
+// f(x, y) over two arrays of one shape (or scalars), into arrays of that shape with
+// `components` values per point appended as the last axis (1: none appended).
+template <class F>
+py::array evaluate(const Array& x, const Array& y, int components, F&& f) {
+  if (x.ndim() != y.ndim() || !std::equal(x.shape(), x.shape() + x.ndim(), y.shape()))
+    throw py::value_error("x and y must have the same shape");
+  std::vector<py::ssize_t> shape(x.shape(), x.shape() + x.ndim());
+  if (components > 1) shape.push_back(components);
+  py::array_t<double> out(shape);
+  const double* xs = x.data();
+  const double* ys = y.data();
+  double* o = out.mutable_data();
+  const py::ssize_t n = x.size();
+  {
+    py::gil_scoped_release release;
+    for (py::ssize_t i = 0; i < n; ++i) f(xs[i], ys[i], o + i * components);
+  }
+  return out;
+}
+
+std::shared_ptr<Job> job_of(const py::object& path_or_job) {
+  if (py::isinstance<Job>(path_or_job)) return path_or_job.cast<std::shared_ptr<Job>>();
+  return std::make_shared<Job>(load_job(py::str(path_or_job).cast<std::string>()));
+}
+
+py::dict figures(const PassFigures& f) {
+  py::dict d;
+  d["name"] = f.name;
+  d["stock_mm"] = f.stock;
+  d["points"] = f.points;
+  d["revolutions"] = f.revolutions;
+  d["chord_error_max_mm"] = f.chord_max;
+  d["chord_error_rms_mm"] = f.chord_rms;
+  d["scallop_max_mm"] = f.scallop_max;
+  d["cycle_time_s"] = f.cycle_time;
+  d["constant_rpm_cycle_time_s"] = f.constant_rpm_cycle_time;
+  d["uncut_residual_max_mm"] = f.uncut_max;
+  d["max_rpm"] = f.dynamics.max_rpm;
+  return d;
+}
+
+py::dict result_dict(const RunReport& r, const std::vector<std::string>& files) {
+  py::dict d;
+  d["verdict"] = r.unsafe.empty() ? "PASS" : "UNSAFE";
+  d["unsafe"] = r.unsafe;
+  d["warnings"] = r.warnings;
+  d["job"] = r.job;
+  d["machine"] = r.machine;
+  d["spindle_rpm"] = r.spindle_rpm;
+  py::list passes;
+  for (const PassFigures& f : r.passes) passes.append(figures(f));
+  d["passes"] = passes;
+  d["files"] = files;
+  return d;
+}
+
+}  // namespace
+
+PYBIND11_MODULE(freeturn, m) {
+  m.doc() = "freeturn: CAM for ultraprecision diamond turning of optical surfaces";
+  m.attr("__version__") = kVersion;
+
+  static py::exception<InputError> input_error(m, "InputError", PyExc_ValueError);
+  static py::exception<CheckFailure> check_failure(m, "CheckFailure", input_error.ptr());
+  py::register_exception_translator([](std::exception_ptr p) {
+    try {
+      if (p) std::rethrow_exception(p);
+    } catch (const CheckFailure& e) {
+      check_failure(e.what());
+    } catch (const InputError& e) {
+      input_error(e.what());
+    }
+  });
+
+  py::class_<Job, std::shared_ptr<Job>>(m, "Job", "A job read from its YAML file")
+      .def_property_readonly("name", [](const Job& j) { return j.name; })
+      .def_property_readonly("file", [](const Job& j) { return j.file; })
+      .def_property_readonly("inner_radius", [](const Job& j) { return j.aperture.inner_radius; })
+      .def_property_readonly("outer_radius", [](const Job& j) { return j.aperture.outer_radius; })
+      .def_property_readonly("machine", [](const Job& j) { return j.plan ? j.plan->machine : ""; })
+      .def("__repr__", [](const Job& j) { return "<freeturn.Job '" + j.name + "' from " + j.file + ">"; });
+
+  m.def("load_job", [](const std::string& path) { return std::make_shared<Job>(load_job(path)); },
+        py::arg("path"), "Reads and checks a job file; errors carry its file:line:col.");
+
+  m.def(
+      "run_job",
+      [](const py::object& path_or_job, const std::string& output_dir, int threads, bool simulate) {
+        const std::shared_ptr<Job> job = job_of(path_or_job);
+        RunOptions options;
+        options.output_dir = output_dir;
+        if (simulate) {
+          options.simulation = SimulationOptions{};
+          options.simulation->threads = threads;
+        }
+        RunResult r;
+        {
+          py::gil_scoped_release release;
+          r = run_job(*job, options);
+        }
+        return result_dict(r.report, r.files);
+      },
+      py::arg("path_or_job"), py::arg("output_dir") = ".", py::arg("threads") = 2,
+      py::arg("simulate") = false,
+      "Runs a job as `freeturn run` does: NC programs, CL data and the report in output_dir.\n"
+      "Returns a dict: verdict ('PASS' or 'UNSAFE'), unsafe reasons, warnings, per-pass figures,\n"
+      "files written. threads: the cut simulation's, when simulate is true.");
+
+  m.def(
+      "check_job",
+      [](const py::object& path_or_job) {
+        const std::shared_ptr<Job> job = job_of(path_or_job);
+        RunReport r;
+        {
+          py::gil_scoped_release release;
+          r = check_job(*job);
+        }
+        return result_dict(r, {});
+      },
+      py::arg("path_or_job"), "Everything run_job does but writing: the verdict and figures.");
+
+  m.def(
+      "plan",
+      [](const py::object& path_or_job) {
+        const std::shared_ptr<Job> job = job_of(path_or_job);
+        PlannedPath path;
+        {
+          py::gil_scoped_release release;
+          path = plan_job(*job);
+        }
+        const auto n = static_cast<py::ssize_t>(path.locations.size());
+        const char* names[16] = {"theta", "x", "y", "z", "nx", "ny", "nz", "tx", "ty", "tz",
+                                 "b_deg", "X", "Z", "C", "B", "chord"};
+        py::dict out;
+        std::vector<py::array_t<double>> columns;
+        for (int c = 0; c < 16; ++c) columns.emplace_back(n);
+        for (py::ssize_t i = 0; i < n; ++i) {
+          const CutterLocation& cl = path.locations[static_cast<std::size_t>(i)];
+          const AxisRecord& r = path.records[static_cast<std::size_t>(i)];
+          const double v[16] = {cl.contact.theta,     cl.contact.point.x(),  cl.contact.point.y(),
+                                cl.contact.point.z(), cl.contact.normal.x(), cl.contact.normal.y(),
+                                cl.contact.normal.z(), cl.nose_centre.x(),   cl.nose_centre.y(),
+                                cl.nose_centre.z(),   cl.b * 180 / std::numbers::pi,
+                                r.x, r.z, r.c, r.b, cl.contact.chord_error};
+          for (int c = 0; c < 16; ++c) columns[static_cast<std::size_t>(c)].mutable_data()[i] = v[c];
+        }
+        for (int c = 0; c < 16; ++c) out[names[c]] = columns[static_cast<std::size_t>(c)];
+        return out;
+      },
+      py::arg("path_or_job"),
+      "The finishing pass's cutter locations, planned and checked without writing files: a\n"
+      "dict of NumPy arrays named as the CL CSV's columns (theta, x, y, z, nx, ny, nz, tx,\n"
+      "ty, tz, b_deg, X, Z, C, B, chord).");
+
+  py::class_<PySurface>(m, "Surface", "A design surface; lengths in mm")
+      .def_property_readonly("type", [](const PySurface& s) { return std::string(s.surface->type()); })
+      .def_property_readonly("outer_radius", [](const PySurface& s) { return s.outer_radius; })
+      .def(
+          "sag",
+          [](const PySurface& s, const Array& x, const Array& y) {
+            return evaluate(x, y, 1, [&](double px, double py_, double* o) { o[0] = s.surface->sag(px, py_); });
+          },
+          py::arg("x"), py::arg("y"), "z(x, y) over arrays of one shape")
+      .def(
+          "gradient",
+          [](const PySurface& s, const Array& x, const Array& y) {
+            return evaluate(x, y, 2, [&](double px, double py_, double* o) {
+              double z = 0;
+              s.surface->sag_gradient(px, py_, z, o[0], o[1]);
+            });
+          },
+          py::arg("x"), py::arg("y"), "(∂z/∂x, ∂z/∂y) as the last axis")
+      .def(
+          "normal",
+          [](const PySurface& s, const Array& x, const Array& y) {
+            return evaluate(x, y, 3, [&](double px, double py_, double* o) {
+              const Eigen::Vector3d n = s.surface->normal(px, py_);
+              o[0] = n.x(), o[1] = n.y(), o[2] = n.z();
+            });
+          },
+          py::arg("x"), py::arg("y"), "the unit normal toward the tool, (nx, ny, nz) as the last axis");
+
+  m.def("surface", &make_surface, py::arg("spec"), py::arg("outer_radius") = 0.0,
+        "A design surface from its YAML text or dict ({type: ..., parameters}), or a job's\n"
+        "(its surface over its aperture). outer_radius: the aperture it must be defined over.");
+}

@@ -1,0 +1,104 @@
+"""The Python module against independent values: closed forms, finite differences, and the
+files the command line writes (the C++ sag of `freeturn sample`, the CL CSV, the NC
+program). Run by ctest with FREETURN_CLI and FREETURN_SOURCE_DIR set and the module on
+PYTHONPATH."""
+import csv
+import math
+import os
+import subprocess
+
+import numpy as np
+import pytest
+
+import freeturn
+
+SRC = os.environ["FREETURN_SOURCE_DIR"]
+CLI = os.environ["FREETURN_CLI"]
+JOBS = os.path.join(SRC, "configs", "jobs")
+
+
+def even_asphere(x, y, c=1 / 50.0, k=-0.8, a4=1.2e-6, a6=-3.0e-9):
+    r2 = x * x + y * y
+    return c * r2 / (1 + np.sqrt(1 - (1 + k) * c * c * r2)) + a4 * r2**2 + a6 * r2**3
+
+
+def test_sag_on_a_grid_equals_the_closed_form_and_the_cpp_sag(tmp_path):
+    s = freeturn.surface(open(os.path.join(JOBS, "demo_asphere.yaml")).read())
+    assert s.type == "even_asphere" and s.outer_radius == 10.0
+    x, y = np.meshgrid(np.linspace(-7, 7, 41), np.linspace(-7, 7, 41))
+    z = s.sag(x, y)
+    assert z.shape == x.shape
+    np.testing.assert_allclose(z, even_asphere(x, y), rtol=0, atol=1e-14)
+    # The C++ sag as `freeturn sample` writes it (shortest round-trip text): equal.
+    subprocess.run([CLI, "sample", os.path.join(JOBS, "demo_asphere.yaml"), "-o", str(tmp_path),
+                    "--grid", "9"], check=True, capture_output=True)
+    rows = list(csv.DictReader(open(tmp_path / "demo_asphere.surface.csv")))
+    xs = np.array([float(r["x"]) for r in rows])
+    ys = np.array([float(r["y"]) for r in rows])
+    assert np.array_equal(s.sag(xs, ys), np.array([float(r["z"]) for r in rows]))
+    # Its normals are normalised from the gradient there: equal to the last bit or two.
+    normals = s.normal(xs, ys)
+    np.testing.assert_allclose(normals, [[float(r[k]) for k in ("nx", "ny", "nz")] for r in rows],
+                               rtol=0, atol=1e-15)
+
+
+def test_gradient_and_normal_agree_with_finite_differences():
+    s = freeturn.surface({"type": "even_asphere", "radius": 50.0, "conic": -0.8, "A4": 1.2e-6},
+                         outer_radius=10)
+    x = np.array([0.0, 1.5, -3.25, 6.0])
+    y = np.array([0.0, -2.0, 4.5, 0.5])
+    h = 1e-6
+    g = s.gradient(x, y)
+    assert g.shape == (4, 2)
+    np.testing.assert_allclose(g[:, 0], (s.sag(x + h, y) - s.sag(x - h, y)) / (2 * h), atol=1e-8)
+    np.testing.assert_allclose(g[:, 1], (s.sag(x, y + h) - s.sag(x, y - h)) / (2 * h), atol=1e-8)
+    n = s.normal(x, y)
+    expected = np.stack([-g[:, 0], -g[:, 1], np.ones(4)], axis=1)
+    expected /= np.linalg.norm(expected, axis=1)[:, None]
+    np.testing.assert_allclose(n, expected, atol=1e-15)
+    assert float(s.sag(np.array(0.0), np.array(0.0))) == 0.0
+
+
+def test_plan_equals_the_cl_csv(tmp_path):
+    job = freeturn.load_job(os.path.join(JOBS, "oap_segment.yaml"))
+    assert job.name == "oap_segment" and job.outer_radius == 5.0
+    path = freeturn.plan(job)
+    result = freeturn.run_job(job, output_dir=str(tmp_path))
+    assert result["verdict"] == "PASS"
+    rows = np.loadtxt(tmp_path / "oap_segment.cl.csv", delimiter=",", skiprows=1)
+    assert rows.shape == (len(path["theta"]), 16)
+    header = open(tmp_path / "oap_segment.cl.csv").readline().strip().split(",")
+    for i, name in enumerate(header):
+        # Shortest round-trip text: the CSV reads back as the very doubles planned.
+        assert np.array_equal(path[name], rows[:, i]), name
+    assert result["passes"][-1]["points"] == len(path["theta"])
+
+
+def test_run_job_writes_the_cli_nc(tmp_path):
+    job_file = os.path.join(JOBS, "sinusoidal_ring.yaml")
+    result = freeturn.run_job(job_file, output_dir=str(tmp_path / "py"))
+    subprocess.run([CLI, "run", job_file, "-o", str(tmp_path / "cli"), "--quiet"], check=True, cwd=JOBS)
+    programs = [f for f in result["files"] if f.endswith(".nc")]
+    assert len(programs) == 2
+    for nc in programs:
+        assert open(nc, "rb").read() == open(tmp_path / "cli" / os.path.basename(nc), "rb").read()
+    finish = result["passes"][-1]
+    assert finish["name"] == "finish" and finish["chord_error_max_mm"] <= 1e-4
+
+
+def test_errors_carry_their_place(tmp_path):
+    bad = tmp_path / "bad.yaml"
+    bad.write_text("name: bad\naperture:\n  outer_radius: -2\nsurface: {type: sphere, radius: 50}\n")
+    with pytest.raises(freeturn.InputError) as error:
+        freeturn.load_job(str(bad))
+    assert str(error.value).startswith(f"{bad}:3:17:")
+    with pytest.raises(freeturn.InputError, match=r"^<surface>:1:\d+: "):
+        freeturn.surface("{type: no_such_surface}")
+    # A check set to error stops a run: CheckFailure, an InputError.
+    cup = tmp_path / "cup.yaml"
+    cup.write_text("name: cup\naperture: {outer_radius: 0.1}\nsurface: {type: sphere, radius: 0.3}\n"
+                   "tool: {nose_radius: 0.5}\nstrategy: {mode: spiral, spiral: planar, pitch: 0.01,\n"
+                   "  points: {chord: {tolerance: 0.001, max_angle_deg: 5}}}\n"
+                   "cutting: {spindle_rpm: 20}\nmachine: iso-lathe-xzc\n")
+    with pytest.raises(freeturn.CheckFailure, match="nose_radius"):
+        freeturn.check_job(str(cup))
