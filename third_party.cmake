@@ -58,6 +58,12 @@ if(FREETURN_BUILD_TESTS)
   include(doctest)
 endif()
 
+# CLI11 2.1 (header only), the command line's parser -> CLI11::CLI11
+find_package(CLI11 2.1 QUIET CONFIG)
+if(NOT TARGET CLI11::CLI11)
+  freeturn_missing("CLI11 2.1" libcli11-dev)
+endif()
+
 # Google Benchmark, only for bench/
 if(FREETURN_BUILD_BENCH)
   find_package(benchmark QUIET)

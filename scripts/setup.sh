@@ -19,7 +19,7 @@ root="$(cd "$(dirname "${BASH_SOURCE[0]}")/.." && pwd)"
 packages=(
   cmake g++ make pkg-config
   libeigen3-dev libopenmesh-dev coinor-libipopt-dev libyaml-cpp-dev doctest-dev
-  libbenchmark-dev
+  libbenchmark-dev libcli11-dev
   # The tests' independent NC reader (tests/jobs/nc_dynamics.py).
   python3
   # The Python module (python/) and its tests.

@@ -1,11 +1,10 @@
 #pragma once
-// The freeturn command's subcommands. Each takes its arguments (after the subcommand
-// name) and returns the process exit code: 0 ok, 1 a check failed or files differ,
-// 2 bad input or usage. Errors go to stderr. (A plugin that crashes or hangs ends the
-// process with kExitPluginFault, 3: plugins/plugin_watch.hpp.)
+// The freeturn command's subcommands, each with its parsed options (main.cpp declares them
+// to CLI11 with their help, defaults and units). Each returns the process exit code: 0 ok,
+// 1 a check failed or files differ, 2 bad input or usage. Errors go to stderr. (A plugin
+// that crashes or hangs ends the process with kExitPluginFault, 3: post/plugin_watch.hpp.)
 
 #include <string>
-#include <vector>
 
 namespace freeturn::cli {
 
@@ -13,18 +12,50 @@ inline constexpr int kExitOk = 0;
 inline constexpr int kExitCheckFailed = 1;
 inline constexpr int kExitBadInput = 2;
 
-struct Command {
-  const char* name;
-  const char* summary;
-  const char* usage;
-  int (*run)(const std::vector<std::string>& args);
+struct RunArgs {
+  std::string job;
+  std::string output = ".";
+  bool quiet = false;
+  bool simulate = false;
+  int threads = 0;  // the cut simulation's (0: the machine's cores)
 };
 
-int run_sample(const std::vector<std::string>& args);
-int run_run(const std::vector<std::string>& args);
-int run_check(const std::vector<std::string>& args);
-int run_simulate(const std::vector<std::string>& args);
-int run_ncdiff(const std::vector<std::string>& args);
-int run_plugins(const std::vector<std::string>& args);
+struct CheckArgs {
+  std::string job;
+  bool quiet = false;
+};
+
+struct SimulateArgs {
+  std::string job;
+  std::string output = ".";
+  bool quiet = false;
+  double radial_step = 0;  // mm (0: an eighth of the pitch)
+  int columns = 360;
+  int threads = 0;
+};
+
+struct SampleArgs {
+  std::string job;
+  std::string output = ".";
+  bool quiet = false;
+  int grid = 201;
+};
+
+struct NcDiffArgs {
+  std::string a, b;
+  double tolerance = 1e-9;  // mm or degrees
+  bool quiet = false;
+};
+
+struct PluginsArgs {
+  bool quiet = false;
+};
+
+int run_run(const RunArgs& args);
+int run_check(const CheckArgs& args);
+int run_simulate(const SimulateArgs& args);
+int run_sample(const SampleArgs& args);
+int run_ncdiff(const NcDiffArgs& args);
+int run_plugins(const PluginsArgs& args);
 
 }  // namespace freeturn::cli

@@ -3,48 +3,22 @@
 #include <signal.h>
 #include <unistd.h>
 
+#include <algorithm>
 #include <cstdio>
 #include <cstring>
 #include <exception>
 #include <string>
 #include <vector>
 
+#include <CLI/CLI.hpp>
+
 #include "commands.hpp"
 #include "freeturn/core/error.hpp"
 #include "freeturn/core/version.hpp"
 #include "freeturn/io/atomic_file.hpp"
-#include "freeturn/post/plugin_watch.hpp"
+#include "freeturn/pipeline/run_job.hpp"
 
 namespace {
-
-using freeturn::cli::Command;
-
-const Command kCommands[] = {
-    {"run", "plan, compensate and post a job: NC programs, CL data and a report",
-     "freeturn run JOB.yaml [-o DIR] [--quiet] [--simulate] [--threads N]", freeturn::cli::run_run},
-    {"check", "everything run does but writing: tool checks, machine limits, dynamics; a verdict",
-     "freeturn check JOB.yaml", freeturn::cli::run_check},
-    {"simulate", "run a job and simulate its finishing cut: the form error before cutting",
-     "freeturn simulate JOB.yaml [-o DIR] [--radial-step MM] [--columns N] [--threads N]", freeturn::cli::run_simulate},
-    {"sample", "evaluate a job's design surface over its aperture and write it as CSV",
-     "freeturn sample JOB.yaml [-o DIR] [--grid N]", freeturn::cli::run_sample},
-    {"ncdiff", "compare two NC programs by value (axis words, codes), ignoring formatting",
-     "freeturn ncdiff A.nc B.nc [--tolerance T]", freeturn::cli::run_ncdiff},
-    {"plugins", "list the post-processors found and the machines that use them",
-     "freeturn plugins", freeturn::cli::run_plugins},
-};
-
-void print_help(std::FILE* out) {
-  std::fprintf(out,
-               "freeturn %s: CAM for ultraprecision diamond turning of optical surfaces\n\n"
-               "usage: freeturn [--help | --version] <command> [args]\n\ncommands:\n",
-               freeturn::kVersion);
-  for (const Command& c : kCommands) std::fprintf(out, "  %-10s %s\n", c.name, c.summary);
-  std::fprintf(out,
-               "\n'freeturn <command> --help' shows a command's usage.\n"
-               "exit codes: 0 ok, 1 a check failed or files differ, 2 bad input or usage,\n"
-               "3 a post-processor plugin crashed or hung (nothing written)\n");
-}
 
 // A plugin that crashed or hung (post/plugin_watch.hpp): its message on stderr, exit 3.
 // The library has removed the run's temporaries already. Async-signal-safe: write, _exit.
@@ -81,45 +55,135 @@ void remove_outputs_on_termination() {
   }
 }
 
+// Runs a subcommand, turning its errors into the exit codes the README lists.
+template <class F>
+int guarded(const char* name, F&& run) {
+  try {
+    return run();
+  } catch (const freeturn::CheckFailure& e) {
+    // A check set to error stopped the run before anything was written.
+    std::fprintf(stderr, "FAIL: %s\n", e.what());
+    return freeturn::cli::kExitCheckFailed;
+  } catch (const freeturn::InputError& e) {
+    std::fprintf(stderr, "%s\n", e.what());
+    return freeturn::cli::kExitBadInput;
+  } catch (const std::exception& e) {
+    std::fprintf(stderr, "freeturn %s: internal error: %s\n", name, e.what());
+    return freeturn::cli::kExitBadInput;
+  }
+}
+
+constexpr const char* kExitCodes =
+    "exit codes: 0 ok, 1 a check failed or files differ, 2 bad input or usage,\n"
+    "3 a post-processor plugin crashed or hung (nothing written)";
+
 }  // namespace
 
 int main(int argc, char** argv) {
+  using namespace freeturn::cli;
   remove_outputs_on_termination();
   freeturn::set_plugin_fault_handler(end_on_plugin_fault);
-  std::vector<std::string> args(argv + 1, argv + argc);
-  if (args.empty()) {
-    print_help(stderr);
-    return freeturn::cli::kExitBadInput;
+
+  CLI::App app(std::string("freeturn ") + freeturn::kVersion +
+               ": CAM for ultraprecision diamond turning of optical surfaces");
+  app.set_version_flag("-V,--version", std::string("freeturn ") + freeturn::kVersion);
+  app.require_subcommand(1, 1);
+  app.footer(std::string("'freeturn <command> --help' shows a command's options.\n") + kExitCodes);
+  int code = kExitOk;
+  const auto job_option = [](CLI::App* c, std::string& job) {
+    c->add_option("job", job, "the job file (YAML: docs/job-schema.md)")->required();
+  };
+  const auto quiet_flag = [](CLI::App* c, bool& quiet) {
+    c->add_flag("-q,--quiet", quiet, "print only errors and the verdict's reasons");
+  };
+
+  RunArgs run;
+  CLI::App* run_app = app.add_subcommand(
+      "run", "plan, compensate, check and post a job: NC programs, CL data and a report");
+  job_option(run_app, run.job);
+  run_app->add_option("-o,--output", run.output, "the folder to write into")->capture_default_str();
+  quiet_flag(run_app, run.quiet);
+  run_app->add_flag("--simulate", run.simulate, "also cut the finishing pass in simulation (docs/verify.md)");
+  run_app->add_option("--threads", run.threads, "threads of the cut simulation [default: one per core]")
+      ->check(CLI::Range(1, 1024));
+  run_app->callback([&] { code = guarded("run", [&] { return run_run(run); }); });
+
+  CheckArgs check;
+  CLI::App* check_app = app.add_subcommand(
+      "check", "everything run does but writing: tool checks, machine limits, dynamics; a verdict");
+  job_option(check_app, check.job);
+  quiet_flag(check_app, check.quiet);
+  check_app->callback([&] { code = guarded("check", [&] { return run_check(check); }); });
+
+  SimulateArgs simulate;
+  CLI::App* simulate_app = app.add_subcommand(
+      "simulate", "run a job and simulate its finishing cut: the form error before cutting");
+  job_option(simulate_app, simulate.job);
+  simulate_app->add_option("-o,--output", simulate.output, "the folder to write into")->capture_default_str();
+  quiet_flag(simulate_app, simulate.quiet);
+  simulate_app->add_option("--radial-step", simulate.radial_step,
+                           "mm between the grid's radii (0: an eighth of the pitch)")
+      ->check(CLI::Range(0.0, 10.0))->capture_default_str();
+  simulate_app->add_option("--columns", simulate.columns, "angles of the grid over a turn (even)")
+      ->check(CLI::Range(2, 1'000'000))->capture_default_str();
+  simulate_app->add_option("--threads", simulate.threads, "threads [default: one per core]")
+      ->check(CLI::Range(1, 1024));
+  simulate_app->callback([&] { code = guarded("simulate", [&] { return run_simulate(simulate); }); });
+
+  SampleArgs sample;
+  CLI::App* sample_app = app.add_subcommand(
+      "sample", "evaluate a job's design surface over its aperture and write it as CSV");
+  job_option(sample_app, sample.job);
+  sample_app->add_option("-o,--output", sample.output, "the folder to write into")->capture_default_str();
+  quiet_flag(sample_app, sample.quiet);
+  sample_app->add_option("--grid", sample.grid, "points along each side of the square grid")
+      ->check(CLI::Range(2, 20001))->capture_default_str();
+  sample_app->callback([&] { code = guarded("sample", [&] { return run_sample(sample); }); });
+
+  NcDiffArgs ncdiff;
+  CLI::App* ncdiff_app = app.add_subcommand(
+      "ncdiff", "compare two NC programs by value (axis words, codes), ignoring formatting");
+  ncdiff_app->add_option("a", ncdiff.a, "the first program")->required();
+  ncdiff_app->add_option("b", ncdiff.b, "the second program")->required();
+  ncdiff_app->add_option("--tolerance", ncdiff.tolerance,
+                         "the largest axis difference taken as equal (mm or degrees)")
+      ->check(CLI::NonNegativeNumber)->capture_default_str();
+  quiet_flag(ncdiff_app, ncdiff.quiet);
+  ncdiff_app->callback([&] { code = guarded("ncdiff", [&] { return run_ncdiff(ncdiff); }); });
+
+  PluginsArgs plugins;
+  CLI::App* plugins_app =
+      app.add_subcommand("plugins", "list the post-processors found and the machines that use them");
+  quiet_flag(plugins_app, plugins.quiet);
+  plugins_app->callback([&] { code = guarded("plugins", [&] { return run_plugins(plugins); }); });
+
+  if (argc < 2) {
+    std::fprintf(stderr, "%s", app.help().c_str());
+    return kExitBadInput;
   }
-  if (args[0] == "--help" || args[0] == "-h" || args[0] == "help") {
-    print_help(stdout);
-    return freeturn::cli::kExitOk;
+  // A first word that names no command and is no option: said plainly.
+  const std::string first = argv[1];
+  const auto commands = app.get_subcommands([](const CLI::App*) { return true; });
+  const bool known = std::any_of(commands.begin(), commands.end(),
+                                 [&](const CLI::App* c) { return c->get_name() == first; });
+  if (!first.empty() && first[0] != '-' && !known) {
+    std::fprintf(stderr, "freeturn: unknown command '%s' (see freeturn --help)\n", first.c_str());
+    return kExitBadInput;
   }
-  if (args[0] == "--version") {
-    std::printf("freeturn %s\n", freeturn::kVersion);
-    return freeturn::cli::kExitOk;
+  try {
+    app.parse(argc, argv);
+  } catch (const CLI::CallForHelp& e) {
+    return app.exit(e);
+  } catch (const CLI::CallForAllHelp& e) {
+    return app.exit(e);
+  } catch (const CLI::CallForVersion& e) {
+    return app.exit(e);
+  } catch (const CLI::ParseError& e) {
+    const CLI::App* command = app.get_subcommands().empty() ? nullptr : app.get_subcommands().front();
+    std::fprintf(stderr, "freeturn%s%s: %s (see freeturn%s%s --help)\n", command ? " " : "",
+                 command ? command->get_name().c_str() : "", e.what(), command ? " " : "",
+                 command ? command->get_name().c_str() : "");
+    return kExitBadInput;
   }
-  for (const Command& c : kCommands) {
-    if (args[0] != c.name) continue;
-    std::vector<std::string> rest(args.begin() + 1, args.end());
-    if (!rest.empty() && (rest[0] == "--help" || rest[0] == "-h")) {
-      std::printf("usage: %s\n%s\n", c.usage, c.summary);
-      return freeturn::cli::kExitOk;
-    }
-    try {
-      return c.run(rest);
-    } catch (const freeturn::CheckFailure& e) {
-      // A check set to error stopped the run before anything was written.
-      std::fprintf(stderr, "FAIL: %s\n", e.what());
-      return freeturn::cli::kExitCheckFailed;
-    } catch (const freeturn::InputError& e) {
-      std::fprintf(stderr, "%s\n", e.what());
-      return freeturn::cli::kExitBadInput;
-    } catch (const std::exception& e) {
-      std::fprintf(stderr, "freeturn %s: internal error: %s\n", c.name, e.what());
-      return freeturn::cli::kExitBadInput;
-    }
-  }
-  std::fprintf(stderr, "freeturn: unknown command '%s' (see freeturn --help)\n", args[0].c_str());
-  return freeturn::cli::kExitBadInput;
+  return code;
 }

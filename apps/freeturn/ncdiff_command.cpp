@@ -3,6 +3,8 @@
 #include <cstdlib>
 #include <fstream>
 #include <sstream>
+#include <string>
+#include <vector>
 
 #include "commands.hpp"
 #include "freeturn/core/error.hpp"
@@ -21,31 +23,20 @@ std::string read_whole(const std::string& path) {
 
 }  // namespace
 
-int run_ncdiff(const std::vector<std::string>& args) {
-  std::vector<std::string> files;
+int run_ncdiff(const NcDiffArgs& args) {
   NcDiffOptions o;
-  for (std::size_t i = 0; i < args.size(); ++i) {
-    if (args[i] == "--tolerance" && i + 1 < args.size()) {
-      char* end = nullptr;
-      o.axis_tolerance = std::strtod(args[++i].c_str(), &end);
-      if (*end != '\0' || !(o.axis_tolerance >= 0))
-        throw InputError("--tolerance", "must be a number ≥ 0 (mm or degrees)");
-    } else {
-      files.push_back(args[i]);
-    }
-  }
-  if (files.size() != 2) {
-    std::fprintf(stderr, "usage: freeturn ncdiff A.nc B.nc [--tolerance T]\n");
-    return kExitBadInput;
-  }
+  o.axis_tolerance = args.tolerance;
+  const std::vector<std::string> files = {args.a, args.b};
   const auto a = parse_nc(read_whole(files[0]), files[0]);
   const auto b = parse_nc(read_whole(files[1]), files[1]);
   const NcDiffResult r = nc_diff(a, files[0], b, files[1], o);
-  std::printf("%ld blocks vs %ld blocks\n", r.blocks_a, r.blocks_b);
-  for (char l : std::string("XZCBF"))
-    if (r.largest[l - 'A'] > 0) std::printf("largest |Δ%c| %.3g\n", l, r.largest[l - 'A']);
+  if (!args.quiet) {
+    std::printf("%ld blocks vs %ld blocks\n", r.blocks_a, r.blocks_b);
+    for (char l : std::string("XZCBF"))
+      if (r.largest[l - 'A'] > 0) std::printf("largest |Δ%c| %.3g\n", l, r.largest[l - 'A']);
+  }
   if (r.same) {
-    std::printf("same within %.3g\n", o.axis_tolerance);
+    if (!args.quiet) std::printf("same within %.3g\n", o.axis_tolerance);
     return kExitOk;
   }
   std::printf("first difference: %s\n", r.first_difference.c_str());

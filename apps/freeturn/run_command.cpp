@@ -71,74 +71,31 @@ bool say_unsafe(const RunReport& r, std::FILE* out = stderr) {
   return !r.unsafe.empty();
 }
 
-constexpr const char* kRunUsage =
-    "freeturn run JOB.yaml [-o DIR] [--quiet] [--simulate] [--threads N]";
-constexpr const char* kSimulateUsage =
-    "freeturn simulate JOB.yaml [-o DIR] [--radial-step MM] [--columns N] [--threads N]";
-
-int parse_threads(const std::string& text) {
-  return static_cast<int>(
-      option_integer("--threads", text, 1, 1024, "a whole number from 1 to 1024"));
-}
-
 }  // namespace
 
-int run_run(const std::vector<std::string>& args) {
-  std::string job_path, out_dir = ".";
-  bool quiet = false, simulate = false;
-  SimulationOptions simulation;
-  for (std::size_t i = 0; i < args.size(); ++i) {
-    if ((args[i] == "-o" || args[i] == "--output") && i + 1 < args.size())
-      out_dir = args[++i];
-    else if (args[i] == "--quiet" || args[i] == "-q")
-      quiet = true;
-    else if (args[i] == "--simulate")
-      simulate = true;
-    else if (args[i] == "--threads" && i + 1 < args.size())
-      simulation.threads = parse_threads(args[++i]);
-    else if (!args[i].empty() && args[i][0] != '-' && job_path.empty())
-      job_path = args[i];
-    else
-      throw InputError("usage", "unexpected argument '" + args[i] + "'; usage: " + kRunUsage);
+int run_run(const RunArgs& args) {
+  const Job job = load_job(args.job, yaml_byte_bound());
+  RunOptions options = run_options(args.output);
+  if (args.simulate) {
+    options.simulation = SimulationOptions{};
+    options.simulation->threads = args.threads;
   }
-  if (job_path.empty()) throw InputError("usage", kRunUsage);
-  const Job job = load_job(job_path, yaml_byte_bound());
-  RunOptions options = run_options(out_dir);
-  if (simulate) options.simulation = simulation;
-  Observer observer(quiet);
+  Observer observer(args.quiet);
   const RunResult r = run_job(job, options, &observer);
-  if (!quiet) print_summary(job, r);
+  if (!args.quiet) print_summary(job, r);
   // Written, because the job downgraded a check or turned the limits off; not safe to cut.
   return say_unsafe(r.report) ? kExitCheckFailed : kExitOk;
 }
 
-int run_simulate(const std::vector<std::string>& args) {
-  std::string job_path, out_dir = ".";
+int run_simulate(const SimulateArgs& args) {
+  if (args.columns % 2) throw InputError("--columns", "must be even (each angle has its opposite), not " + std::to_string(args.columns));
   SimulationOptions simulation;
-  for (std::size_t i = 0; i < args.size(); ++i) {
-    const bool value = i + 1 < args.size();
-    if ((args[i] == "-o" || args[i] == "--output") && value) {
-      out_dir = args[++i];
-    } else if (args[i] == "--radial-step" && value) {
-      simulation.radial_step = option_length("--radial-step", args[++i]);
-    } else if (args[i] == "--columns" && value) {
-      const std::string& text = args[++i];
-      const std::string what = "an even number from 2 to 1 000 000";
-      const long columns = option_integer("--columns", text, 2, 1'000'000, what);
-      if (columns % 2) throw InputError("--columns", "must be " + what + ", not '" + text + "'");
-      simulation.columns = static_cast<int>(columns);
-    } else if (args[i] == "--threads" && value) {
-      simulation.threads = parse_threads(args[++i]);
-    } else if (!args[i].empty() && args[i][0] != '-' && job_path.empty()) {
-      job_path = args[i];
-    } else {
-      throw InputError("usage", "unexpected argument '" + args[i] + "'; usage: " + kSimulateUsage);
-    }
-  }
-  if (job_path.empty()) throw InputError("usage", kSimulateUsage);
-  const Job job = load_job(job_path, yaml_byte_bound());
+  simulation.radial_step = args.radial_step;
+  simulation.columns = args.columns;
+  simulation.threads = args.threads;
+  const Job job = load_job(args.job, yaml_byte_bound());
   Observer observer(true);
-  const RunReport r = simulate_job(job, simulation, run_options(out_dir), &observer).report;
+  const RunReport r = simulate_job(job, simulation, run_options(args.output), &observer).report;
   const SimulationResult& s = *r.simulation;
   std::printf(
       "%s: simulated form error PV %.3f nm, RMS %.3f nm (max %+.3f nm at r = %.4f mm, min %+.3f nm "
@@ -158,17 +115,9 @@ int run_simulate(const std::vector<std::string>& args) {
   return say_unsafe(r) ? kExitCheckFailed : kExitOk;
 }
 
-int run_check(const std::vector<std::string>& args) {
-  std::string job_path;
-  for (const std::string& a : args) {
-    if (!a.empty() && a[0] != '-' && job_path.empty())
-      job_path = a;
-    else
-      throw InputError("usage", "unexpected argument '" + a + "'; usage: freeturn check JOB.yaml");
-  }
-  if (job_path.empty()) throw InputError("usage", "freeturn check JOB.yaml");
+int run_check(const CheckArgs& args) {
   // Bad input (the job, the machine, the plugin) is exit 2; a job that would fail is 1.
-  const Job job = load_job(job_path, yaml_byte_bound());
+  const Job job = load_job(args.job, yaml_byte_bound());
   try {
     Observer observer(true);
     const RunReport r = check_job(job, run_options(""), &observer);
@@ -178,7 +127,8 @@ int run_check(const std::vector<std::string>& args) {
         "PASS: %s on %s: %ld points, chord error max %.3f nm, highest rpm %.4g%s\n",
         job.name.c_str(), r.machine.c_str(), f.points, f.chord_max * 1e6, f.dynamics.max_rpm,
         r.alpha_max_deg >= 0 ? (", α_max " + std::to_string(r.alpha_max_deg) + "°").c_str() : "");
-    for (const std::string& w : r.warnings) std::printf("warning: %s\n", w.c_str());
+    if (!args.quiet)
+      for (const std::string& w : r.warnings) std::printf("warning: %s\n", w.c_str());
     return kExitOk;
   } catch (const CheckFailure& e) {
     // A check the program would fail: exit 1. Bad input found while planning is exit 2,

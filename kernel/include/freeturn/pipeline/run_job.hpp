@@ -12,6 +12,10 @@
 // the job sets to error (nothing written). A program that is written but not safe to cut
 // (a check downgraded to a warning found something) comes back with its reasons in
 // RunReport::unsafe. Nothing is printed: progress and warnings go to the observer.
+//
+// A post-processor plugin that crashes or hangs cannot be unwound from: the process ends
+// through the handler set with set_plugin_fault_handler (post/plugin_watch.hpp, included
+// here for the embedder to choose it).
 
 #include <cstdint>
 #include <optional>
@@ -23,6 +27,7 @@
 #include "freeturn/job/yaml_limits.hpp"
 #include "freeturn/machine/axis_record.hpp"
 #include "freeturn/pipeline/run_report.hpp"
+#include "freeturn/post/plugin_watch.hpp"
 #include "freeturn/tool/cutter_location.hpp"
 #include "freeturn/verify/cut_simulation.hpp"
 
