@@ -1,11 +1,9 @@
 // freeturn: YAML job in, NC program out. This file dispatches subcommands.
 
 #include <signal.h>
-#include <unistd.h>
 
 #include <algorithm>
 #include <cstdio>
-#include <cstring>
 #include <exception>
 #include <string>
 #include <vector>
@@ -19,19 +17,6 @@
 #include "freeturn/pipeline/run_job.hpp"
 
 namespace {
-
-// A plugin that crashed or hung (post/plugin_watch.hpp): its message on stderr, exit 3.
-// The library has removed the run's temporaries already. Async-signal-safe: write, _exit.
-void end_on_plugin_fault(const char* message) {
-  std::size_t left = std::strlen(message);
-  while (left > 0) {
-    const ssize_t n = ::write(STDERR_FILENO, message, left);
-    if (n <= 0) break;
-    message += n;
-    left -= static_cast<std::size_t>(n);
-  }
-  ::_exit(freeturn::kExitPluginFault);
-}
 
 // SIGTERM (a job scheduler, `timeout`) or SIGINT (Ctrl-C) mid-run: the outputs not yet
 // committed are removed, as an error would remove them, and the signal then ends the
@@ -82,7 +67,8 @@ constexpr const char* kExitCodes =
 int main(int argc, char** argv) {
   using namespace freeturn::cli;
   remove_outputs_on_termination();
-  freeturn::set_plugin_fault_handler(end_on_plugin_fault);
+  // A plugin that crashes or hangs: the library's default fault handler is the command
+  // line's behaviour (its message on stderr, exit 3; post/plugin_watch.hpp), so none is set.
 
   CLI::App app(std::string("freeturn ") + freeturn::kVersion +
                ": CAM for ultraprecision diamond turning of optical surfaces");
@@ -93,6 +79,9 @@ int main(int argc, char** argv) {
   const auto job_option = [](CLI::App* c, std::string& job) {
     c->add_option("job", job, "the job file (YAML: docs/job-schema.md)")->required();
   };
+  const auto output_option = [](CLI::App* c, std::string& output) {
+    c->add_option("-o,--output", output, "the folder to write into")->capture_default_str();
+  };
   const auto quiet_flag = [](CLI::App* c, bool& quiet) {
     c->add_flag("-q,--quiet", quiet, "print only errors and the verdict's reasons");
   };
@@ -101,7 +90,7 @@ int main(int argc, char** argv) {
   CLI::App* run_app = app.add_subcommand(
       "run", "plan, compensate, check and post a job: NC programs, CL data and a report");
   job_option(run_app, run.job);
-  run_app->add_option("-o,--output", run.output, "the folder to write into")->capture_default_str();
+  output_option(run_app, run.output);
   quiet_flag(run_app, run.quiet);
   run_app->add_flag("--simulate", run.simulate, "also cut the finishing pass in simulation (docs/verify.md)");
   run_app->add_option("--threads", run.threads, "threads of the cut simulation [default: one per core]")
@@ -119,7 +108,7 @@ int main(int argc, char** argv) {
   CLI::App* simulate_app = app.add_subcommand(
       "simulate", "run a job and simulate its finishing cut: the form error before cutting");
   job_option(simulate_app, simulate.job);
-  simulate_app->add_option("-o,--output", simulate.output, "the folder to write into")->capture_default_str();
+  output_option(simulate_app, simulate.output);
   quiet_flag(simulate_app, simulate.quiet);
   simulate_app->add_option("--radial-step", simulate.radial_step,
                            "mm between the grid's radii (0: an eighth of the pitch)")
@@ -134,7 +123,7 @@ int main(int argc, char** argv) {
   CLI::App* sample_app = app.add_subcommand(
       "sample", "evaluate a job's design surface over its aperture and write it as CSV");
   job_option(sample_app, sample.job);
-  sample_app->add_option("-o,--output", sample.output, "the folder to write into")->capture_default_str();
+  output_option(sample_app, sample.output);
   quiet_flag(sample_app, sample.quiet);
   sample_app->add_option("--grid", sample.grid, "points along each side of the square grid")
       ->check(CLI::Range(2, 20001))->capture_default_str();

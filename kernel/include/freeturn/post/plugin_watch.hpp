@@ -6,9 +6,8 @@
 // naming the plugin and the call to the plugin fault handler, which must end the process:
 // no output of the run stays behind; files that were there before are untouched.
 //
-// The handler is the embedder's: the command line's writes the message to stderr and
-// exits with kExitPluginFault (3); a service may log elsewhere, or abort() for a core
-// file. It runs in a signal handler or on the watchdog thread, so it may only use
+// The handler is the embedder's: a service may log elsewhere, or abort() for a core
+// file; the command line keeps the default. It runs in a signal handler or on the watchdog thread, so it may only use
 // async-signal-safe calls (write(2), _exit, abort), and it must not return. Without one,
 // the library writes the message to stderr and _exits with kExitPluginFault.
 
