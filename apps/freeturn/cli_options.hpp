@@ -6,8 +6,7 @@
 #include <cstdlib>
 #include <string>
 
-#include "freeturn/core/error.hpp"
-#include "freeturn/job/yaml_limits.hpp"
+#include "freeturn/freeturn.hpp"
 
 namespace freeturn::cli {
 

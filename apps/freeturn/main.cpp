@@ -11,10 +11,8 @@
 #include <CLI/CLI.hpp>
 
 #include "commands.hpp"
-#include "freeturn/core/error.hpp"
-#include "freeturn/core/version.hpp"
+#include "freeturn/freeturn.hpp"
 #include "freeturn/io/atomic_file.hpp"
-#include "freeturn/pipeline/run_job.hpp"
 
 namespace {
 

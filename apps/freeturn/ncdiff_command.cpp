@@ -7,7 +7,7 @@
 #include <vector>
 
 #include "commands.hpp"
-#include "freeturn/core/error.hpp"
+#include "freeturn/freeturn.hpp"
 #include "freeturn/io/nc_program.hpp"
 
 namespace freeturn::cli {

@@ -4,7 +4,7 @@
 
 #include "cli_options.hpp"
 #include "commands.hpp"
-#include "freeturn/pipeline/installed_posts.hpp"
+#include "freeturn/freeturn.hpp"
 
 namespace freeturn::cli {
 

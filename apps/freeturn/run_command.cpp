@@ -1,5 +1,5 @@
 // freeturn run, check and simulate: the arguments parsed, the job run by the library
-// (freeturn/pipeline/run_job.hpp), its figures and verdict printed.
+// (freeturn/report/run_job.hpp), its figures and verdict printed.
 #include <unistd.h>
 
 #include <cmath>
@@ -11,9 +11,7 @@
 
 #include "cli_options.hpp"
 #include "commands.hpp"
-#include "freeturn/core/error.hpp"
-#include "freeturn/job/job.hpp"
-#include "freeturn/pipeline/run_job.hpp"
+#include "freeturn/freeturn.hpp"
 #include "progress_line.hpp"
 
 namespace freeturn::cli {

@@ -9,9 +9,8 @@
 
 #include "cli_options.hpp"
 #include "commands.hpp"
-#include "freeturn/core/error.hpp"
+#include "freeturn/freeturn.hpp"
 #include "freeturn/io/surface_samples.hpp"
-#include "freeturn/job/job.hpp"
 
 namespace freeturn::cli {
 

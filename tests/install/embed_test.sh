@@ -30,6 +30,26 @@ if ! cmake -S "$src/examples/embed" -B "$tmp/embed" -DCMAKE_PREFIX_PATH="$tmp/pr
   echo "FAIL: examples/embed does not configure and build against the install"
   tail -20 "$tmp/configure.log" "$tmp/build.log"; exit 1
 fi
+# The Python module from the prefix alone: it finds libfreeturn and, through it, the
+# installed plugins and machines (check_job loads the post).
+if [[ "${FREETURN_TEST_PYTHON:-OFF}" == ON ]]; then
+  module=$(ls "$tmp/prefix"/lib/python3/dist-packages/freeturn*.so 2>/dev/null | head -1)
+  if [[ -z "$module" ]]; then
+    echo "FAIL: the install has no Python module under lib/python3/dist-packages"; fail=1
+  else
+    out=$(cd "$tmp" && env ${FREETURN_TEST_PRELOAD:+LD_PRELOAD=$FREETURN_TEST_PRELOAD} ASAN_OPTIONS=detect_leaks=0 \
+          PYTHONPATH="$tmp/prefix/lib/python3/dist-packages" PYTHONDONTWRITEBYTECODE=1 /usr/bin/python3 -c '
+import sys, freeturn
+print(freeturn.__file__)
+print(freeturn.check_job(sys.argv[1])["verdict"])' "$src/configs/jobs/oap_segment.yaml" 2>&1)
+    if [[ "$(head -1 <<<"$out")" != "$tmp/prefix/lib/python3/dist-packages/"* ]] ||
+       [[ "$(tail -1 <<<"$out")" != PASS ]]; then
+      echo "FAIL: the installed Python module: $out"; fail=1
+    else
+      echo "python: the installed module checks oap_segment: $(tail -1 <<<"$out")"
+    fi
+  fi
+fi
 for job in oap_segment sinusoidal_ring; do
   "$tmp/embed/run_job" "$src/configs/jobs/$job.yaml" "$tmp/embedded/$job" > "$tmp/embed.txt" ||
     { echo "FAIL: run_job $job"; cat "$tmp/embed.txt"; fail=1; continue; }

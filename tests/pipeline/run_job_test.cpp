@@ -11,7 +11,8 @@
 #include "freeturn/core/error.hpp"
 #include "freeturn/io/nc_program.hpp"
 #include "freeturn/job/job.hpp"
-#include "freeturn/pipeline/run_job.hpp"
+#include "freeturn/pipeline/run_pipeline.hpp"
+#include "freeturn/report/run_job.hpp"
 #include "test_files.hpp"
 
 using namespace freeturn;

@@ -1,6 +1,6 @@
 #include "freeturn/io/iges_surface.hpp"
 
-#include "number_text.hpp"
+#include "freeturn/core/number_text.hpp"
 
 #include <algorithm>
 #include <cctype>
@@ -111,7 +111,7 @@ class ParameterReader {
     for (char& ch : t)
       if (ch == 'D' || ch == 'd') ch = 'E';
     double value = 0;
-    if (!detail::parse_finite(t, value))
+    if (!parse_finite(t, value))
       throw InputError(where_, what + " must be a number, not '" + t + "'");
     return value;
   }
@@ -146,7 +146,7 @@ int directory_field(const Record& r, int field, const std::string& path) {
   const std::string t = trim(r.data.substr(static_cast<std::size_t>(8 * field), 8));
   if (t.empty()) return 0;
   int value = 0;
-  if (!detail::parse_int(t, value))
+  if (!parse_int(t, value))
     throw InputError(SourceLocation{path, r.file_line, 8 * field + 1},
                      "directory field " + std::to_string(field + 1) + " must be an integer, not '" +
                          t + "'");
@@ -241,14 +241,14 @@ class IgesFile {
     for (char& ch : scale_number)
       if (ch == 'D' || ch == 'd') ch = 'E';
     double scale_value = 1.0;
-    if (!scale.empty() && (!detail::parse_finite(scale_number, scale_value) || scale_value != 1.0))
+    if (!scale.empty() && (!parse_finite(scale_number, scale_value) || scale_value != 1.0))
       throw InputError(SourceLocation{path_, line, 0},
                        "model space scale " + scale + " is not supported (only 1.0)");
     static const std::map<int, double> kMillimetres = {{1, 25.4}, {2, 1.0},     {4, 304.8},
                                                        {6, 1000}, {8, 0.0254}, {9, 0.001},
                                                        {10, 10},  {11, 2.54e-5}};
     int flag = 2;
-    const bool flag_read = unit.empty() || detail::parse_int(unit, flag);
+    const bool flag_read = unit.empty() || parse_int(unit, flag);
     const auto it = kMillimetres.find(flag);
     if (!flag_read || it == kMillimetres.end())
       throw InputError(SourceLocation{path_, line, 0},

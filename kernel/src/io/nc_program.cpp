@@ -1,6 +1,6 @@
 #include "freeturn/io/nc_program.hpp"
 
-#include "number_text.hpp"
+#include "freeturn/core/number_text.hpp"
 
 #include <algorithm>
 #include <cctype>
@@ -64,7 +64,7 @@ std::vector<NcBlock> parse_nc(const std::string& text, const std::string& file) 
         const std::string number = l.substr(number_start, j - number_start);
         if (ch != '#' && ch != '[' && !number.empty() && number != "-" && number != "+" &&
             number != ".") {
-          if (!detail::parse_finite(number, w.value))
+          if (!parse_finite(number, w.value))
             fail("'" + std::string(1, w.letter) + number + "' is not a number");
           w.text = std::string(1, w.letter) + number;
           // M98(child.nc): the parentheses are the call's argument, not a comment.

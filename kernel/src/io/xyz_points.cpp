@@ -6,7 +6,7 @@
 #include <string_view>
 
 #include "freeturn/core/error.hpp"
-#include "number_text.hpp"
+#include "freeturn/core/number_text.hpp"
 
 namespace freeturn {
 namespace {
@@ -37,7 +37,7 @@ std::vector<Eigen::Vector3d> read_xyz_points(const std::string& path) {
     for (char& ch : line)
       if (ch == ',' || ch == ';' || ch == '\t' || ch == '\r') ch = ' ';
     if (line.find_first_not_of(' ') == std::string::npos) continue;
-    // Fields parsed whole with from_chars (io/number_text.hpp): locale-free, and a NUL or
+    // Fields parsed whole with from_chars (core/number_text.hpp): locale-free, and a NUL or
     // any other stray byte makes the line an error instead of ending it early.
     double v[3];
     int count = 0;
@@ -47,10 +47,10 @@ std::vector<Eigen::Vector3d> read_xyz_points(const std::string& path) {
       double x;
       // NaN or infinity is a number that is not finite, not a column name: a first row of
       // them must not pass for a header and vanish.
-      if (detail::parse_number(field, x) && !std::isfinite(x))
+      if (parse_number(field, x) && !std::isfinite(x))
         throw InputError(SourceLocation{path, n, 0},
                          "'" + std::string(field) + "' is not a finite number (x y z in mm)");
-      if (count == 3 || !detail::parse_finite(field, x)) {
+      if (count == 3 || !parse_finite(field, x)) {
         ok = false;
         break;
       }
@@ -65,7 +65,7 @@ std::vector<Eigen::Vector3d> read_xyz_points(const std::string& path) {
       std::string_view fields(line);
       for (std::string_view field = next_field(fields); !field.empty(); field = next_field(fields)) {
         double x;
-        if (detail::parse_number(field, x))
+        if (parse_number(field, x))
           throw InputError(SourceLocation{path, n, 0},
                            "'" + std::string(field) + "' is not a finite number, and a header "
                            "row names the columns: a row of points has three finite numbers");

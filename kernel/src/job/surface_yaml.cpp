@@ -6,6 +6,7 @@
 #include <string>
 #include <vector>
 
+#include "freeturn/core/number_text.hpp"
 #include "freeturn/job/yaml_reader.hpp"
 #include "surface_data_yaml.hpp"
 #include "freeturn/surface/biconic.hpp"
@@ -29,12 +30,6 @@ constexpr const char* kKnownTypes =
 
 bool is_data_type(const std::string& type) {
   return type == "nurbs" || type == "height_grid" || type == "point_cloud";
-}
-
-std::string number_text(double v) {
-  char buf[32];
-  std::snprintf(buf, sizeof buf, "%.6g", v);
-  return buf;
 }
 
 // Vertex curvature from `<radius_key>` (R, mm; 0 = flat) or `<curvature_key>` (c = 1/R).
@@ -293,10 +288,10 @@ std::unique_ptr<Surface> surface_from_yaml(const YAML::Node& node, const std::st
              : map.has("radius")    ? "radius"
              : map.has("curvature") ? "curvature"
                                     : "type",
-             "the surface is undefined beyond r = " + number_text(base_radius) + " mm (" +
+             "the surface is undefined beyond r = " + significant_text(base_radius, 6) + " mm (" +
                  (is_data_type(type) ? "the edge of its data in x-y"
                                      : "the conic's square root goes negative") +
-                 "), inside the aperture radius " + number_text(outer_radius) + " mm");
+                 "), inside the aperture radius " + significant_text(outer_radius, 6) + " mm");
   // Every surface, whatever its type: sampled over the aperture, it must be finite.
   for (int i = 0; i <= 32; ++i)
     for (int j = 0; j < 64; ++j) {
@@ -305,9 +300,9 @@ std::unique_ptr<Surface> surface_from_yaml(const YAML::Node& node, const std::st
       double z, zx, zy;
       surface->sag_gradient(x, y, z, zx, zy);
       if (!(std::isfinite(z) && std::isfinite(zx) && std::isfinite(zy)))
-        map.fail("type", "the " + type + " surface is undefined at (x, y) = (" + number_text(x) +
-                             ", " + number_text(y) + ") mm, inside the aperture radius " +
-                             number_text(outer_radius) + " mm");
+        map.fail("type", "the " + type + " surface is undefined at (x, y) = (" + significant_text(x, 6) +
+                             ", " + significant_text(y, 6) + ") mm, inside the aperture radius " +
+                             significant_text(outer_radius, 6) + " mm");
     }
   return surface;
 }

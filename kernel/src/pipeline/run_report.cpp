@@ -5,7 +5,7 @@
 #include <cstdio>
 #include <numbers>
 
-#include "report_text.hpp"
+#include "freeturn/core/number_text.hpp"
 
 namespace freeturn {
 namespace {
@@ -14,7 +14,6 @@ constexpr std::size_t kMaxSamples = 4000;  // plot points kept per pass
 
 }  // namespace
 
-using detail::num;
 
 void PassFigures::add(const CutterLocation& cl, const AxisRecord& record,
                       const AxisRecord& previous) {
@@ -82,11 +81,11 @@ void PassFigures::finish(const PathSummary& s, const DynamicsReport& d, const To
     std::string w = std::to_string(s.jumps);
     w +=
         " segments where the nose centre jumps (a crease sharper than the nose), the first at θ = ";
-    w += num(s.first_jump_theta * 180 / std::numbers::pi);
+    w += significant_text(s.first_jump_theta * 180 / std::numbers::pi, 9);
     w += "°, r = ";
-    w += num(s.first_jump_r);
+    w += significant_text(s.first_jump_r, 9);
     w += " mm: the chord tolerance cannot hold there; worst ";
-    w += num(s.max_jump_error * 1e6);
+    w += significant_text(s.max_jump_error * 1e6, 9);
     w += " nm";
     check_warnings.push_back(w);
   }
@@ -113,14 +112,14 @@ void judge(RunReport& r) {
     // them): more than 10 nm is a gouge.
     if (f.chord_below_max > 1e-5)
       r.unsafe.push_back(f.name + ": the motion between blocks cuts up to " +
-                         num(f.chord_below_max * 1e6) +
+                         significant_text(f.chord_below_max * 1e6, 9) +
                          " nm into the design (equal-angle or equal-arc points sit on the "
                          "design and their chords dip below it; use points: chord)");
     if (!f.scheduled && r.spindle_rpm > 0 && f.dynamics.max_rpm < r.spindle_rpm * (1 - 1e-12))
-      r.unsafe.push_back(f.name + ": at " + num(r.spindle_rpm) +
+      r.unsafe.push_back(f.name + ": at " + significant_text(r.spindle_rpm, 9) +
                          " rpm the program exceeds the machine's limits (enforce_dynamics: "
                          "false): the highest feasible constant speed is " +
-                         num(f.dynamics.max_rpm) + " rpm, set by " + f.dynamics.limiting);
+                         significant_text(f.dynamics.max_rpm, 9) + " rpm, set by " + f.dynamics.limiting);
   }
 }
 

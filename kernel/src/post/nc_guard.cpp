@@ -7,16 +7,9 @@
 #include <string>
 #include <system_error>
 
+#include "freeturn/core/number_text.hpp"
+
 namespace freeturn {
-namespace {
-
-std::string number_text(double v) {
-  char buffer[32];
-  const auto [end, error] = std::to_chars(buffer, buffer + sizeof buffer, v);
-  return error == std::errc() ? std::string(buffer, end) : "?";
-}
-
-}  // namespace
 
 NcGuard::NcGuard(const MachineDescription& machine) {
   for (const AxisSpec& s : machine.axes) {
@@ -41,7 +34,7 @@ std::string NcGuard::check_record(const AxisRecord& record, long long block) con
   why += ": ";
   if (!std::isfinite(record.time) || record.time < 0) {
     why += "block time ";
-    why += number_text(record.time);
+    why += shortest_text(record.time);
     why += " s is not a finite duration";
     return why;
   }
@@ -51,8 +44,8 @@ std::string NcGuard::check_record(const AxisRecord& record, long long block) con
     if (std::isfinite(v) && !outside) continue;
     why += letter;
     why += " = ";
-    why += number_text(v);
-    why += std::isfinite(v) ? " is outside its travel [" + number_text(r.min) + ", " + number_text(r.max) + "]"
+    why += shortest_text(v);
+    why += std::isfinite(v) ? " is outside its travel [" + shortest_text(r.min) + ", " + shortest_text(r.max) + "]"
                             : std::string(" is not a finite number");
     return why;
   }
@@ -164,9 +157,9 @@ void NcGuard::check_line(std::string_view line) {
     const Range& r = ranges_[letter - 'A'];
     if (work_frame && r.checked && (v < r.min || v > r.max)) {
       word += " is outside the machine's range [";
-      word += number_text(r.min);
+      word += shortest_text(r.min);
       word += ", ";
-      word += number_text(r.max);
+      word += shortest_text(r.max);
       word += "]";
       crossed_ = {letter, v > r.max};
       return refuse(word);

@@ -1,4 +1,4 @@
-#include "freeturn/pipeline/report_files.hpp"
+#include "freeturn/report/report_files.hpp"
 
 #include <algorithm>
 #include <cmath>

@@ -1,5 +1,7 @@
 #pragma once
-// A job run end to end, as the command line runs it (docs/conventions.md, "Layout").
+// A job run end to end (docs/conventions.md, "Layout"). run_pipeline writes the NC
+// programs and hands the rest to a RunFiles (pipeline/run_files.hpp); freeturn::run_job
+// (report/run_job.hpp) is this with the files the command line writes.
 //
 // The pipeline streams: planner → tool compensation and checks → machine axes and limits
 // → post-processor plugin, chunk by chunk. Each pass (roughing passes, then the finish)
@@ -26,6 +28,7 @@
 #include "freeturn/job/job.hpp"
 #include "freeturn/job/yaml_limits.hpp"
 #include "freeturn/machine/axis_record.hpp"
+#include "freeturn/pipeline/run_files.hpp"
 #include "freeturn/pipeline/run_report.hpp"
 #include "freeturn/post/plugin_watch.hpp"
 #include "freeturn/tool/cutter_location.hpp"
@@ -65,12 +68,14 @@ struct RunResult {
   bool safe() const { return report.unsafe.empty(); }
 };
 
-// Plans, checks and posts the job, and writes its outputs into options.output_dir.
-RunResult run_job(const Job& job, const RunOptions& options = {}, RunObserver* observer = nullptr);
+// Plans, checks and posts the job, and writes its programs and `files` into
+// options.output_dir.
+RunResult run_pipeline(const Job& job, const RunOptions& options, RunFiles& files,
+                       RunObserver* observer = nullptr);
 
-// Everything run_job does but writing: the report's figures and verdict. The plugin reads
+// Everything run_pipeline does but writing: the report's figures and verdict. The plugin reads
 // its settings and takes one block at the clearance height, so settings and an approach
-// run_job would refuse are refused here too.
+// run_pipeline would refuse are refused here too.
 RunReport check_job(const Job& job, const RunOptions& options = {}, RunObserver* observer = nullptr);
 
 // The finishing pass's cutter locations and machine blocks, planned and checked as
@@ -80,9 +85,5 @@ struct PlannedPath {
   std::vector<AxisRecord> records;
 };
 PlannedPath plan_job(const Job& job, const RunOptions& options = {});
-
-// run_job with the finishing pass also cut in simulation.
-RunResult simulate_job(const Job& job, const SimulationOptions& simulation, RunOptions options = {},
-                       RunObserver* observer = nullptr);
 
 }  // namespace freeturn

@@ -1,9 +1,8 @@
-#include "freeturn/pipeline/run_job.hpp"
+#include "freeturn/pipeline/run_pipeline.hpp"
 
 #include <unistd.h>
 
 #include <algorithm>
-#include <charconv>
 #include <cmath>
 #include <cstdio>
 #include <cstdlib>
@@ -16,8 +15,6 @@
 #include <vector>
 
 #include "freeturn/core/error.hpp"
-#include "freeturn/io/atomic_file.hpp"
-#include "freeturn/io/mesh_export.hpp"
 #include "freeturn/io/output_set.hpp"
 #include "freeturn/job/job.hpp"
 #include "freeturn/job/machine_yaml.hpp"
@@ -25,7 +22,6 @@
 #include "freeturn/machine/block_schedule.hpp"
 #include "freeturn/path/profile.hpp"
 #include "freeturn/path/spiral.hpp"
-#include "freeturn/pipeline/report_files.hpp"
 #include "freeturn/post/post_program.hpp"
 #include "freeturn/surface/raised_surface.hpp"
 #include "freeturn/tool/clearance.hpp"
@@ -36,14 +32,16 @@
 namespace freeturn {
 namespace {
 
-// Between compensation and the machine: statistics for the report, the CL CSV rows (each
-// cutter location with the axis record the mapper made of it), progress to the observer.
+// Between compensation and the machine: statistics for the report, the streamed files
+// (each cutter location with the axis record the mapper made of it), progress to the
+// observer.
 class PassStage final : public CutterSink, public AxisSink {
  public:
-  PassStage(AxisSink& post, AtomicFile* csv, PassFigures& figures, RunObserver* observer)
-      : post_(post), csv_(csv), figures_(figures), observer_(observer) {}
+  // files: the finishing pass's streamed files, or null.
+  PassStage(AxisSink& post, RunFiles* files, PassFigures& figures, RunObserver* observer)
+      : post_(post), files_(files), figures_(figures), observer_(observer) {}
   void set_mapper(AxisMapper& m) { mapper_ = &m; }
-  // The job's limits: points over all passes (counted in *points_so_far), CL file bytes.
+  // The job's limit on points over all passes (counted in *points_so_far).
   void set_limits(const Limits& limits, long long* points_so_far) {
     limits_ = limits;
     points_so_far_ = points_so_far;
@@ -71,71 +69,27 @@ class PassStage final : public CutterSink, public AxisSink {
       }
     }
     post_.write(records);
+    if (files_) files_->finishing_chunk(cls_, records);
     if (observer_) observer_->cutter_locations(figures_.name, cls_, records);
-    for (std::size_t k = 0; k < records.size(); ++k) {
-      const CutterLocation& cl = cls_[k];
-      figures_.add(cl, records[k], k > 0 ? records[k - 1] : previous_);
-      if (csv_) row(cl, records[k]);
-    }
+    for (std::size_t k = 0; k < records.size(); ++k)
+      figures_.add(cls_[k], records[k], k > 0 ? records[k - 1] : previous_);
     if (!records.empty()) previous_ = records.back();
     if (observer_ && !cls_.empty())
       observer_->progress(figures_.name, cls_.back().contact.theta, cls_.back().contact.r,
                           figures_.points);
   }
 
-  static void header(AtomicFile& csv) {
-    csv.write("theta,x,y,z,nx,ny,nz,tx,ty,tz,b_deg,X,Z,C,B,chord\n");
-  }
-
  private:
-  void row(const CutterLocation& cl, const AxisRecord& r) {
-    line_.clear();
-    const double values[16] = {cl.contact.theta,
-                               cl.contact.point.x(),
-                               cl.contact.point.y(),
-                               cl.contact.point.z(),
-                               cl.contact.normal.x(),
-                               cl.contact.normal.y(),
-                               cl.contact.normal.z(),
-                               cl.nose_centre.x(),
-                               cl.nose_centre.y(),
-                               cl.nose_centre.z(),
-                               cl.b * 180 / std::numbers::pi,
-                               r.x,
-                               r.z,
-                               r.c,
-                               r.b,
-                               cl.contact.chord_error};
-    // Shortest round-trip text (std::to_chars): a number read back is the double written,
-    // so the CL data can be checked to the nanometre (nine fixed decimals put θ alone 2.5
-    // nm off at r = 5 mm).
-    for (int i = 0; i < 16; ++i) {
-      if (i) line_ += ',';
-      char buf[32];
-      const auto [end, ec] = std::to_chars(buf, buf + sizeof buf, values[i]);
-      line_.append(buf, ec == std::errc() ? end : buf);
-    }
-    line_ += '\n';
-    csv_bytes_ += static_cast<long long>(line_.size());
-    if (static_cast<double>(csv_bytes_) > limits_.max_file_mb * 1048576.0)
-      throw InputError("limits.max_file_mb",
-                       "the CL file would be larger than limits.max_file_mb = " +
-                           std::to_string(limits_.max_file_mb) + " MB; nothing was written");
-    csv_->write(line_);
-  }
-
   AxisMapper* mapper_ = nullptr;
   CutSimulator* simulator_ = nullptr;
   AxisSink& post_;
-  AtomicFile* csv_;
+  RunFiles* files_;
   PassFigures& figures_;
   RunObserver* observer_;
   std::span<const CutterLocation> cls_;
   AxisRecord previous_;  // the last block of the previous chunk
-  std::string line_;
   Limits limits_;
   long long* points_so_far_ = nullptr;
-  long long csv_bytes_ = 0;
 };
 
 // Where the blocks go when nothing is written (check, and the constant-rpm probe): nowhere,
@@ -242,9 +196,12 @@ PreparedJob prepare_job(const Job& job, std::uintmax_t max_yaml_bytes) {
 
 // simulation: when set, the finishing pass is also cut in simulation and its residual
 // written (grid CSV, coloured PLY) with its figures in the report.
+// files: null when nothing is written (check, and the constant-rpm probe).
 RunResult execute_job(const Job& job, const PreparedJob& prepared, const std::string& out_dir,
-                      RunObserver* observer, bool write, const SimulationOptions* simulation = nullptr,
-                      double spindle_rpm = 0, bool probe = false) {
+                      RunObserver* observer, RunFiles* files,
+                      const SimulationOptions* simulation = nullptr, double spindle_rpm = 0,
+                      bool probe = false) {
+  const bool write = files != nullptr;
   const JobPlan& plan = *job.plan;
   const MachineDescription& machine = prepared.machine;
   const auto& plugin = prepared.plugin;
@@ -309,7 +266,9 @@ RunResult execute_job(const Job& job, const PreparedJob& prepared, const std::st
   long long points_so_far = 0;
   stock.push_back(0.0);  // the finishing pass
   std::vector<std::unique_ptr<PostProgram>> programs;
-  std::unique_ptr<AtomicFile> csv;
+  // Every file of the run, put in place as one set when all has succeeded
+  // (io/output_set.hpp: programs set aside, data files first, programs last).
+  OutputSet outputs;
   for (std::size_t pass = 0; pass < stock.size(); ++pass) {
     const bool finishing = pass + 1 == stock.size();
     const std::string suffix = finishing ? "" : ".rough-" + std::to_string(pass + 1);
@@ -330,15 +289,12 @@ RunResult execute_job(const Job& job, const PreparedJob& prepared, const std::st
           out(job.name + "." + machine.name + suffix + ".nc")));
       post = programs.back().get();
     }
-    if (write && finishing && plan.outputs.cl_csv) {
-      csv = std::make_unique<AtomicFile>(out(job.name + ".cl.csv"));
-      PassStage::header(*csv);
-    }
+    if (write && finishing) files->begin_finishing_pass(job, out_dir, outputs);
     if (scheduled) {
       scheduler = std::make_unique<BlockScheduler>(machine, *post);
       post = scheduler.get();
     }
-    PassStage stage(*post, finishing ? csv.get() : nullptr, figures, observer);
+    PassStage stage(*post, finishing ? files : nullptr, figures, observer);
     stage.set_limits(plan.limits, &points_so_far);
     std::unique_ptr<CutSimulator> simulator;
     if (finishing && simulation) {
@@ -396,25 +352,9 @@ RunResult execute_job(const Job& job, const PreparedJob& prepared, const std::st
   }
   judge(report);
   if (!write) return {report, {}};
-  // Everything succeeded: write the rest, then put every file in place as one set
-  // (io/output_set.hpp: programs set aside, data files first, programs last).
-  OutputSet outputs;
-  if (report.simulation) {
-    write_residual_csv(*report.simulation, job.aperture.inner_radius,
-                       outputs.add(out(job.name + ".residual.csv")));
-    write_residual_ply(*report.simulation, design, job.aperture.inner_radius,
-                       outputs.add(out(job.name + ".residual.ply")));
-  }
-  if (plan.outputs.mesh) {
-    write_surface_mesh_obj(design, job.aperture.inner_radius, job.aperture.outer_radius, 64, 256,
-                           outputs.add(out(job.name + ".surface.obj")));
-    std::vector<Eigen::Vector3d> path;
-    for (const PlotPoint& p : report.passes.back().samples) path.emplace_back(p.x, p.y, p.z);
-    write_polyline_vtk(path, outputs.add(out(job.name + ".path.vtk")));
-  }
+  // Everything succeeded: the files made from the whole run, then every file put in place.
   for (auto& p : programs) p->finish(outputs);
-  if (csv) outputs.adopt(std::move(csv), OutputSet::Role::kData);
-  if (plan.outputs.report) write_report(report, out("report.json"), out("report.html"), outputs);
+  files->finish(job, report, design, out_dir, outputs);
   std::vector<std::string> written = outputs.commit();
   return {std::move(report), std::move(written)};
 }
@@ -423,15 +363,15 @@ RunResult execute_job(const Job& job, const PreparedJob& prepared, const std::st
 // the highest speed every block allows, up to the job's: found by planning once without
 // writing (velocity scales with the rpm, acceleration with its square), then written.
 RunResult run_job_at_requested_speed(const Job& job, const PreparedJob& prepared,
-                                     const std::string& out_dir, RunObserver* observer, bool write,
-                                     const SimulationOptions* simulation);
+                                     const std::string& out_dir, RunObserver* observer,
+                                     RunFiles* files, const SimulationOptions* simulation);
 
 // A limit of the job's own (limits.max_points, limits.max_file_mb) that stops the run is
 // reported at its place in the job file: the errors name the key as their place.
 RunResult run_with_places(const Job& job, const PreparedJob& prepared, const std::string& out_dir,
-                          RunObserver* observer, bool write, const SimulationOptions* simulation) {
+                          RunObserver* observer, RunFiles* files, const SimulationOptions* simulation) {
   try {
-    return run_job_at_requested_speed(job, prepared, out_dir, observer, write, simulation);
+    return run_job_at_requested_speed(job, prepared, out_dir, observer, files, simulation);
   } catch (const CheckFailure& e) {
     if (e.cause().empty()) throw;
     const MachineDescription& m = prepared.machine;
@@ -454,18 +394,19 @@ RunResult run_with_places(const Job& job, const PreparedJob& prepared, const std
 }
 
 RunResult run_job_at_requested_speed(const Job& job, const PreparedJob& prepared,
-                                     const std::string& out_dir, RunObserver* observer, bool write,
-                                     const SimulationOptions* simulation) {
+                                     const std::string& out_dir, RunObserver* observer,
+                                     RunFiles* files, const SimulationOptions* simulation) {
   const JobPlan& plan = *job.plan;
   const double requested = plan.cutting.spindle_rpm;
   if (plan.strategy.mode == Strategy::Mode::kSpiral && plan.cutting.enforce_dynamics &&
       !scheduling(job, prepared.machine)) {
-    const RunResult probe = execute_job(job, prepared, out_dir, nullptr, false, nullptr, requested, true);
+    const RunResult probe =
+        execute_job(job, prepared, out_dir, nullptr, nullptr, nullptr, requested, true);
     double rpm = requested;
     for (const PassFigures& f : probe.report.passes) rpm = std::min(rpm, f.dynamics.max_rpm);
-    return execute_job(job, prepared, out_dir, observer, write, simulation, rpm);
+    return execute_job(job, prepared, out_dir, observer, files, simulation, rpm);
   }
-  return execute_job(job, prepared, out_dir, observer, write, simulation);
+  return execute_job(job, prepared, out_dir, observer, files, simulation);
 }
 
 // The plugin reads its dialect settings when a program is created: check creates one in
@@ -507,16 +448,17 @@ void check_dialect_settings(const Job& job, const PreparedJob& prepared) {
 
 }  // namespace
 
-RunResult run_job(const Job& job, const RunOptions& options, RunObserver* observer) {
+RunResult run_pipeline(const Job& job, const RunOptions& options, RunFiles& files,
+                       RunObserver* observer) {
   const PreparedJob prepared = prepare_job(job, options.max_yaml_bytes);
-  return run_with_places(job, prepared, options.output_dir, observer, true,
+  return run_with_places(job, prepared, options.output_dir, observer, &files,
                          options.simulation ? &*options.simulation : nullptr);
 }
 
 RunReport check_job(const Job& job, const RunOptions& options, RunObserver* observer) {
   const PreparedJob prepared = prepare_job(job, options.max_yaml_bytes);
   check_dialect_settings(job, prepared);
-  return run_with_places(job, prepared, "", observer, false, nullptr).report;
+  return run_with_places(job, prepared, "", observer, nullptr, nullptr).report;
 }
 
 PlannedPath plan_job(const Job& job, const RunOptions& options) {
@@ -531,12 +473,6 @@ PlannedPath plan_job(const Job& job, const RunOptions& options) {
   } collector;
   check_job(job, options, &collector);
   return std::move(collector.path);
-}
-
-RunResult simulate_job(const Job& job, const SimulationOptions& simulation, RunOptions options,
-                       RunObserver* observer) {
-  options.simulation = simulation;
-  return run_job(job, options, observer);
 }
 
 }  // namespace freeturn

@@ -1,0 +1,18 @@
+#include "freeturn/report/run_job.hpp"
+
+#include "freeturn/report/job_files.hpp"
+
+namespace freeturn {
+
+RunResult run_job(const Job& job, const RunOptions& options, RunObserver* observer) {
+  JobFiles files;
+  return run_pipeline(job, options, files, observer);
+}
+
+RunResult simulate_job(const Job& job, const SimulationOptions& simulation, RunOptions options,
+                       RunObserver* observer) {
+  options.simulation = simulation;
+  return run_job(job, options, observer);
+}
+
+}  // namespace freeturn
