@@ -18,7 +18,7 @@ root="$(cd "$(dirname "${BASH_SOURCE[0]}")/.." && pwd)"
 # third_party.cmake, which names the same packages when a find fails.
 packages=(
   cmake g++ make pkg-config
-  libeigen3-dev libopenmesh-dev coinor-libipopt-dev libyaml-cpp-dev doctest-dev
+  libeigen3-dev libopenmesh-dev libyaml-cpp-dev doctest-dev
   libbenchmark-dev libcli11-dev
   # The tests' independent NC reader (tests/jobs/nc_dynamics.py).
   python3

@@ -3,6 +3,7 @@
 #include <cmath>
 #include <memory>
 #include <numbers>
+#include <random>
 
 #include "freeturn/path/base_surface_fit.hpp"
 #include "freeturn/path/minimax_base_fit.hpp"
@@ -91,6 +92,19 @@ TEST_SUITE("path") {
                             << "°, minimax " << minimax.max_angle / deg << "° (" << minimax.iterations
                             << " iterations)");
     CHECK(minimax.max_angle < fitted.max_angle - 0.01 * deg);
+    // A minimum, seen without the optimiser: no small random change of the free
+    // coefficients (c_0 = c_1 keep H'(0) = 0) lowers the largest angle.
+    std::mt19937 rng(3);
+    std::uniform_real_distribution<double> unit(-1, 1);
+    const std::vector<double>& c = minimax.base.coefficients();
+    for (double size : {1e-3, 1e-4, 1e-5}) {
+      for (int trial = 0; trial < 40; ++trial) {
+        std::vector<double> moved = c;
+        for (std::size_t i = 2; i < moved.size(); ++i) moved[i] += size * unit(rng);
+        const BaseSurface other(minimax.base.degree(), minimax.base.knots(), moved);
+        CHECK(measure_quasi_revolution(samples, other).max_angle >= minimax.max_angle - 1e-12);
+      }
+    }
   }
 
   TEST_CASE("axis search recovers a tilted, decentred paraboloid's axis exactly") {

@@ -103,6 +103,11 @@ LensletArray::LensletArray(const LensletArrayOptions& options) : o_(options) {
   cell_start_.push_back(0);
   for (const auto& list : cells) {
     cell_items_.insert(cell_items_.end(), list.begin(), list.end());
+    for (int i : list) {
+      const Lenslet& l = lenslets_[static_cast<std::size_t>(i)];
+      lookup_.push_back({l.base_point.x(), l.base_point.y(), l.base_point.z(), l.axis.x(),
+                         l.axis.y(), l.axis.z(), i});
+    }
     cell_start_.push_back(static_cast<int>(cell_items_.size()));
   }
 }
@@ -135,12 +140,18 @@ int LensletArray::lenslet_at(double x, double y) const {
   const int b =
       std::clamp(static_cast<int>(std::floor((y + o_.extent) / cell_)), 0, cells_per_side_ - 1);
   const int k = b * cells_per_side_ + a;
-  const Eigen::Vector3d base(x, y, sphere_sag(o_.base_curvature, std::hypot(x, y)));
-  for (int idx = cell_start_[k]; idx < cell_start_[k + 1]; ++idx) {
-    const Lenslet& l = lenslets_[cell_items_[idx]];
-    const Eigen::Vector3d w = base - l.base_point;
-    const double lateral = (w - w.dot(l.axis) * l.axis).norm();
-    if (lateral < 0.5 * o_.lens_diameter) return cell_items_[idx];
+  const int first = cell_start_[k], last = cell_start_[k + 1];
+  if (first == last) return -1;
+  // x² + y² < extent² here: no overflow for std::hypot to guard against, and it costs
+  // more than the rest of the lookup (the planner calls this for every sample).
+  const double z = sphere_sag(o_.base_curvature, std::sqrt(x * x + y * y));
+  const double half_sq = 0.25 * o_.lens_diameter * o_.lens_diameter;
+  for (int idx = first; idx < last; ++idx) {
+    const LookupEntry& l = lookup_[static_cast<std::size_t>(idx)];
+    const double wx = x - l.px, wy = y - l.py, wz = z - l.pz;
+    const double along = wx * l.ax + wy * l.ay + wz * l.az;
+    // |w − (w·a)a|² = |w|² − (w·a)²: the squared distance from the lenslet's axis.
+    if (wx * wx + wy * wy + wz * wz - along * along < half_sq) return l.lenslet;
   }
   return -1;
 }

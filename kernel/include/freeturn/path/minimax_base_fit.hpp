@@ -2,15 +2,14 @@
 // The minimax base surface (paper 000, Eq. 10-11): the generating curve, and optionally
 // the axis, that minimise the largest quasi-revolution angle max_i α_i.
 //
-// Solved with Ipopt in epigraph form: minimise A subject to 1 − cos α_i ≤ A for every
-// sample (1 − cos α is monotone in α and smooth where α is not). The constraint gradients
-// are analytic in the coefficients of H and by forward-mode automatic differentiation
-// (Eigen's AutoDiffScalar) in the axis parameters. The paper leaves the axis to the user;
+// Minimises max_i (1 − cos α_i) (1 − cos α is monotone in α and smooth where α is not)
+// by a trust-region SQP on the epigraph whose QPs are solved densely by a dual active-set
+// method (core/minimax_sqp.hpp): a few variables, thousands of samples, a handful of them
+// active at a time. The gradients are analytic in the coefficients of H and by
+// forward-mode automatic differentiation (Eigen's AutoDiffScalar) in the axis parameters. The paper leaves the axis to the user;
 // with `search_axis` it is searched too, starting from the least-squares fit of base and
 // axis (base_axis_fit.hpp), because the minimax alone is flat along directions that trade
-// the largest angle of one place for another's. Ipopt's MUMPS is not thread-safe, so
-// every solve holds one process-wide lock for the whole life of its IpoptApplication
-// (shared/notes/dependencies.md); Ipopt prints nothing unless `verbose`.
+// the largest angle of one place for another's.
 
 #include <Eigen/Core>
 #include <vector>
@@ -29,7 +28,6 @@ struct MinimaxBaseOptions {
   double max_tilt = 0.1;    // rad, bound on each tilt
   double max_shift = 1.0;   // mm, bound on each coordinate of the crossing
   int max_iterations = 300;
-  bool verbose = false;
 };
 
 struct MinimaxBaseResult {
@@ -39,7 +37,7 @@ struct MinimaxBaseResult {
   double start_max_angle = 0;   // max α of `start` about the z axis
   double least_squares_max_angle = 0;  // max α after the least-squares axis stage
   Status status = Status::kNotConverged;
-  int iterations = 0;  // Ipopt's
+  int iterations = 0;  // SQP iterations
 };
 
 // Starts from `start` (e.g. the least-squares base, whose knots are kept; its domain

@@ -70,6 +70,12 @@ class LensletArray final : public Surface {
   double cell_ = 0;
   int cells_per_side_ = 0;
   std::vector<int> cell_start_, cell_items_;
+  // What lenslet_at reads of cell_items_[j]'s lenslet, in cell order: one cache line each.
+  struct LookupEntry {
+    double px, py, pz, ax, ay, az;  // the base point and the axis
+    int lenslet;
+  };
+  std::vector<LookupEntry> lookup_;
 };
 
 }  // namespace freeturn
