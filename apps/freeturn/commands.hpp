@@ -17,12 +17,13 @@ struct RunArgs {
   std::string output = ".";
   bool quiet = false;
   bool simulate = false;
-  int threads = 0;  // the cut simulation's (0: the machine's cores)
+  int threads = 0;  // that plan and simulate (0: the machine's cores)
 };
 
 struct CheckArgs {
   std::string job;
   bool quiet = false;
+  int threads = 0;  // that plan (0: the machine's cores)
 };
 
 struct SimulateArgs {

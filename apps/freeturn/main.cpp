@@ -91,7 +91,9 @@ int main(int argc, char** argv) {
   output_option(run_app, run.output);
   quiet_flag(run_app, run.quiet);
   run_app->add_flag("--simulate", run.simulate, "also cut the finishing pass in simulation (docs/verify.md)");
-  run_app->add_option("--threads", run.threads, "threads of the cut simulation [default: one per core]")
+  run_app->add_option("--threads", run.threads,
+                       "threads that plan (and simulate); the outputs are the same on any number "
+                       "[default: one per core]")
       ->check(CLI::Range(1, 1024));
   run_app->callback([&] { code = guarded("run", [&] { return run_run(run); }); });
 
@@ -100,6 +102,9 @@ int main(int argc, char** argv) {
       "check", "everything run does but writing: tool checks, machine limits, dynamics; a verdict");
   job_option(check_app, check.job);
   quiet_flag(check_app, check.quiet);
+  check_app->add_option("--threads", check.threads,
+                        "threads that plan; the verdict is the same on any number [default: one per core]")
+      ->check(CLI::Range(1, 1024));
   check_app->callback([&] { code = guarded("check", [&] { return run_check(check); }); });
 
   SimulateArgs simulate;

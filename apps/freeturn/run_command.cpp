@@ -74,6 +74,7 @@ bool say_unsafe(const RunReport& r, std::FILE* out = stderr) {
 int run_run(const RunArgs& args) {
   const Job job = load_job(args.job, yaml_byte_bound());
   RunOptions options = run_options(args.output);
+  options.threads = args.threads;
   if (args.simulate) {
     options.simulation = SimulationOptions{};
     options.simulation->threads = args.threads;
@@ -93,7 +94,9 @@ int run_simulate(const SimulateArgs& args) {
   simulation.threads = args.threads;
   const Job job = load_job(args.job, yaml_byte_bound());
   Observer observer(true);
-  const RunReport r = simulate_job(job, simulation, run_options(args.output), &observer).report;
+  RunOptions options = run_options(args.output);
+  options.threads = args.threads;
+  const RunReport r = simulate_job(job, simulation, options, &observer).report;
   const SimulationResult& s = *r.simulation;
   std::printf(
       "%s: simulated form error PV %.3f nm, RMS %.3f nm (max %+.3f nm at r = %.4f mm, min %+.3f nm "
@@ -118,7 +121,9 @@ int run_check(const CheckArgs& args) {
   const Job job = load_job(args.job, yaml_byte_bound());
   try {
     Observer observer(true);
-    const RunReport r = check_job(job, run_options(""), &observer);
+    RunOptions options = run_options("");
+    options.threads = args.threads;
+    const RunReport r = check_job(job, options, &observer);
     const PassFigures& f = r.passes.back();
     if (say_unsafe(r, stdout)) return kExitCheckFailed;
     std::printf(

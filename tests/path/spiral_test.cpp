@@ -308,3 +308,66 @@ TEST_SUITE("path") {
     }
   }
 }
+
+#include <random>
+
+#include "freeturn/nurbs/surface.hpp"
+#include "freeturn/surface/nurbs_height_field.hpp"
+
+namespace {
+
+// A rational bicubic 12 × 12 net over [−6, 6]² whose x and y are perturbed, so that every
+// height query inverts (x, y) → (u, v) from the thread's warm start.
+NurbsHeightField wavy_nurbs() {
+  std::vector<Eigen::Vector3d> points;
+  std::vector<double> weights, knots = {0, 0, 0, 0};
+  for (int k = 1; k < 9; ++k) knots.push_back(k / 9.0);
+  knots.insert(knots.end(), {1, 1, 1, 1});
+  for (int i = 0; i < 12; ++i)
+    for (int j = 0; j < 12; ++j) {
+      const double x = -6 + 12.0 * i / 11 + 0.05 * std::sin(j), y = -6 + 12.0 * j / 11 + 0.05 * std::cos(i);
+      points.emplace_back(x, y, 0.2 * std::sin(x / 3) * std::cos(y / 4));
+      weights.push_back(1 + 0.1 * std::sin(i + j));
+    }
+  return NurbsHeightField(nurbs::NurbsSurface(3, 3, knots, knots, points, weights));
+}
+
+}  // namespace
+
+TEST_SUITE("path") {
+  TEST_CASE("bands: the same points, to the bit, on 1, 2 and 8 threads; ε holds across seams") {
+    const NurbsHeightField surface = wavy_nurbs();
+    const BaseSurface base = fit_base_least_squares(sample_aperture(surface, 0, 4.0));
+    SpiralOptions o;
+    o.outer_radius = 4.0;
+    o.pitch = 0.02;  // 200 turns: 64 bands of 4 turns (docs/path.md, "Bands")
+    o.points.tolerance = 2e-4;
+    std::vector<std::vector<ContactPoint>> runs;
+    for (int threads : {1, 2, 8}) {
+      o.threads = threads;
+      ContactCollector out;
+      plan_spiral(surface, base, o, out);
+      runs.push_back(out.points);
+    }
+    REQUIRE(runs[0].size() > 1000);
+    for (std::size_t r = 1; r < runs.size(); ++r) {
+      REQUIRE(runs[r].size() == runs[0].size());
+      bool same = true;
+      for (std::size_t k = 0; k < runs[0].size(); ++k)
+        same = same && runs[r][k].theta == runs[0][k].theta && runs[r][k].point == runs[0][k].point &&
+               runs[r][k].chord_error == runs[0][k].chord_error;
+      CHECK(same);
+    }
+    // The seams are points: every fourth turn's start (k·8π) is one, exactly. The base's
+    // arc length is a little over the radius: a little over 200 turns, 64 bands or fewer.
+    const double width = 4 * 2 * std::numbers::pi, end = runs[0].back().theta;
+    long seams = 0;
+    for (const ContactPoint& p : runs[0]) {
+      const double k = std::round(p.theta / width);
+      if (p.theta > 0 && p.theta < end && p.theta == k * width) ++seams;
+    }
+    CHECK(seams == static_cast<long>(std::ceil(end / width - 1e-9)) - 1);
+    CHECK(seams >= 49);
+    CHECK(test::densest_chord_error(surface, runs[0]) <= 2e-4);
+  }
+}

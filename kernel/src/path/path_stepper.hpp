@@ -248,17 +248,21 @@ constexpr double kJumpRatio = 100;
 // at both: whatever step the next search takes up to an equal one, (a, b) stays within
 // the target, and a short enough next step always exists. It is judged finally when the
 // next block is chosen, and emitted then: emission lags one block in PVT mode.
+//
+// A piece of the path: τ from `begin` to `end` (the whole path by default), its first point
+// emitted only if `emit_begin` (a piece that continues another leaves that point to it).
 template <class Path, class Emit>
-void distribute(Path& path, const CutterPointOptions& o, Emit&& emit) {
-  const double end = path.tau_end();
+void distribute(Path& path, const CutterPointOptions& o, Emit&& emit, double begin = 0.0,
+                double end = -1.0, bool emit_begin = true) {
+  if (end < 0) end = path.tau_end();
   const bool pvt = o.interpolation == Interpolation::kCubic;
   // The last two blocks before `current` (PVT), and whether they exist.
   AxisState before2, before, current, trial, look, transition;
   bool has_before2 = false, has_before = false;
-  path.at(0.0, current);
+  path.at(begin, current);
   path.commit(current);
-  emit(current, 0.0, false);
-  if (!(end > 0)) return;
+  if (emit_begin) emit(current, 0.0, false);
+  if (!(end > begin)) return;
   // Chord error ∝ step^order: linear chords; PVT's central-difference velocities are
   // second-order, so its cubics are third-order.
   const double order = pvt ? 3.0 : 2.0;
@@ -266,7 +270,7 @@ void distribute(Path& path, const CutterPointOptions& o, Emit&& emit) {
   // may bend ε − stand_off either way from it (margin for the sampled maximum).
   const double target = 0.97 * (o.tolerance - path.stand_off());
   const double min_step = 1e-12 * std::max(1.0, end);
-  double step = std::min(path.cap(), end);
+  double step = std::min(path.cap(), end - begin);
   // A trial block's errors: of the new segment (current, trial) and, in PVT mode, of the
   // one before it as `trial` finalises it. The larger in size decides.
   double new_error = 0, previous_error = 0;

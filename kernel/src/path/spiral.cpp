@@ -4,8 +4,11 @@
 #include <cmath>
 #include <numbers>
 #include <string>
+#include <vector>
 
 #include "freeturn/core/error.hpp"
+#include "freeturn/core/ordered_parallel.hpp"
+#include "freeturn/core/parallel_for.hpp"
 #include "freeturn/path/section_envelope.hpp"
 #include "freeturn/surface/height_field_queries.hpp"
 #include "nose_section.hpp"
@@ -159,6 +162,22 @@ class SpiralPath {
   double lambda_ = 0;  // the committed point's projection distance
 };
 
+// The spiral is planned in bands of whole turns, each from a cold start at its first angle
+// and ending exactly at its last, so that bands can be planned at once on several threads
+// and the points stay the same on any number (docs/path.md, "Bands"). About 64 bands
+// over the path, a turn at least. PVT programs are one band: a cubic's velocities depend
+// on the blocks either side, which a seam would leave unjudged.
+std::vector<double> band_bounds(double end, bool pvt) {
+  constexpr double kTurn = 2 * std::numbers::pi;
+  std::vector<double> bounds{0.0};
+  if (!pvt && end > kTurn) {
+    const double width = kTurn * std::max(1.0, std::ceil(end / kTurn / 64));
+    for (int k = 1; k * width < end - 1e-9 * width; ++k) bounds.push_back(k * width);
+  }
+  bounds.push_back(end);
+  return bounds;
+}
+
 }  // namespace
 
 PathSummary plan_spiral(const Surface& design, const BaseSurface& base,
@@ -172,28 +191,53 @@ PathSummary plan_spiral(const Surface& design, const BaseSurface& base,
                      "aperture.outer_radius");
   if (o.points.rule == CutterPointRule::kEqualAngle && o.points.points_per_revolution < 3)
     throw InputError("points_per_revolution", "must be at least 3");
-  SpiralPath path(design, base, o);
+  forget_thread_warm_starts();
+  const SpiralPath path(design, base, o);
+  const std::vector<double> bounds =
+      band_bounds(path.tau_end(), o.points.interpolation == Interpolation::kCubic);
+  const long bands = static_cast<long>(bounds.size()) - 1;
+  struct Band {
+    std::vector<ContactPoint> points;
+    std::vector<char> jumps;
+  };
+  const auto plan_band = [&](long k, Band& band) {
+    band.points.clear();
+    band.jumps.clear();
+    forget_thread_warm_starts();  // the band's bits may not depend on the thread's past
+    SpiralPath piece = path;
+    detail::distribute(
+        piece, o.points,
+        [&](const detail::AxisState& s, double error, bool jump) {
+          ContactPoint p;
+          p.theta = s.c;
+          p.r = s.contact_r;
+          p.point = s.point;
+          detail::set_chord(p, s, error, jump, piece.stand_off());
+          const double zr = detail::fill_section(design, p);
+          // Adjacent turns are p apart along the base's generating curve; on the design
+          // they are p / cos β apart, β the angle between the two sections' tangents.
+          const BasePoint bp = piece.base_point(s.c);
+          const double cos_beta = (1 + bp.slope * zr) /
+                                  (std::sqrt(1 + bp.slope * bp.slope) * std::sqrt(1 + zr * zr));
+          p.pass_spacing = o.pitch / cos_beta;
+          p.scallop = detail::scallop_height(p.pass_spacing, p.section_curvature, o.tool.nose_radius);
+          band.points.push_back(p);
+          band.jumps.push_back(jump ? 1 : 0);
+        },
+        bounds[static_cast<std::size_t>(k)], bounds[static_cast<std::size_t>(k) + 1], k == 0);
+  };
   ContactChunker out(sink);
   PathSummary summary;
-  detail::distribute(path, o.points, [&](const detail::AxisState& s, double error, bool jump) {
-    ContactPoint p;
-    p.theta = s.c;
-    p.r = s.contact_r;
-    p.point = s.point;
-    detail::set_chord(p, s, error, jump, path.stand_off());
-    const double zr = detail::fill_section(design, p);
-    // Adjacent turns are p apart along the base's generating curve; on the design they
-    // are p / cos β apart, β the angle between the two sections' tangents.
-    const BasePoint bp = path.base_point(s.c);
-    const double cos_beta =
-        (1 + bp.slope * zr) / (std::sqrt(1 + bp.slope * bp.slope) * std::sqrt(1 + zr * zr));
-    p.pass_spacing = o.pitch / cos_beta;
-    p.scallop = detail::scallop_height(p.pass_spacing, p.section_curvature, o.tool.nose_radius);
-    summary.add(p.theta, p.r, p.chord_error, jump);
-    summary.theta_end = p.theta;
-    summary.max_scallop = std::max(summary.max_scallop, p.scallop);
-    summary.max_pass_spacing = std::max(summary.max_pass_spacing, p.pass_spacing);
-    out.push(p);
+  const int threads = std::min<long>(thread_count(o.threads), bands);
+  ordered_parallel<Band>(threads, bands, 2 * threads, plan_band, [&](long, Band& band) {
+    for (std::size_t i = 0; i < band.points.size(); ++i) {
+      const ContactPoint& p = band.points[i];
+      summary.add(p.theta, p.r, p.chord_error, band.jumps[i] != 0);
+      summary.theta_end = p.theta;
+      summary.max_scallop = std::max(summary.max_scallop, p.scallop);
+      summary.max_pass_spacing = std::max(summary.max_pass_spacing, p.pass_spacing);
+      out.push(p);
+    }
   });
   out.flush();
   return summary;

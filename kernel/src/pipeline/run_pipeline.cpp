@@ -15,6 +15,7 @@
 #include <vector>
 
 #include "freeturn/core/error.hpp"
+#include "freeturn/core/parallel_for.hpp"
 #include "freeturn/io/output_set.hpp"
 #include "freeturn/job/job.hpp"
 #include "freeturn/job/machine_yaml.hpp"
@@ -126,6 +127,7 @@ double machine_z(const MachineDescription& machine, double z) {
 struct PreparedJob {
   MachineDescription machine;
   std::unique_ptr<PostPlugin> plugin;
+  int threads = 1;  // that plan the spiral (RunOptions::threads, resolved)
 };
 
 MachineDescription machine_for(const Job& job, const std::string& machine_file,
@@ -325,6 +327,7 @@ RunResult execute_job(const Job& job, const PreparedJob& prepared, const std::st
       o.tool = tool_motion(compensation);
       o.points = plan.strategy.points;
       o.points.interpolation = machine.interpolation;
+      o.threads = prepared.threads;
       summary = plan_spiral(surface, base.base, o, compensator);
     } else {
       ProfileOptions o;
@@ -450,13 +453,15 @@ void check_dialect_settings(const Job& job, const PreparedJob& prepared) {
 
 RunResult run_pipeline(const Job& job, const RunOptions& options, RunFiles& files,
                        RunObserver* observer) {
-  const PreparedJob prepared = prepare_job(job, options.max_yaml_bytes);
+  PreparedJob prepared = prepare_job(job, options.max_yaml_bytes);
+  prepared.threads = thread_count(options.threads);
   return run_with_places(job, prepared, options.output_dir, observer, &files,
                          options.simulation ? &*options.simulation : nullptr);
 }
 
 RunReport check_job(const Job& job, const RunOptions& options, RunObserver* observer) {
-  const PreparedJob prepared = prepare_job(job, options.max_yaml_bytes);
+  PreparedJob prepared = prepare_job(job, options.max_yaml_bytes);
+  prepared.threads = thread_count(options.threads);
   check_dialect_settings(job, prepared);
   return run_with_places(job, prepared, "", observer, nullptr, nullptr).report;
 }

@@ -36,6 +36,8 @@ double segment_distance(const Eigen::Vector2d& a, const Eigen::Vector2d& b) {
 
 }  // namespace
 
+void forget_thread_warm_starts() { warm_start = {}; }
+
 NurbsHeightField::NurbsHeightField(nurbs::NurbsSurface surface) : locator_(std::move(surface)) {
   const nurbs::NurbsSurface& s = locator_.surface();
   double z_max = -std::numeric_limits<double>::infinity();

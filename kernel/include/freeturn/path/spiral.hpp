@@ -23,6 +23,9 @@ struct SpiralOptions {
   // error is measured on that motion; tool.nose_radius also gives the scallop.
   ToolMotion tool;
   CutterPointOptions points;
+  // Threads that plan bands of the spiral at once (0: the hardware's). The bands are fixed
+  // by the path alone, so the points are the same on any number.
+  int threads = 1;
 };
 
 // Streams the contact points into `sink` and returns the summary. Throws InputError

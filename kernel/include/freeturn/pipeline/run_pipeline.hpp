@@ -42,6 +42,9 @@ struct RunOptions {
   // residual (grid CSV, coloured PLY) with its figures in the report.
   std::optional<SimulationOptions> simulation;
   std::uintmax_t max_yaml_bytes = kMaxYamlBytes;  // the machine file's size bound
+  // Threads that plan the spiral (0: the hardware's). Every output is the same on any
+  // number; the simulation has its own (SimulationOptions::threads).
+  int threads = 0;
 };
 
 // What a run tells its caller while it works, on the calling thread. The defaults ignore it.

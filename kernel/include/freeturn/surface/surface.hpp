@@ -53,4 +53,9 @@ class Surface {
   Eigen::Vector3d normal(double x, double y) const;
 };
 
+// Forgets the calling thread's warm starts (a NURBS height field starts its inversion from
+// the thread's last answer): the queries that follow give the same bits whatever the
+// thread computed before. A piece of work handed to any thread of a pool calls it first.
+void forget_thread_warm_starts();
+
 }  // namespace freeturn
