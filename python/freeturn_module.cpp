@@ -154,6 +154,7 @@ PYBIND11_MODULE(freeturn, m) {
         const std::shared_ptr<Job> job = job_of(path_or_job);
         RunOptions options;
         options.output_dir = output_dir;
+        options.threads = threads;
         if (simulate) {
           options.simulation = SimulationOptions{};
           options.simulation->threads = threads;
@@ -165,11 +166,12 @@ PYBIND11_MODULE(freeturn, m) {
         }
         return result_dict(r.report, r.files);
       },
-      py::arg("path_or_job"), py::arg("output_dir") = ".", py::arg("threads") = 2,
+      py::arg("path_or_job"), py::arg("output_dir") = ".", py::arg("threads") = 0,
       py::arg("simulate") = false,
       "Runs a job as `freeturn run` does: NC programs, CL data and the report in output_dir.\n"
       "Returns a dict: verdict ('PASS' or 'UNSAFE'), unsafe reasons, warnings, per-pass figures,\n"
-      "files written. threads: the cut simulation's, when simulate is true.");
+      "files written. threads: that plan the spiral (and simulate, when simulate is true); 0: one\n"
+      "per core. The files are the same on any number.");
 
   m.def(
       "check_job",

@@ -171,15 +171,33 @@ double segment_error(const Path& path, const Segment& segment, Interpolation mod
     return path.deviation(x, c, z, bb, a.contact_r + t * (b.contact_r - a.contact_r)) -
            path.stand_off();
   };
+  // The second search (with the slide) samples the same grid first: the gaps there are
+  // kept from the first, not computed again (each is a search of the nose's section).
+  constexpr int kGrid = 32;
+  double grid_gap[kGrid + 1];
+  bool grid_known[kGrid + 1] = {};
+  const auto grid_index = [&](double t) {
+    const int j = static_cast<int>(std::lround(t * kGrid));
+    return j >= 0 && j <= kGrid && static_cast<double>(j) / kGrid == t ? j : -1;
+  };
   const double gap = largest_deviation(path, [&](double t) {
     double x, c, z, bb;
-    return gap_at(t, x, c, z, bb);
+    const double d = gap_at(t, x, c, z, bb);
+    if (const int j = grid_index(t); j >= 0) grid_gap[j] = d, grid_known[j] = true;
+    return d;
   });
   if (!path.creased() || std::abs(gap) > target) return gap;
   AxisState ideal;
   const double with_slide = largest_deviation(path, [&](double t) {
     double x, c, z, bb;
-    const double d = gap_at(t, x, c, z, bb);
+    const int j = grid_index(t);
+    double d;
+    if (j >= 0 && grid_known[j]) {
+      d = grid_gap[j];
+      motion.at(t, x, c, z, bb);
+    } else {
+      d = gap_at(t, x, c, z, bb);
+    }
     path.at(a.tau + t * (b.tau - a.tau), ideal);
     const double above = std::max(d, path.slide(x, c, z, bb, ideal));
     return above >= -d ? above : d;
