@@ -6,6 +6,7 @@
 #include <random>
 
 #include "freeturn/nurbs/surface_locator.hpp"
+#include "freeturn/nurbs/surface_span_cache.hpp"
 #include "nurbs/fixtures.hpp"
 
 using freeturn::nurbs::SurfaceLocator;
@@ -58,6 +59,25 @@ static void BM_SurfaceEvaluate(benchmark::State& state) {
 }
 // Argument: the derivative order (1: point and first partials, 2: with second partials).
 BENCHMARK(BM_SurfaceEvaluate)->Arg(1)->Arg(2);
+
+// The same walk through the span cache (nurbs/surface_span_cache.hpp): consecutive points
+// stay in a span, whose power form is built once.
+static void BM_SurfaceEvaluateSpanCache(benchmark::State& state) {
+  freeturn::nurbs::SurfaceSpanCache cache(surface());
+  const int order = static_cast<int>(state.range(0));
+  double u = 0.1, v = 0.2, sum = 0;
+  for (auto _ : state) {
+    const auto d = cache.evaluate(u, v, order);
+    sum += d.point.x() + d.su.y() + d.sv.z() + d.suu.y() + d.svv.z();
+    u += 0.000123;
+    v += 0.000321;
+    if (u > 1) u -= 1;
+    if (v > 1) v -= 1;
+    benchmark::DoNotOptimize(sum);
+  }
+  state.SetItemsProcessed(state.iterations());
+}
+BENCHMARK(BM_SurfaceEvaluateSpanCache)->Arg(1)->Arg(2);
 
 static void BM_InversionWarm(benchmark::State& state) {
   const SurfaceLocator locator(surface());

@@ -7,6 +7,7 @@
 #include "freeturn/core/error.hpp"
 #include "freeturn/nurbs/basis.hpp"
 #include "freeturn/nurbs/scratch_buffer.hpp"
+#include "rational_derivatives.hpp"
 
 namespace freeturn::nurbs {
 namespace {
@@ -122,33 +123,7 @@ SurfaceDerivatives NurbsSurface::evaluate(double u, double v, int order) const {
       for (int l = 0; l <= d - k; ++l) aw[k][l] += nv[l * static_cast<int>(qv) + s] * t;
     }
   }
-  // A4.4: S^(k,l) = (A^(k,l) − Σ_j C(l,j) w^(0,j) S^(k,l−j) − Σ_i C(k,i) w^(i,0) S^(k−i,l)
-  //                 − Σ_i Σ_j C(k,i) C(l,j) w^(i,j) S^(k−i,l−j)) / w.
-  Vector3d s[3][3];
-  for (int k = 0; k <= d; ++k) {
-    for (int l = 0; l <= d - k; ++l) {
-      Vector3d v3 = aw[k][l].head<3>();
-      for (int j = 1; j <= l; ++j) v3 -= binomial(l, j) * aw[0][j].w() * s[k][l - j];
-      for (int i = 1; i <= k; ++i) {
-        v3 -= binomial(k, i) * aw[i][0].w() * s[k - i][l];
-        for (int j = 1; j <= l; ++j)
-          v3 -= binomial(k, i) * binomial(l, j) * aw[i][j].w() * s[k - i][l - j];
-      }
-      s[k][l] = v3 / aw[0][0].w();
-    }
-  }
-  SurfaceDerivatives out;
-  out.point = s[0][0];
-  if (d >= 1) {
-    out.su = s[1][0];
-    out.sv = s[0][1];
-  }
-  if (d >= 2) {
-    out.suu = s[2][0];
-    out.suv = s[1][1];
-    out.svv = s[0][2];
-  }
-  return out;
+  return rational_surface_derivatives(aw, d);
 }
 
 Vector3d NurbsSurface::normal(double u, double v) const {

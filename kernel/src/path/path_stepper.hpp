@@ -99,10 +99,13 @@ class SegmentMotion {
 };
 
 // The largest of the deviation over one segment, signed (> 0: above; < 0: below):
-// samples (8 intervals; 32 on a surface with creases, where the peak is a sharp tent at
-// the crease), then a parabola through the largest and its neighbours. Where the parabola
-// mispredicts the value at its own vertex, the deviation is not smooth there and a
-// golden-section search of the bracket finds the peak instead.
+// samples (8 intervals; 32 on a surface with creases), then a parabola through the largest
+// and its neighbours. Where the parabola mispredicts the value at its own vertex, the
+// deviation is not smooth there and a golden-section search of the bracket finds the peak
+// instead. On a surface with creases the search is always made: the peak there can be a
+// tent at a crease between two samples, and a parabola can predict its own vertex well
+// while missing the tent's apex (a compound eye showed a segment 3.5 % over its samples'
+// estimate, past the 3 % margin).
 template <class Path, class Deviation>
 double largest_deviation(const Path& path, Deviation&& deviation) {
   constexpr int kMaxIntervals = 32;
@@ -125,8 +128,7 @@ double largest_deviation(const Path& path, Deviation&& deviation) {
   const double shift = std::clamp(0.5 * (e[best - 1] - e[best + 1]) / denominator, -1.0, 1.0);
   const double predicted = e[best] - 0.25 * (e[best - 1] - e[best + 1]) * shift;
   const double at_vertex = deviation_at((best + shift) / intervals);
-  if (std::abs(at_vertex - predicted) <= (path.creased() ? 1e-3 : 1e-2) * predicted)
-    return signed_worst;
+  if (!path.creased() && std::abs(at_vertex - predicted) <= 1e-2 * predicted) return signed_worst;
   // Golden-section search for the maximum on [t_{best−1}, t_{best+1}].
   constexpr double kGolden = 0.6180339887498949;
   double lo = (best - 1.0) / intervals, hi = (best + 1.0) / intervals;

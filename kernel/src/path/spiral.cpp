@@ -162,17 +162,19 @@ class SpiralPath {
   double lambda_ = 0;  // the committed point's projection distance
 };
 
-// The spiral is planned in bands of whole turns, each from a cold start at its first angle
-// and ending exactly at its last, so that bands can be planned at once on several threads
-// and the points stay the same on any number (docs/path.md, "Bands"). About 64 bands
-// over the path, each one to four turns: a band is held whole until its turn to be
-// consumed, so its length, not the path's, bounds the memory. PVT programs are one band: a cubic's velocities depend
-// on the blocks either side, which a seam would leave unjudged.
+// The spiral is planned in bands, each from a cold start at its first angle and ending
+// exactly at its last, so that bands can be planned at once on several threads and the
+// points stay the same on any number (docs/path.md, "Bands"). About 64 bands over the
+// path, each one to four turns and a radian: a band is held whole until its turn to be
+// consumed, so its length, not the path's, bounds the memory. PVT programs are one band:
+// a cubic's velocities depend on the blocks either side, which a seam would leave unjudged.
 std::vector<double> band_bounds(double end, bool pvt) {
   constexpr double kTurn = 2 * std::numbers::pi;
   std::vector<double> bounds{0.0};
   if (!pvt && end > kTurn) {
-    const double width = kTurn * std::clamp(std::ceil(end / kTurn / 64), 1.0, 4.0);
+    // n turns and one radian: a seam's block never falls on a round angle (θ = 2πk, where
+    // a sampler that brackets C by whole turns can miss the block by rounding).
+    const double width = kTurn * std::clamp(std::ceil(end / kTurn / 64), 1.0, 4.0) + 1.0;
     for (int k = 1; k * width < end - 1e-9 * width; ++k) bounds.push_back(k * width);
   }
   bounds.push_back(end);

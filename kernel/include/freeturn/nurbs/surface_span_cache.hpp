@@ -1,0 +1,45 @@
+#pragma once
+// A NURBS surface evaluated at consecutive points of a path, which stay in one knot span
+// for many calls. On entering a span, its homogeneous patch is converted to power form
+// about the span's corner (u₀, v₀):
+//
+//   S^w(u, v) = Σ_k Σ_l a_kl (u − u₀)^k (v − v₀)^l,   a_kl = Σ_r Σ_s c_rk d_sl P^w_rs,
+//
+// with c_rk = N_r^(k)(u₀)/k! the Taylor coefficients of the span's basis functions (exact:
+// they are polynomials of degree p there; The NURBS Book, A2.3 for the derivatives), and
+// likewise d_sl in v. Then S^w and its partials are a two-dimensional Horner scheme, and
+// S, Su, Sv (and the second partials) follow by the quotient rule (A4.4). The cache holds
+// one span: a path that leaves it pays one conversion, (p+1)²(q+1)² products.
+//
+// The answer is a function of (u, v) alone (the span's coefficients are fixed by the span),
+// so a cache used on any thread, in any order, gives the same bits; they agree with
+// NurbsSurface::evaluate to rounding.
+
+#include <vector>
+
+#include "freeturn/nurbs/surface.hpp"
+
+namespace freeturn::nurbs {
+
+class SurfaceSpanCache {
+ public:
+  // `surface` must outlive the cache.
+  explicit SurfaceSpanCache(const NurbsSurface& surface);
+
+  // S and its partials up to `order` (0, 1 or 2) at (u, v), clamped to the domain.
+  SurfaceDerivatives evaluate(double u, double v, int order = 1);
+
+  const NurbsSurface& surface() const { return surface_; }
+
+ private:
+  void enter(int span_u, int span_v);
+
+  const NurbsSurface& surface_;
+  int span_u_ = -1, span_v_ = -1;
+  double u0_ = 0, v0_ = 0;
+  std::vector<Vector4d> a_;       // (p + 1) × (q + 1): a_kl at k·(q + 1) + l
+  std::vector<double> work_;      // basis derivatives and their scratch
+  std::vector<Vector4d> partial_; // (p + 1) × (q + 1): Σ_r c_rk P^w_rs, at k·(q + 1) + s
+};
+
+}  // namespace freeturn::nurbs

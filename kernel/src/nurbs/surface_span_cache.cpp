@@ -1,0 +1,100 @@
+#include "freeturn/nurbs/surface_span_cache.hpp"
+
+#include <algorithm>
+
+#include "freeturn/nurbs/basis.hpp"
+#include "rational_derivatives.hpp"
+
+namespace freeturn::nurbs {
+namespace {
+
+// The span holding t, as KnotVector::find_span decides it, when `span` is already it.
+bool holds(const KnotVector& k, int span, double t) {
+  const auto u = k.knots();
+  if (span < 0) return false;
+  const double lo = u[static_cast<std::size_t>(span)], hi = u[static_cast<std::size_t>(span) + 1];
+  return t >= lo && (t < hi || (t == k.back() && span == k.count() - 1));
+}
+
+}  // namespace
+
+SurfaceSpanCache::SurfaceSpanCache(const NurbsSurface& surface) : surface_(surface) {
+  const std::size_t pu = static_cast<std::size_t>(surface.degree_u()) + 1;
+  const std::size_t qv = static_cast<std::size_t>(surface.degree_v()) + 1;
+  a_.resize(pu * qv);
+  partial_.resize(pu * qv);
+  const int p = std::max(surface.degree_u(), surface.degree_v());
+  work_.resize((static_cast<std::size_t>(p) + 1) * (static_cast<std::size_t>(p) + 1) +
+               basis_derivatives_work_size(p));
+}
+
+void SurfaceSpanCache::enter(int span_u, int span_v) {
+  const NurbsSurface& s = surface_;
+  const int p = s.degree_u(), q = s.degree_v();
+  const int pu = p + 1, qv = q + 1;
+  span_u_ = span_u;
+  span_v_ = span_v;
+  u0_ = s.knots_u().knots()[static_cast<std::size_t>(span_u)];
+  v0_ = s.knots_v().knots()[static_cast<std::size_t>(span_v)];
+  double* ders = work_.data();
+  double* scratch = ders + (std::max(p, q) + 1) * (std::max(p, q) + 1);
+  // Σ_r c_rk P^w_rs: the u-direction's Taylor coefficients (k-th derivative over k!).
+  basis_function_derivatives(span_u, u0_, p, p, s.knots_u().knots().data(), ders, scratch);
+  const int nvc = s.count_v();
+  const Vector4d* base = &s.homogeneous_points()[static_cast<std::size_t>((span_u - p) * nvc + span_v - q)];
+  double factorial = 1;
+  for (int k = 0; k <= p; ++k) {
+    if (k > 0) factorial *= k;
+    for (int c = 0; c < qv; ++c) {
+      Vector4d t = Vector4d::Zero();
+      for (int r = 0; r < pu; ++r) t += (ders[k * pu + r] / factorial) * base[r * nvc + c];
+      partial_[static_cast<std::size_t>(k * qv + c)] = t;
+    }
+  }
+  // a_kl = Σ_s d_sl (Σ_r c_rk P^w_rs).
+  basis_function_derivatives(span_v, v0_, q, q, s.knots_v().knots().data(), ders, scratch);
+  for (int k = 0; k < pu; ++k) {
+    double fl = 1;
+    for (int l = 0; l <= q; ++l) {
+      if (l > 0) fl *= l;
+      Vector4d t = Vector4d::Zero();
+      for (int c = 0; c < qv; ++c)
+        t += (ders[l * qv + c] / fl) * partial_[static_cast<std::size_t>(k * qv + c)];
+      a_[static_cast<std::size_t>(k * qv + l)] = t;
+    }
+  }
+}
+
+SurfaceDerivatives SurfaceSpanCache::evaluate(double u, double v, int order) {
+  const NurbsSurface& s = surface_;
+  const int d = std::clamp(order, 0, 2);
+  u = std::clamp(u, s.front_u(), s.back_u());
+  v = std::clamp(v, s.front_v(), s.back_v());
+  if (!holds(s.knots_u(), span_u_, u) || !holds(s.knots_v(), span_v_, v))
+    enter(s.knots_u().find_span(u), s.knots_v().find_span(v));
+  const int p = s.degree_u(), q = s.degree_v(), qv = q + 1;
+  const double du = u - u0_, dv = v - v0_;
+  // Horner in v for each power of u: B_k, B_k', B_k'' at dv; then in u.
+  Vector4d aw[3][3];
+  for (auto& row : aw)
+    for (Vector4d& x : row) x.setZero();
+  for (int k = p; k >= 0; --k) {
+    const Vector4d* row = &a_[static_cast<std::size_t>(k * qv)];
+    Vector4d b = row[q], b1 = Vector4d::Zero(), b2 = Vector4d::Zero();
+    for (int l = q - 1; l >= 0; --l) {
+      b2 = b2 * dv + 2 * b1;
+      b1 = b1 * dv + b;
+      b = b * dv + row[l];
+    }
+    // A = Σ_k B_k du^k and its u-derivatives, by Horner in du as well.
+    aw[2][0] = aw[2][0] * du + 2 * aw[1][0];
+    aw[1][1] = aw[1][1] * du + aw[0][1];
+    aw[1][0] = aw[1][0] * du + aw[0][0];
+    aw[0][0] = aw[0][0] * du + b;
+    aw[0][1] = aw[0][1] * du + b1;
+    aw[0][2] = aw[0][2] * du + b2;
+  }
+  return rational_surface_derivatives(aw, d);
+}
+
+}  // namespace freeturn::nurbs
