@@ -102,12 +102,12 @@ class SegmentMotion {
 // samples (8 intervals; 32 on a surface with creases), then a parabola through the largest
 // and its neighbours. Where the parabola mispredicts the value at its own vertex, the
 // deviation is not smooth there and a golden-section search of the bracket finds the peak
-// instead. On a surface with creases the search is always made: the peak there can be a
-// tent at a crease between two samples, and a parabola can predict its own vertex well
-// while missing the tent's apex (a compound eye showed a segment 3.5 % over its samples'
-// estimate, past the 3 % margin).
+// instead. On a surface with creases, with `always_search`, the search is always made: the
+// peak there can be a tent at a crease between two samples, and a parabola can predict its
+// own vertex well while missing the tent's apex (a compound eye showed a segment 3.5 % over
+// its samples' estimate, past the 3 % margin).
 template <class Path, class Deviation>
-double largest_deviation(const Path& path, Deviation&& deviation) {
+double largest_deviation(const Path& path, Deviation&& deviation, bool always_search = false) {
   constexpr int kMaxIntervals = 32;
   const int intervals = path.creased() ? kMaxIntervals : 8;
   double signed_worst = 0;
@@ -128,7 +128,9 @@ double largest_deviation(const Path& path, Deviation&& deviation) {
   const double shift = std::clamp(0.5 * (e[best - 1] - e[best + 1]) / denominator, -1.0, 1.0);
   const double predicted = e[best] - 0.25 * (e[best - 1] - e[best + 1]) * shift;
   const double at_vertex = deviation_at((best + shift) / intervals);
-  if (!path.creased() && std::abs(at_vertex - predicted) <= 1e-2 * predicted) return signed_worst;
+  if (!(path.creased() && always_search) &&
+      std::abs(at_vertex - predicted) <= (path.creased() ? 1e-3 : 1e-2) * predicted)
+    return signed_worst;
   // Golden-section search for the maximum on [t_{best−1}, t_{best+1}].
   constexpr double kGolden = 0.6180339887498949;
   double lo = (best - 1.0) / intervals, hi = (best + 1.0) / intervals;
@@ -182,12 +184,19 @@ double segment_error(const Path& path, const Segment& segment, Interpolation mod
     const int j = static_cast<int>(std::lround(t * kGrid));
     return j >= 0 && j <= kGrid && static_cast<double>(j) / kGrid == t ? j : -1;
   };
-  const double gap = largest_deviation(path, [&](double t) {
-    double x, c, z, bb;
-    const double d = gap_at(t, x, c, z, bb);
-    if (const int j = grid_index(t); j >= 0) grid_gap[j] = d, grid_known[j] = true;
-    return d;
-  });
+  // Linear motion: every peak searched on a creased surface. PVT keeps the parabola's
+  // test: there a still held nose (a profile's trough narrower than the nose) would make
+  // the searched step end where it began, a block of no time (docs/path.md).
+  const bool always_search = mode == Interpolation::kLinear;
+  const double gap = largest_deviation(
+      path,
+      [&](double t) {
+        double x, c, z, bb;
+        const double d = gap_at(t, x, c, z, bb);
+        if (const int j = grid_index(t); j >= 0) grid_gap[j] = d, grid_known[j] = true;
+        return d;
+      },
+      always_search);
   if (!path.creased() || std::abs(gap) > target) return gap;
   AxisState ideal;
   const double with_slide = largest_deviation(path, [&](double t) {
@@ -203,7 +212,7 @@ double segment_error(const Path& path, const Segment& segment, Interpolation mod
     path.at(a.tau + t * (b.tau - a.tau), ideal);
     const double above = std::max(d, path.slide(x, c, z, bb, ideal));
     return above >= -d ? above : d;
-  });
+  }, always_search);
   return std::abs(with_slide) >= std::abs(gap) ? with_slide : gap;
 }
 
@@ -456,8 +465,12 @@ void distribute(Path& path, const CutterPointOptions& o, Emit&& emit, double beg
     }
     path.commit(trial);
     if (!pvt) {
+      // A nose held still at a crease over the whole step (a profile's trough narrower than
+      // the nose): the block would repeat the last one's place, a move of no length and no
+      // time. The walk goes on from it; nothing is emitted.
+      const bool still = !apart(current, trial);
       current = trial;
-      emit(current, new_error, jump);
+      if (!still) emit(current, new_error, jump);
       continue;
     }
     if (has_before) emit(current, previous_error, pending_jump);

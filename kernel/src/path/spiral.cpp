@@ -168,10 +168,13 @@ class SpiralPath {
 // path, each one to four turns and a radian: a band is held whole until its turn to be
 // consumed, so its length, not the path's, bounds the memory. PVT programs are one band:
 // a cubic's velocities depend on the blocks either side, which a seam would leave unjudged.
-std::vector<double> band_bounds(double end, bool pvt) {
+// So are equal-angle and equal-arc-length paths: cheap to plan, and a seam would break the
+// equal steps (a dialect without block times relies on them).
+std::vector<double> band_bounds(double end, const CutterPointOptions& points) {
   constexpr double kTurn = 2 * std::numbers::pi;
   std::vector<double> bounds{0.0};
-  if (!pvt && end > kTurn) {
+  if (points.interpolation != Interpolation::kCubic && points.rule == CutterPointRule::kChordError &&
+      end > kTurn) {
     // n turns and one radian: a seam's block never falls on a round angle (θ = 2πk, where
     // a sampler that brackets C by whole turns can miss the block by rounding).
     const double width = kTurn * std::clamp(std::ceil(end / kTurn / 64), 1.0, 4.0) + 1.0;
@@ -196,8 +199,7 @@ PathSummary plan_spiral(const Surface& design, const BaseSurface& base,
     throw InputError("points_per_revolution", "must be at least 3");
   forget_thread_warm_starts();
   const SpiralPath path(design, base, o);
-  const std::vector<double> bounds =
-      band_bounds(path.tau_end(), o.points.interpolation == Interpolation::kCubic);
+  const std::vector<double> bounds = band_bounds(path.tau_end(), o.points);
   const long bands = static_cast<long>(bounds.size()) - 1;
   struct Band {
     std::vector<ContactPoint> points;
