@@ -1,6 +1,5 @@
 #include "freeturn/post/nc_guard.hpp"
 
-#include <cctype>
 #include <charconv>
 #include <cmath>
 #include <cstdio>
@@ -10,6 +9,16 @@
 #include "freeturn/core/number_text.hpp"
 
 namespace freeturn {
+namespace {
+
+// ASCII classes: every byte check_line classifies is printable ASCII by then, and the C
+// library's (locale-dependent, one call a byte) would cost more than the rest of the guard.
+constexpr bool ascii_digit(char c) { return c >= '0' && c <= '9'; }
+constexpr bool ascii_letter(char c) { return (c >= 'a' && c <= 'z') || (c >= 'A' && c <= 'Z'); }
+constexpr char ascii_lower(char c) { return c >= 'A' && c <= 'Z' ? static_cast<char>(c + 32) : c; }
+constexpr char ascii_upper(char c) { return c >= 'a' && c <= 'z' ? static_cast<char>(c - 32) : c; }
+
+}  // namespace
 
 NcGuard::NcGuard(const MachineDescription& machine) {
   for (const AxisSpec& s : machine.axes) {
@@ -107,13 +116,14 @@ void NcGuard::check_line(std::string_view line) {
     }
   }
   // The words outside comments: "( … )" and everything after ';'.
-  std::string code;
+  std::string& code = code_;
+  code.clear();
   int depth = 0;
   for (const char ch : line) {
     if (ch == ';' && depth == 0) break;
     if (ch == '(') ++depth;
     else if (ch == ')' && depth > 0) --depth;
-    else if (depth == 0) code += static_cast<char>(std::tolower(static_cast<unsigned char>(ch)));
+    else if (depth == 0) code += ascii_lower(ch);
   }
   if (code.find("nan") != std::string::npos || code.find("inf") != std::string::npos)
     return refuse("a number that is not finite: " + std::string(line));
@@ -124,45 +134,38 @@ void NcGuard::check_line(std::string_view line) {
   for (const char* code_word : {"g53", "g28", "g30", "g92"}) {
     for (std::size_t at = code.find(code_word); at != std::string::npos; at = code.find(code_word, at + 1)) {
       const std::size_t after = at + 3;
-      if (after >= code.size() || !std::isdigit(static_cast<unsigned char>(code[after]))) work_frame = false;
+      if (after >= code.size() || !ascii_digit(code[after])) work_frame = false;
     }
   }
   for (std::size_t i = 0; i < code.size(); ++i) {
-    if (!std::isalpha(static_cast<unsigned char>(code[i]))) continue;
+    if (!ascii_letter(code[i])) continue;
     std::size_t j = i + 1;
     if (j < code.size() && (code[j] == '-' || code[j] == '+')) ++j;
     const std::size_t digits = j;
-    while (j < code.size() && (std::isdigit(static_cast<unsigned char>(code[j])) || code[j] == '.')) ++j;
+    while (j < code.size() && (ascii_digit(code[j]) || code[j] == '.')) ++j;
     if (j == digits) {
       // A keyword's letter, unless it stands alone: then it is a word whose number is
       // missing or is not a number ("F" then garbage).
-      const bool alone = (i == 0 || !std::isalpha(static_cast<unsigned char>(code[i - 1]))) &&
-                         (j >= code.size() || !std::isalpha(static_cast<unsigned char>(code[j])));
-      if (alone && std::string("xzcbf").find(code[i]) != std::string::npos)
-        return refuse(std::string(1, static_cast<char>(std::toupper(static_cast<unsigned char>(code[i])))) +
+      const bool alone = (i == 0 || !ascii_letter(code[i - 1])) &&
+                         (j >= code.size() || !ascii_letter(code[j]));
+      if (alone && std::string_view("xzcbf").find(code[i]) != std::string_view::npos)
+        return refuse(std::string(1, ascii_upper(code[i])) +
                       " without a number after it: " + std::string(line));
       continue;
     }
-    const char letter = static_cast<char>(std::toupper(static_cast<unsigned char>(code[i])));
+    const char letter = ascii_upper(code[i]);
     std::string_view number(code.data() + i + 1, j - i - 1);
     if (!number.empty() && number.front() == '+') number.remove_prefix(1);
     double v = 0;
     const auto [end, error] = std::from_chars(number.data(), number.data() + number.size(), v);
-    std::string word(1, letter);
-    word += number;
-    if (error != std::errc() || end != number.data() + number.size() || !std::isfinite(v)) {
-      word += " is not a number";
-      return refuse(word);
-    }
+    const auto word = [&] { return std::string(1, letter) + std::string(number); };
+    if (error != std::errc() || end != number.data() + number.size() || !std::isfinite(v))
+      return refuse(word() + " is not a number");
     const Range& r = ranges_[letter - 'A'];
     if (work_frame && r.checked && (v < r.min || v > r.max)) {
-      word += " is outside the machine's range [";
-      word += shortest_text(r.min);
-      word += ", ";
-      word += shortest_text(r.max);
-      word += "]";
       crossed_ = {letter, v > r.max};
-      return refuse(word);
+      return refuse(word() + " is outside the machine's range [" + shortest_text(r.min) + ", " +
+                    shortest_text(r.max) + "]");
     }
     i = j - 1;
   }

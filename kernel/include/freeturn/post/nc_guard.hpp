@@ -60,6 +60,7 @@ class NcGuard {
   std::vector<File> files_;
   std::size_t current_ = 0;
   std::string reason_;
+  std::string code_;  // check_line's words outside comments, lower case (reused: no allocation a line)
   Crossed crossed_;
 };
 
