@@ -41,13 +41,14 @@ const std::vector<PathPoint>& path() {
 
 }  // namespace
 
-// S and its partials up to `order` along a walk over the domain.
-static void BM_SurfaceEvaluate(benchmark::State& state) {
-  const auto& s = surface();
+// S and its partials up to the argument's order along a walk over the domain, by
+// `evaluate(u, v, order)`.
+template <class Evaluate>
+void walk(benchmark::State& state, Evaluate&& evaluate) {
   const int order = static_cast<int>(state.range(0));
   double u = 0.1, v = 0.2, sum = 0;
   for (auto _ : state) {
-    const auto d = s.evaluate(u, v, order);
+    const auto d = evaluate(u, v, order);
     sum += d.point.x() + d.su.y() + d.sv.z() + d.suu.y() + d.svv.z();
     u += 0.000123;
     v += 0.000321;
@@ -57,6 +58,10 @@ static void BM_SurfaceEvaluate(benchmark::State& state) {
   }
   state.SetItemsProcessed(state.iterations());
 }
+
+static void BM_SurfaceEvaluate(benchmark::State& state) {
+  walk(state, [&](double u, double v, int order) { return surface().evaluate(u, v, order); });
+}
 // Argument: the derivative order (1: point and first partials, 2: with second partials).
 BENCHMARK(BM_SurfaceEvaluate)->Arg(1)->Arg(2);
 
@@ -64,18 +69,7 @@ BENCHMARK(BM_SurfaceEvaluate)->Arg(1)->Arg(2);
 // stay in a span, whose power form is built once.
 static void BM_SurfaceEvaluateSpanCache(benchmark::State& state) {
   freeturn::nurbs::SurfaceSpanCache cache(surface());
-  const int order = static_cast<int>(state.range(0));
-  double u = 0.1, v = 0.2, sum = 0;
-  for (auto _ : state) {
-    const auto d = cache.evaluate(u, v, order);
-    sum += d.point.x() + d.su.y() + d.sv.z() + d.suu.y() + d.svv.z();
-    u += 0.000123;
-    v += 0.000321;
-    if (u > 1) u -= 1;
-    if (v > 1) v -= 1;
-    benchmark::DoNotOptimize(sum);
-  }
-  state.SetItemsProcessed(state.iterations());
+  walk(state, [&](double u, double v, int order) { return cache.evaluate(u, v, order); });
 }
 BENCHMARK(BM_SurfaceEvaluateSpanCache)->Arg(1)->Arg(2);
 

@@ -15,6 +15,7 @@
 #include "freeturn/surface/even_asphere.hpp"
 #include "freeturn/surface/nurbs_height_field.hpp"
 #include "freeturn/surface/zernike.hpp"
+#include "path/fixtures.hpp"
 
 namespace {
 
@@ -32,20 +33,8 @@ std::unique_ptr<freeturn::Surface> make_surface(int which) {
     for (int j = 0; j < 66; ++j) a[j] = 2e-4 * std::sin(1.0 + j) / (1 + j / 10.0);
     return std::make_unique<freeturn::Zernike>(1 / 80.0, -0.6, std::array<double, 9>{1e-6}, 8.0, a);
   }
-  // A rational bicubic 20 × 20 net over [−6, 6]², its x and y perturbed so that the
-  // height field must invert (x, y) → (u, v), with smooth bumps of ±0.3 mm.
-  std::vector<Eigen::Vector3d> points;
-  std::vector<double> weights, knots = {0, 0, 0, 0};
-  for (int k = 1; k < 17; ++k) knots.push_back(k / 17.0);
-  knots.insert(knots.end(), {1, 1, 1, 1});
-  for (int i = 0; i < 20; ++i)
-    for (int j = 0; j < 20; ++j) {
-      const double x = -6 + 12.0 * i / 19 + 0.05 * std::sin(j), y = -6 + 12.0 * j / 19 + 0.05 * std::cos(i);
-      points.emplace_back(x, y, 0.3 * std::sin(x / 3) * std::cos(y / 4));
-      weights.push_back(1 + 0.1 * std::sin(i + j));
-    }
-  return std::make_unique<freeturn::NurbsHeightField>(
-      freeturn::nurbs::NurbsSurface(3, 3, knots, knots, points, weights));
+  // A rational bicubic 20 × 20 net whose height field must invert (x, y) → (u, v).
+  return std::make_unique<freeturn::NurbsHeightField>(freeturn::test::wavy_nurbs(20, 0.3));
 }
 
 const char* const kNames[] = {"sphere", "zernike66", "nurbs"};

@@ -80,6 +80,13 @@ int main(int argc, char** argv) {
   const auto output_option = [](CLI::App* c, std::string& output) {
     c->add_option("-o,--output", output, "the folder to write into")->capture_default_str();
   };
+  // Threads that plan the spiral (and simulate): the outputs are the same on any number.
+  const auto threads_option = [](CLI::App* c, int& threads) {
+    c->add_option("--threads", threads,
+                  "threads that plan the spiral (and simulate); the outputs are the same on any "
+                  "number [default: one per core]")
+        ->check(CLI::Range(1, 1024));
+  };
   const auto quiet_flag = [](CLI::App* c, bool& quiet) {
     c->add_flag("-q,--quiet", quiet, "print only errors and the verdict's reasons");
   };
@@ -91,10 +98,7 @@ int main(int argc, char** argv) {
   output_option(run_app, run.output);
   quiet_flag(run_app, run.quiet);
   run_app->add_flag("--simulate", run.simulate, "also cut the finishing pass in simulation (docs/verify.md)");
-  run_app->add_option("--threads", run.threads,
-                       "threads that plan (and simulate); the outputs are the same on any number "
-                       "[default: one per core]")
-      ->check(CLI::Range(1, 1024));
+  threads_option(run_app, run.threads);
   run_app->callback([&] { code = guarded("run", [&] { return run_run(run); }); });
 
   CheckArgs check;
@@ -102,9 +106,7 @@ int main(int argc, char** argv) {
       "check", "everything run does but writing: tool checks, machine limits, dynamics; a verdict");
   job_option(check_app, check.job);
   quiet_flag(check_app, check.quiet);
-  check_app->add_option("--threads", check.threads,
-                        "threads that plan; the verdict is the same on any number [default: one per core]")
-      ->check(CLI::Range(1, 1024));
+  threads_option(check_app, check.threads);
   check_app->callback([&] { code = guarded("check", [&] { return run_check(check); }); });
 
   SimulateArgs simulate;
@@ -118,8 +120,7 @@ int main(int argc, char** argv) {
       ->check(CLI::Range(0.0, 10.0))->capture_default_str();
   simulate_app->add_option("--columns", simulate.columns, "angles of the grid over a turn (even)")
       ->check(CLI::Range(2, 1'000'000))->capture_default_str();
-  simulate_app->add_option("--threads", simulate.threads, "threads [default: one per core]")
-      ->check(CLI::Range(1, 1024));
+  threads_option(simulate_app, simulate.threads);
   simulate_app->callback([&] { code = guarded("simulate", [&] { return run_simulate(simulate); }); });
 
   SampleArgs sample;

@@ -309,34 +309,9 @@ TEST_SUITE("path") {
   }
 }
 
-#include <random>
-
-#include "freeturn/nurbs/surface.hpp"
-#include "freeturn/surface/nurbs_height_field.hpp"
-
-namespace {
-
-// A rational bicubic 12 × 12 net over [−6, 6]² whose x and y are perturbed, so that every
-// height query inverts (x, y) → (u, v) from the thread's warm start.
-NurbsHeightField wavy_nurbs() {
-  std::vector<Eigen::Vector3d> points;
-  std::vector<double> weights, knots = {0, 0, 0, 0};
-  for (int k = 1; k < 9; ++k) knots.push_back(k / 9.0);
-  knots.insert(knots.end(), {1, 1, 1, 1});
-  for (int i = 0; i < 12; ++i)
-    for (int j = 0; j < 12; ++j) {
-      const double x = -6 + 12.0 * i / 11 + 0.05 * std::sin(j), y = -6 + 12.0 * j / 11 + 0.05 * std::cos(i);
-      points.emplace_back(x, y, 0.2 * std::sin(x / 3) * std::cos(y / 4));
-      weights.push_back(1 + 0.1 * std::sin(i + j));
-    }
-  return NurbsHeightField(nurbs::NurbsSurface(3, 3, knots, knots, points, weights));
-}
-
-}  // namespace
-
 TEST_SUITE("path") {
   TEST_CASE("bands: the same points, to the bit, on 1, 2 and 8 threads; ε holds across seams") {
-    const NurbsHeightField surface = wavy_nurbs();
+    const NurbsHeightField surface = test::wavy_nurbs(12, 0.2);
     const BaseSurface base = fit_base_least_squares(sample_aperture(surface, 0, 4.0));
     SpiralOptions o;
     o.outer_radius = 4.0;
