@@ -39,6 +39,12 @@ else()
   freeturn_missing("yaml-cpp 0.7" libyaml-cpp-dev)
 endif()
 
+# nlohmann-json 3.11 (header only), report.json's writer -> nlohmann_json::nlohmann_json
+find_package(nlohmann_json 3.10 QUIET)
+if(NOT TARGET nlohmann_json::nlohmann_json)
+  freeturn_missing("nlohmann-json 3" nlohmann-json3-dev)
+endif()
+
 # pkg-config reads the installed freeturn.pc in the install test.
 find_package(PkgConfig QUIET)
 if(NOT PKG_CONFIG_FOUND)

@@ -106,9 +106,9 @@ py::dict figures(const PassFigures& f) {
 
 py::dict result_dict(const RunReport& r, const std::vector<std::string>& files) {
   py::dict d;
-  d["verdict"] = r.unsafe.empty() ? "PASS" : "UNSAFE";
-  d["unsafe"] = r.unsafe;
-  d["warnings"] = r.warnings;
+  d["verdict"] = r.safe() ? "PASS" : "UNSAFE";
+  d["unsafe"] = r.unsafe_reasons();
+  d["warnings"] = r.messages();
   d["job"] = r.job;
   d["machine"] = r.machine;
   d["spindle_rpm"] = r.spindle_rpm;
@@ -196,22 +196,16 @@ PYBIND11_MODULE(freeturn, m) {
           path = plan_job(*job);
         }
         const auto n = static_cast<py::ssize_t>(path.locations.size());
-        const char* names[16] = {"theta", "x", "y", "z", "nx", "ny", "nz", "tx", "ty", "tz",
-                                 "b_deg", "X", "Z", "C", "B", "chord"};
         py::dict out;
         std::vector<py::array_t<double>> columns;
         for (int c = 0; c < 16; ++c) columns.emplace_back(n);
         for (py::ssize_t i = 0; i < n; ++i) {
-          const CutterLocation& cl = path.locations[static_cast<std::size_t>(i)];
-          const AxisRecord& r = path.records[static_cast<std::size_t>(i)];
-          const double v[16] = {cl.contact.theta,     cl.contact.point.x(),  cl.contact.point.y(),
-                                cl.contact.point.z(), cl.contact.normal.x(), cl.contact.normal.y(),
-                                cl.contact.normal.z(), cl.nose_centre.x(),   cl.nose_centre.y(),
-                                cl.nose_centre.z(),   cl.b * 180 / std::numbers::pi,
-                                r.x, r.z, r.c, r.b, cl.contact.chord_error};
-          for (int c = 0; c < 16; ++c) columns[static_cast<std::size_t>(c)].mutable_data()[i] = v[c];
+          const std::array<double, 16> v = cl_values(path.locations[static_cast<std::size_t>(i)],
+                                                     path.records[static_cast<std::size_t>(i)]);
+          for (std::size_t c = 0; c < 16; ++c) columns[c].mutable_data()[i] = v[c];
         }
-        for (int c = 0; c < 16; ++c) out[names[c]] = columns[static_cast<std::size_t>(c)];
+        // The CL CSV's columns, by the same names (report/cl_file.hpp).
+        for (std::size_t c = 0; c < 16; ++c) out[kClColumns[c]] = columns[c];
         return out;
       },
       py::arg("path_or_job"),

@@ -19,7 +19,9 @@ root="$(cd "$(dirname "${BASH_SOURCE[0]}")/.." && pwd)"
 packages=(
   cmake g++ make pkg-config
   libeigen3-dev libopenmesh-dev libyaml-cpp-dev doctest-dev
-  libbenchmark-dev libcli11-dev
+  libbenchmark-dev libcli11-dev nlohmann-json3-dev
+  # The tests' report.json schema check and the locale test's de_DE definition.
+  python3-jsonschema locales
   # The tests' independent NC reader (tests/jobs/nc_dynamics.py).
   python3
   # The Python module (python/) and its tests.

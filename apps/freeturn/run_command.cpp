@@ -65,8 +65,8 @@ void print_summary(const Job& job, const RunResult& r) {
 
 // Prints the verdict's reasons, one "UNSAFE: …" line each; true when the program is unsafe.
 bool say_unsafe(const RunReport& r, std::FILE* out = stderr) {
-  for (const std::string& u : r.unsafe) std::fprintf(out, "UNSAFE: %s\n", u.c_str());
-  return !r.unsafe.empty();
+  for (const std::string& u : r.unsafe_reasons()) std::fprintf(out, "UNSAFE: %s\n", u.c_str());
+  return !r.safe();
 }
 
 }  // namespace
@@ -93,7 +93,7 @@ int run_simulate(const SimulateArgs& args) {
   simulation.columns = args.columns;
   simulation.threads = args.threads;
   const Job job = load_job(args.job, yaml_byte_bound());
-  Observer observer(true);
+  Observer observer(args.quiet);
   RunOptions options = run_options(args.output);
   options.threads = args.threads;
   const RunReport r = simulate_job(job, simulation, options, &observer).report;
@@ -107,9 +107,14 @@ int run_simulate(const SimulateArgs& args) {
   std::printf(
       "  the planner predicted PV %.3f nm (max %+.3f, min %+.3f nm): %.3f× the simulation, %s\n",
       s.predicted.pv() * 1e6, s.predicted.max() * 1e6, s.predicted.min() * 1e6, ratio,
-      ratio < 1      ? "NOT an upper bound"
-      : ratio <= 1.1 ? "an upper bound within 10%"
-                     : "an upper bound, loose by more than 10%");
+      prediction_bound_text(ratio));
+  if (r.form_error) {
+    const FormErrorSplit& e = *r.form_error;
+    std::printf("  figure (the residual's mean over a pitch) PV %.3f nm, RMS %.3f nm; finish "
+                "(the cusps) PV %.3f nm%s\n",
+                e.figure_pv * 1e6, e.figure_rms * 1e6, e.finish_pv * 1e6,
+                e.resolved ? "" : " (the grid is coarser than a third of the pitch: not resolved)");
+  }
   for (const ResidualPlace& p : s.worst)
     std::printf("  worst: %+.3f nm at r = %.4f mm, θ = %.2f° (%s)\n", p.residual * 1e6, p.r,
                 p.phi * 180 / std::numbers::pi, to_string(p.cause));
@@ -131,7 +136,7 @@ int run_check(const CheckArgs& args) {
         job.name.c_str(), r.machine.c_str(), f.points, f.chord_max * 1e6, f.dynamics.max_rpm,
         r.alpha_max_deg >= 0 ? (", α_max " + std::to_string(r.alpha_max_deg) + "°").c_str() : "");
     if (!args.quiet)
-      for (const std::string& w : r.warnings) std::printf("warning: %s\n", w.c_str());
+      for (const std::string& w : r.messages()) std::printf("warning: %s\n", w.c_str());
     return kExitOk;
   } catch (const CheckFailure& e) {
     // A check the program would fail: exit 1. Bad input found while planning is exit 2,

@@ -84,16 +84,21 @@ class MoorePost {
         out_.select_main();
         out_.put(std::string("M98(") + name + ")\n");
         out_.open_file(name);
-        last_time_ = -1;  // every child states its feed
+        last_feed_.clear();  // every child states its feed
       }
-      if (b[k].time != last_time_) {
-        if (!(std::nearbyint(b[k].time * time_scale()) > 0))
-          throw PostError("a block time of " + std::to_string(b[k].time) + " s reads F0 at " +
-                          std::to_string(time_decimals_) + " decimals: raise time_decimals");
-        line_ = "G93 F";
-        append_number(line_, b[k].time, time_decimals_);
-        line_ += "\n";
-        last_time_ = b[k].time;
+      // F is modal: written when its text changes, not when the double behind it does
+      // (blocks of 0.1333331 s and 0.1333334 s both read F0.133333).
+      feed_.clear();
+      append_number(feed_, b[k].time, time_decimals_);
+      if (feed_ != last_feed_) {
+        if (!(std::nearbyint(b[k].time * time_scale()) > 0)) {
+          std::string message = "a block time of ";
+          append_number(message, b[k].time, 9);
+          throw PostError(message + " s reads F0 at " + std::to_string(time_decimals_) +
+                          " decimals: raise time_decimals");
+        }
+        line_ = "G93 F" + feed_ + "\n";
+        last_feed_ = feed_;
       }
       words(b[k]);
       line_ += "\n";
@@ -136,7 +141,8 @@ class MoorePost {
   double retract_ = 1.0, approach_feed_ = 200, child_blocks_ = 0;
   int time_decimals_ = 6;
   bool first_ = true;
-  double last_time_ = -1, clear_z_ = 0;
+  double clear_z_ = 0;
+  std::string feed_, last_feed_;  // the F text of this block and the last one written
   int z_decimals_ = 6;
   long long in_child_ = 0;
   int children_ = 0;

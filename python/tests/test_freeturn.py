@@ -66,12 +66,12 @@ def test_plan_equals_the_cl_csv(tmp_path):
     result = freeturn.run_job(job, output_dir=str(tmp_path))
     assert result["verdict"] == "PASS"
     rows = np.loadtxt(tmp_path / "oap_segment.cl.csv", delimiter=",", skiprows=1)
-    assert rows.shape == (len(path["theta"]), 16)
+    assert rows.shape == (len(path["theta_rad"]), 16)
     header = open(tmp_path / "oap_segment.cl.csv").readline().strip().split(",")
     for i, name in enumerate(header):
         # Shortest round-trip text: the CSV reads back as the very doubles planned.
         assert np.array_equal(path[name], rows[:, i]), name
-    assert result["passes"][-1]["points"] == len(path["theta"])
+    assert result["passes"][-1]["points"] == len(path["theta_rad"])
 
 
 def test_run_job_writes_the_cli_nc(tmp_path):

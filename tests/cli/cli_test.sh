@@ -71,20 +71,20 @@ contains "iso machine listed" "$tmp/stdout" "iso-lathe-xzcb           axes XZCB 
 #   with the limit, and check says UNSAFE (never PASS) and exits 1.
 sed 's/spindle_rpm: 20/spindle_rpm: 20000/' "$src/configs/jobs/oap_segment.yaml" > "$tmp/fast.yaml"
 "$freeturn" run "$tmp/fast.yaml" -o "$tmp/fast" > "$tmp/stdout" 2> "$tmp/err"; expect "run too fast, scheduled" 0 $?
-contains "scheduled run passes" "$tmp/fast/report.json" '"verdict": "PASS"'
-contains "scheduled run says so" "$tmp/fast/report.json" '"scheduled": true'
+contains "scheduled run passes" "$tmp/fast/oap_segment.report.json" '"status": "PASS"'
+contains "scheduled run says so" "$tmp/fast/oap_segment.report.json" '"scheduled": true'
 "$freeturn" check "$tmp/fast.yaml" > "$tmp/stdout"; expect "check too fast, scheduled" 0 $?
 contains "check pass" "$tmp/stdout" "PASS: "
 sed 's/spindle_rpm: 20000/spindle_rpm: 20000\n  timing: constant_rpm/' "$tmp/fast.yaml" > "$tmp/constant.yaml"
 "$freeturn" run "$tmp/constant.yaml" -o "$tmp/constant" > /dev/null 2> "$tmp/err"; expect "constant rpm" 0 $?
-rpm=$(sed -n 's/.*"spindle_rpm": \([0-9.e+-]*\).*/\1/p' "$tmp/constant/report.json")
-max=$(sed -n 's/.*"max_rpm": \([0-9.e+-]*\).*/\1/p' "$tmp/constant/report.json" | tail -1)
+read -r rpm max < <(python3 -c 'import json, sys; r = json.load(open(sys.argv[1]))
+print(r["timing"]["spindle_rpm"], r["passes"][-1]["constant_rpm"]["max_rpm"])' "$tmp/constant/oap_segment.report.json")
 awk -v a="$rpm" -v b="$max" 'BEGIN { exit !(a > 0 && a < 20000 && a == b) }' ||
   { echo "FAIL: constant rpm: programmed $rpm rpm, highest feasible $max"; fail=1; }
 sed 's/spindle_rpm: 20000/spindle_rpm: 20000\n  enforce_dynamics: false/' "$tmp/fast.yaml" > "$tmp/unsafe.yaml"
 "$freeturn" run "$tmp/unsafe.yaml" -o "$tmp/unsafe" > /dev/null 2> "$tmp/err"; expect "run over the limits" 1 $?
 contains "run says UNSAFE with the limit" "$tmp/err" "UNSAFE: finish: at 20000 rpm the program exceeds the machine's limits"
-contains "the unsafe report says so" "$tmp/unsafe/report.json" '"verdict": "UNSAFE"'
+contains "the unsafe report says so" "$tmp/unsafe/oap_segment.report.json" '"status": "UNSAFE"'
 "$freeturn" check "$tmp/unsafe.yaml" > "$tmp/stdout"; expect "check over the limits" 1 $?
 contains "check verdict" "$tmp/stdout" "UNSAFE: finish: at 20000 rpm"
 if grep -q "^PASS" "$tmp/stdout"; then echo "FAIL: check printed PASS for an unsafe program"; fail=1; fi
@@ -94,7 +94,7 @@ python3 - "$tmp/fast/oap_segment.cl.csv" <<'PY' || { echo "FAIL: CL data not exa
 import csv, math, sys
 worst = 0.0
 for row in csv.DictReader(open(sys.argv[1])):
-    t, x, y = float(row["theta"]), float(row["x"]), float(row["y"])
+    t, x, y = float(row["theta_rad"]), float(row["x_mm"]), float(row["y_mm"])
     r = math.hypot(x, y)
     if r > 0:
         worst = max(worst, abs(math.remainder(math.atan2(y, x) - t, 2 * math.pi)) * r)
@@ -119,7 +119,7 @@ machine: moore-nanotech-250upl
 YAML
 "$freeturn" simulate "$tmp/ring_spiral.yaml" -o "$tmp/ring_spiral" > "$tmp/stdout"; expect "ring spiral simulate" 0 $?
 contains "ring spiral: prediction bounds the cut" "$tmp/stdout" "an upper bound"
-contains "ring spiral passes" "$tmp/ring_spiral/report.json" '"verdict": "PASS"'
+contains "ring spiral passes" "$tmp/ring_spiral/ring_spiral.report.json" '"status": "PASS"'
 
 # A downgraded check still marks the program UNSAFE: a sinusoidal ring whose troughs
 # (concave radius 1/(Aω²) = 0.507 mm) are tighter than a 0.6 mm nose, with the gouge
@@ -131,7 +131,8 @@ sed -e 's/amplitude: 0.005 /amplitude: 0.05 /' -e 's/period: 2.5 /period: 1.0 /'
 contains "run says UNSAFE at the gouge" "$tmp/err" "UNSAFE: finish: gouge: "
 contains "run names where" "$tmp/err" "at θ = "
 [[ -f "$tmp/gouge/sinusoidal_ring.precitech-nanoform-250.nc" ]] || { echo "FAIL: a warning-only job wrote no program"; fail=1; }
-contains "the report says UNSAFE" "$tmp/gouge/report.json" '"verdict": "UNSAFE"'
+contains "the report says UNSAFE" "$tmp/gouge/sinusoidal_ring.report.json" '"status": "UNSAFE"'
+contains "the gouge is a structured warning" "$tmp/gouge/sinusoidal_ring.report.json" '"kind": "local_gouge"'
 "$freeturn" check "$tmp/gouge.yaml" > "$tmp/stdout"; expect "check with a downgraded gouge" 1 $?
 contains "check says UNSAFE" "$tmp/stdout" "UNSAFE: finish: gouge: "
 if grep -q "^PASS" "$tmp/stdout"; then echo "FAIL: check printed PASS for a gouging program"; fail=1; fi
@@ -153,15 +154,24 @@ contains "check pass" "$tmp/stdout" "PASS: oap_segment on iso-lathe-xzc"
 "$freeturn" simulate "$src/configs/jobs/oap_segment.yaml" -o "$tmp/sim" > "$tmp/stdout"; expect "simulate" 0 $?
 pv=$(sed -n 's/.*form error PV \([0-9.]*\) nm.*/\1/p' "$tmp/stdout")
 awk -v pv="$pv" 'BEGIN { exit !(pv > 615 && pv < 635) }' || { echo "FAIL: simulated PV '$pv' nm, expected about 625"; fail=1; }
-for f in oap_segment.residual.csv oap_segment.residual.ply report.json; do
+for f in oap_segment.residual.csv oap_segment.residual.ply oap_segment.report.json oap_segment.report.html; do
   [[ -s "$tmp/sim/$f" ]] || { echo "FAIL: simulate wrote no $f"; fail=1; }
 done
-contains "simulation figures in the report" "$tmp/sim/report.json" '"simulation": {"pv_mm": '
+contains "simulation figures in the report" "$tmp/sim/oap_segment.report.json" '"source": "simulation"'
 # The scallop dominates this cut: the planner's prediction bounds it within 10%, and the
 # worst places say so.
 contains "prediction bound" "$tmp/stdout" "an upper bound within 10%"
 contains "worst place cause" "$tmp/stdout" "(scallop)"
-contains "worst places in the report" "$tmp/sim/report.json" '"cause": "scallop"'
+contains "worst places in the report" "$tmp/sim/oap_segment.report.json" '"cause": "scallop"'
+# Figure and finish apart: the cusps are the finish (≈ 625 nm), the figure is what the
+# chord error leaves (under its 100 nm tolerance), not the cusps again.
+python3 - "$tmp/sim/oap_segment.report.json" <<'PY' || { echo "FAIL: figure and finish not apart"; fail=1; }
+import json, sys
+e = json.load(open(sys.argv[1]))["form_error"]
+ok = 615 < e["finish_nm"]["pv"] < 635 and e["figure_nm"]["pv"] < 100 and e["split"]["resolved"]
+sys.exit(0 if ok else 1)
+PY
+contains "figure in the simulate output" "$tmp/stdout" "figure (the residual's mean over a pitch) PV"
 # On a PVT machine the controller's cubics: the prediction still bounds the simulation.
 sed 's/^machine: .*/machine: precitech-nanoform-250/' "$src/configs/jobs/oap_segment.yaml" > "$tmp/oap_pvt.yaml"
 (cd "$src/configs/jobs" && "$freeturn" simulate "$tmp/oap_pvt.yaml" -o "$tmp/sim_pvt") > "$tmp/stdout"; expect "simulate pvt" 0 $?

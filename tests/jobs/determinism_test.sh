@@ -16,7 +16,7 @@ for job in "$@"; do
   done
   for f in "$tmp/$job.t1"/*; do
     name=$(basename "$f")
-    case "$name" in *.nc|*.csv|report.json|*.ply) ;; *) continue ;; esac
+    case "$name" in *.nc|*.csv|*.report.json|*.report.html|*.ply|*.obj|*.vtk) ;; *) continue ;; esac
     for run in t2 t8 t8again; do
       compared=$((compared + 1))
       cmp -s "$f" "$tmp/$job.$run/$name" || { echo "FAIL: $job: $name differs between 1 thread and $run"; fail=1; }

@@ -95,13 +95,24 @@ TEST_SUITE("pipeline") {
       text.replace(text.find("CHECKS"), 6, checks);
       return load_job(dir.write(name, text));
     };
-    CHECK(check_job(load_job(dir.write("plate.yaml", sphere_job("")))).unsafe.empty());
+    CHECK(check_job(load_job(dir.write("plate.yaml", sphere_job("")))).safe());
     CHECK_THROWS_AS(check_job(job_with("stop.yaml", "")), CheckFailure);
     Recorder observer;
     const RunReport r = check_job(
         job_with("warn.yaml", "  checks: {gouge: warning, global_gouge: warning}\n"), {}, &observer);
-    REQUIRE_FALSE(r.unsafe.empty());
-    CHECK(r.unsafe.front().find("gouge") != std::string::npos);
+    REQUIRE_FALSE(r.safe());
+    CHECK(r.unsafe_reasons().front().find("gouge") != std::string::npos);
+    // The same finding as a record: its kind, where, by how much, against what.
+    const ReportWarning& w = r.warnings.front();
+    CHECK(w.severity == ReportWarning::Severity::kUnsafe);
+    CHECK((w.kind == "local_gouge" || w.kind == "global_gouge"));
+    CHECK(w.pass == "finish");
+    CHECK(w.count > 0);
+    CHECK(w.r_mm >= 0);
+    CHECK(w.r_mm <= 2.0);
+    CHECK(w.theta_deg >= 0);
+    CHECK(w.theta_deg < 360);
+    CHECK(std::hypot(w.x_mm, w.y_mm) == doctest::Approx(w.r_mm).epsilon(1e-9));
     CHECK_FALSE(observer.warnings.empty());
     // Nothing is written by a check: the folder holds the three jobs alone.
     CHECK(std::distance(std::filesystem::directory_iterator(dir.path()),

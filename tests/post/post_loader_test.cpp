@@ -172,6 +172,44 @@ TEST_SUITE("plugins") {
     }
   }
 
+  TEST_CASE("moore writes G93 F when its written text changes, not when the time's double does") {
+    const MachineDescription m = load_machine(kMachines + "/moore-nanotech-250upl.yaml");
+    const auto plugin = PostPlugin::load_file(kPlugins + "/libfreeturn_post_moore.so");
+    test::TempDir dir;
+    const std::string path = dir.file("times.nc");
+    // Block times at the post's six decimals: 0.1333331 and 0.1333334 both read 0.133333,
+    // 0.1333336 reads 0.133334, then 0.2 twice.
+    const double times[] = {0, 0.1333331, 0.1333334, 0.1333336, 0.2, 0.2};
+    {
+      PostProgram program(*plugin, m, {"times", 20, 0, -1, -1, 1.0, 1}, path);
+      std::vector<AxisRecord> r;
+      for (int k = 0; k < 6; ++k) r.push_back({3.0 - 0.1 * k, 0.1, 10.0 * k, 0, times[k]});
+      program.write(r);
+      program.finish();
+    }
+    const std::string text = test::read_file(path);
+    std::vector<std::string> feeds;
+    for (std::size_t at = text.find("G93 F"); at != std::string::npos; at = text.find("G93 F", at + 1))
+      feeds.push_back(text.substr(at, text.find('\n', at) - at));
+    CHECK(feeds == std::vector<std::string>{"G93 F0.133333", "G93 F0.133334", "G93 F0.200000"});
+    // Each block still runs at its own time, as F is modal: the F in force before every
+    // block with an X word after the approach, read back, is its time rounded.
+    std::vector<double> in_force;
+    double f = -1;
+    for (const NcBlock& b : parse_nc(text, path)) {
+      bool x = false, g93 = false;
+      for (const NcWord& w : b.words) {
+        if (w.numeric && w.letter == 'G' && w.value == 93) g93 = true;
+        if (w.numeric && w.letter == 'F' && g93) f = w.value;
+        if (w.numeric && w.letter == 'X') x = true;
+      }
+      if (x && f > 0) in_force.push_back(f);
+    }
+    REQUIRE(in_force.size() == 5);
+    for (int k = 0; k < 5; ++k)
+      CHECK(in_force[static_cast<std::size_t>(k)] == doctest::Approx(std::round(times[k + 1] * 1e6) / 1e6).epsilon(1e-12));
+  }
+
   TEST_CASE("iso X-Z profile with feed per minute: G94 and the path feed, no G93") {
     const MachineDescription m = load_machine(kMachines + "/iso-lathe-xz.yaml");
     REQUIRE(m.feed_per_minute);

@@ -91,7 +91,8 @@ TEST_SUITE("report") {
     }
     std::string header;
     const auto rows = read_csv_rows(test::read_file(dir.file("a.cl.csv")), header);
-    CHECK(header == "theta,x,y,z,nx,ny,nz,tx,ty,tz,b_deg,X,Z,C,B,chord");
+    CHECK(header ==
+          "theta_rad,x_mm,y_mm,z_mm,nx,ny,nz,tx_mm,ty_mm,tz_mm,b_deg,X_mm,Z_mm,C_deg,B_deg,chord_mm");
     REQUIRE(rows.size() == 1);
     const std::vector<double> expected = {cl.contact.theta, 0.1, -2.0 / 7, 1e-300,
                                           std::sqrt(0.5), -std::sqrt(0.5), 0,
@@ -141,7 +142,8 @@ TEST_SUITE("report") {
     Streamed streamed;
     options.output_dir = dir.file("job");
     const RunResult full = run_job(job, options, &streamed);
-    CHECK(std::filesystem::exists(dir.file("job/report.json")));
+    CHECK(std::filesystem::exists(dir.file("job/plate.report.json")));
+    CHECK(std::filesystem::exists(dir.file("job/plate.report.html")));
     std::string header;
     const auto rows = read_csv_rows(test::read_file(dir.file("job/plate.cl.csv")), header);
     REQUIRE(rows.size() == streamed.locations.size());

@@ -10,5 +10,6 @@
 #include "freeturn/pipeline/installed_posts.hpp"
 #include "freeturn/pipeline/run_pipeline.hpp"
 #include "freeturn/pipeline/run_report.hpp"
+#include "freeturn/report/cl_file.hpp"
 #include "freeturn/report/report_files.hpp"
 #include "freeturn/report/run_job.hpp"

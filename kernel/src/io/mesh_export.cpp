@@ -11,6 +11,7 @@
 #include <numbers>
 
 #include "freeturn/core/error.hpp"
+#include "freeturn/core/number_text.hpp"
 #include "freeturn/io/atomic_file.hpp"
 
 namespace freeturn {
@@ -24,10 +25,12 @@ struct DoubleTraits : OpenMesh::DefaultTraits {
 };
 using Mesh = OpenMesh::TriMesh_ArrayKernelT<DoubleTraits>;
 
-void put(AtomicFile& f, const char* format, double a, double b, double c) {
-  char line[128];
-  const int n = std::snprintf(line, sizeof line, format, a, b, c);
-  f.write(std::string_view(line, static_cast<std::size_t>(n)));
+// One line: `prefix` then the three numbers, each the shortest text that reads back as the
+// same double (locale-free, core/number_text.hpp).
+void put(AtomicFile& f, const char* prefix, double a, double b, double c) {
+  std::string line = prefix;
+  for (const double v : {a, b, c}) line += (line.empty() ? "" : " ") + shortest_text(v);
+  f.write(line + "\n");
 }
 
 }  // namespace
@@ -48,9 +51,8 @@ MeshSummary write_surface_mesh_obj(const Surface& surface, double inner, double 
       const double phi = 2 * std::numbers::pi * j / segments;
       const double x = r * std::cos(phi), y = r * std::sin(phi), z = surface.sag(x, y);
       if (!std::isfinite(z)) {
-        char where[96];
-        std::snprintf(where, sizeof where, "(x, y) = (%.6f, %.6f) mm", x, y);
-        throw InputError(where, "the surface is undefined here");
+        throw InputError("(x, y) = (" + fixed_text(x, 6) + ", " + fixed_text(y, 6) + ") mm",
+                         "the surface is undefined here");
       }
       ring_vertices.back().push_back(mesh.add_vertex(Mesh::Point(x, y, z)));
     }
@@ -69,11 +71,11 @@ MeshSummary write_surface_mesh_obj(const Surface& surface, double inner, double 
   f.write("# design surface, written by freeturn (mm)\n");
   for (const auto v : mesh.vertices()) {
     const Mesh::Point& p = mesh.point(v);
-    put(f, "v %.12g %.12g %.12g\n", p[0], p[1], p[2]);
+    put(f, "v", p[0], p[1], p[2]);
   }
   for (const auto v : mesh.vertices()) {
     const Mesh::Normal& n = mesh.normal(v);
-    put(f, "vn %.9f %.9f %.9f\n", n[0], n[1], n[2]);
+    put(f, "vn", n[0], n[1], n[2]);
   }
   for (const auto fh : mesh.faces()) {
     char line[96];
@@ -103,7 +105,7 @@ void write_polyline_vtk(const std::vector<Eigen::Vector3d>& points, AtomicFile& 
   head += std::to_string(points.size());
   head += " double\n";
   f.write(head);
-  for (const Eigen::Vector3d& p : points) put(f, "%.12g %.12g %.12g\n", p.x(), p.y(), p.z());
+  for (const Eigen::Vector3d& p : points) put(f, "", p.x(), p.y(), p.z());
   std::string lines = "LINES 1 ";
   lines += std::to_string(points.size() + 1);
   lines += "\n";

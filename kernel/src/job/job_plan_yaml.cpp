@@ -4,6 +4,8 @@
 #include <cstdio>
 #include <numbers>
 
+#include "freeturn/core/number_text.hpp"
+
 namespace freeturn::detail {
 namespace {
 
@@ -265,25 +267,23 @@ std::optional<JobPlan> read_job_plan(MapReader& job, const Aperture& aperture) {
   const double passes = static_cast<double>(plan.cutting.roughing_depths.size() + 1);
   if (estimate.per_pass * passes > static_cast<double>(plan.limits.max_points)) {
     const double points = std::ceil(estimate.per_pass * passes);
-    char text[240];
-    std::snprintf(text, sizeof text,
-                  "strategy.points.%s asks for at least %.15g points (%.0f passes), over "
-                  "limits.max_points (%lld): a typo in a step or the pitch?",
-                  estimate.key.c_str(), points, passes, plan.limits.max_points);
-    throw InputError(estimate.place, text);
+    throw InputError(estimate.place, "strategy.points." + estimate.key + " asks for at least " +
+                                         significant_text(points, 15) + " points (" +
+                                         fixed_text(passes, 0) + " passes), over limits.max_points (" +
+                                         std::to_string(plan.limits.max_points) +
+                                         "): a typo in a step or the pitch?");
   }
   // The CL file holds every point of the finishing pass, 16 numbers a row: at least 64
   // bytes each (most rows take 250). Over limits.max_file_mb it is refused now, not
   // after minutes of planning.
   const double cl_bytes = 64 * estimate.per_pass;
   if (plan.outputs.cl_csv && cl_bytes > plan.limits.max_file_mb * 1048576.0) {
-    char text[240];
-    std::snprintf(text, sizeof text,
-                  "strategy.points.%s asks for at least %.15g points, a CL file of at least %.3g MB, "
-                  "over limits.max_file_mb (%g MB)",
-                  estimate.key.c_str(), std::ceil(estimate.per_pass), cl_bytes / 1048576.0,
-                  plan.limits.max_file_mb);
-    throw InputError(estimate.place, text);
+    throw InputError(estimate.place,
+                     "strategy.points." + estimate.key + " asks for at least " +
+                         significant_text(std::ceil(estimate.per_pass), 15) +
+                         " points, a CL file of at least " + significant_text(cl_bytes / 1048576.0, 3) +
+                         " MB, over limits.max_file_mb (" + significant_text(plan.limits.max_file_mb, 6) +
+                         " MB)");
   }
   if (plan.strategy.b_mode == BMode::kFollow) plan.tool.b_mode = BMode::kFollow;
   plan.estimate = {estimate.per_pass, "strategy.points." + estimate.key};

@@ -11,6 +11,9 @@
 #include <utility>
 #include <vector>
 
+#include "freeturn/core/number_text.hpp"
+#include "freeturn/core/utf8.hpp"
+
 namespace freeturn {
 
 SourceLocation location_of(const YAML::Node& node, const std::string& file) {
@@ -57,6 +60,20 @@ void refuse_stray_bytes(const std::string& text, const std::string& file) {
       throw InputError(location_at(text, i, file),
                        std::string("a control character (") + code +
                            ") in the file: not a YAML text file");
+    }
+    // YAML is UTF-8 here: a Latin-1 "für" would reach the report as bytes no reader of
+    // UTF-8 (JSON, HTML) accepts.
+    if (ch >= 0x80) {
+      const std::size_t n = utf8_length(text, i);
+      if (n == 0) {
+        char code[8];
+        std::snprintf(code, sizeof code, "0x%02X", ch);
+        throw InputError(location_at(text, i, file),
+                         std::string("the byte ") + code +
+                             " is not UTF-8 (a Latin-1 or Windows-1252 character?): save the "
+                             "file as UTF-8");
+      }
+      i += n - 1;
     }
   }
 }
@@ -237,9 +254,15 @@ double MapReader::read_number(const YAML::Node& value, const std::string& key) c
   if (!value.IsScalar()) throw InputError(loc, what_ + "." + key + " must be a number");
   double v;
   const std::string& s = value.Scalar();
-  // yaml-cpp accepts ".nan"/".inf" as doubles; they must never reach the geometry.
-  if (!YAML::convert<double>::decode(value, v))
-    throw InputError(loc, what_ + "." + key + " must be a number, not '" + s + "'");
+  // yaml-cpp reads numbers through a stream in the global C++ locale (a German one stops
+  // at the '.' of "1.25"): the number is read locale-free; yaml-cpp only names the YAML
+  // forms of infinity and NaN (".inf", ".nan"), which must never reach the geometry.
+  if (!parse_number(s, v)) {
+    double special;
+    if (!YAML::convert<double>::decode(value, special) || std::isfinite(special))
+      throw InputError(loc, what_ + "." + key + " must be a number, not '" + s + "'");
+    v = special;
+  }
   if (!std::isfinite(v))
     throw InputError(loc, what_ + "." + key + " must be a finite number, not '" + s + "'");
   return v;
@@ -285,10 +308,10 @@ double MapReader::in_range(const std::string& key, double fallback, double lo, d
   if (!value) return fallback;
   const double v = read_number(*value, key);
   if (!(open_low ? v > lo : v >= lo) || !(v <= hi)) {
-    std::ostringstream bounds;
-    bounds << (open_low ? "(" : "[") << lo << ", " << hi << "]" << unit;
+    const std::string bounds = (open_low ? "(" : "[") + significant_text(lo, 6) + ", " +
+                               significant_text(hi, 6) + "]" + unit;
     throw InputError(location_of(*value, file_), what_ + "." + key + " must be within " +
-                                                     bounds.str() + ", not " + value->Scalar());
+                                                     bounds + ", not " + value->Scalar());
   }
   return v;
 }

@@ -6,6 +6,7 @@
 #include <numbers>
 
 #include "freeturn/core/error.hpp"
+#include "freeturn/core/number_text.hpp"
 
 namespace freeturn {
 namespace {
@@ -13,10 +14,9 @@ namespace {
 constexpr double kDegrees = 180 / std::numbers::pi;
 
 std::string where(const CutterLocation& cl) {
-  char buf[128];
-  std::snprintf(buf, sizeof buf, "θ = %.6f rad (%.4f°), r = %.6f mm", cl.contact.theta,
-                cl.contact.theta * kDegrees, cl.contact.r);
-  return buf;
+  return "θ = " + fixed_text(cl.contact.theta, 6) + " rad (" +
+         fixed_text(cl.contact.theta * kDegrees, 4) + "°), r = " + fixed_text(cl.contact.r, 6) +
+         " mm";
 }
 
 // A limit crossed is reported where the machine file states it, then the bound and the
@@ -27,9 +27,7 @@ std::string at_bound(const SourceLocation& place, const std::string& bound, cons
 }
 
 std::string number(double v) {
-  char buf[32];
-  std::snprintf(buf, sizeof buf, "%.6g", v);
-  return buf;
+  return significant_text(v, 6);
 }
 
 }  // namespace

@@ -6,6 +6,7 @@
 #include <limits>
 
 #include "freeturn/core/error.hpp"
+#include "freeturn/core/number_text.hpp"
 
 namespace freeturn {
 namespace {
@@ -50,9 +51,8 @@ double largest_feasible_from(double known, double cap, Ok&& ok) {
 }
 
 std::string place_of(const AxisRecord& r) {
-  char buf[128];
-  std::snprintf(buf, sizeof buf, "the block to X %.6f Z %.6f C %.5f", r.x, r.z, r.c);
-  return buf;
+  return "the block to X " + fixed_text(r.x, 6) + " Z " + fixed_text(r.z, 6) + " C " +
+         fixed_text(r.c, 5);
 }
 
 }  // namespace

@@ -6,6 +6,7 @@
 #include <string>
 
 #include "freeturn/core/error.hpp"
+#include "freeturn/core/number_text.hpp"
 #include "freeturn/nurbs/basis.hpp"
 #include "freeturn/nurbs/scratch_buffer.hpp"
 
@@ -39,7 +40,7 @@ std::vector<Vector4d> to_homogeneous(const std::vector<Vector3d>& points,
     const double w = weights.empty() ? 1.0 : weights[i];
     if (!(std::isfinite(w) && w > 0))
       throw InputError("weight " + std::to_string(i),
-                       "must be a finite number greater than 0, not " + std::to_string(w));
+                       "must be a finite number greater than 0, not " + shortest_text(w));
     pw[i] << w * points[i], w;
   }
   return pw;
@@ -123,11 +124,11 @@ NurbsCurve NurbsCurve::insert_knot(double u, int times) const {
   // A5.1 on the homogeneous points.
   const int p = degree();
   if (!(u >= front() && u <= back()))
-    throw InputError("knot insertion", "u = " + std::to_string(u) + " is outside the domain");
+    throw InputError("knot insertion", "u = " + shortest_text(u) + " is outside the domain");
   const int s = knots_.multiplicity(u);
   if (times <= 0) return *this;
   if (s + times > p)
-    throw InputError("knot insertion", "u = " + std::to_string(u) + " would have multiplicity " +
+    throw InputError("knot insertion", "u = " + shortest_text(u) + " would have multiplicity " +
                                            std::to_string(s + times) + " above the degree " +
                                            std::to_string(p));
   const int k = knots_.find_span(u);

@@ -5,15 +5,12 @@
 #include <string>
 
 #include "freeturn/core/error.hpp"
+#include "freeturn/core/number_text.hpp"
 
 namespace freeturn::nurbs {
 namespace {
 
-std::string num(double v) {
-  char buf[32];
-  std::snprintf(buf, sizeof buf, "%.17g", v);
-  return buf;
-}
+std::string num(double v) { return shortest_text(v); }
 
 }  // namespace
 

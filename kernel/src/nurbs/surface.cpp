@@ -5,6 +5,7 @@
 #include <string>
 
 #include "freeturn/core/error.hpp"
+#include "freeturn/core/number_text.hpp"
 #include "freeturn/nurbs/basis.hpp"
 #include "freeturn/nurbs/scratch_buffer.hpp"
 #include "rational_derivatives.hpp"
@@ -36,7 +37,7 @@ std::vector<Vector4d> homogeneous_net(const std::vector<Vector3d>& points,
     const double w = weights.empty() ? 1.0 : weights[k];
     if (!(std::isfinite(w) && w > 0))
       throw InputError("weight " + net_index(static_cast<int>(k), count_v),
-                       "must be a finite number greater than 0, not " + std::to_string(w));
+                       "must be a finite number greater than 0, not " + shortest_text(w));
     net[k] << w * points[k], w;
   }
   return net;

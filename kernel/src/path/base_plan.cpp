@@ -5,6 +5,7 @@
 #include <string>
 
 #include "freeturn/core/error.hpp"
+#include "freeturn/core/number_text.hpp"
 #include "freeturn/surface/height_field_queries.hpp"
 #include "freeturn/surface/raised_surface.hpp"
 #include "freeturn/surface/transformed_surface.hpp"
@@ -12,7 +13,7 @@
 namespace freeturn {
 namespace {
 
-std::string degrees(double rad) { return std::to_string(rad * 180 / std::numbers::pi); }
+std::string degrees(double rad) { return fixed_text(rad * 180 / std::numbers::pi, 6); }
 
 BaseSurface fit(const std::vector<SurfaceSample>& samples, double outer, BaseKind kind,
                 const BasePlanOptions& o, bool search_axis, BaseAxis& axis) {
@@ -46,6 +47,7 @@ BasePlan plan_base_surface(const Surface& design, double inner, double outer,
     if (hit.status != Status::kOk)
       throw InputError("base axis", "the searched axis does not cross the design surface",
                        "strategy.base_surface.search_axis");
+    plan.axis_crossing = hit.point;
     plan.design_about_axis = std::make_unique<TransformedSurface>(
         std::make_unique<RaisedSurface>(design), hit.point.x(), hit.point.y(),
         Eigen::Matrix3d(Eigen::Quaterniond::FromTwoVectors(t, Eigen::Vector3d::UnitZ())));
@@ -60,8 +62,8 @@ BasePlan plan_base_surface(const Surface& design, double inner, double outer,
     const std::string message =
         "the design is not of quasi-revolution for its base: α reaches " + degrees(q.max_angle) +
         "°, above the limit " + degrees(o.angle_limit) + "°";
-    const std::string where = "(x, y) = (" + std::to_string(q.where.x()) + ", " +
-                              std::to_string(q.where.y()) + ") mm";
+    const std::string where =
+        "(x, y) = (" + fixed_text(q.where.x(), 6) + ", " + fixed_text(q.where.y(), 6) + ") mm";
     if (o.refuse_above_limit) throw InputError(where, message);
     plan.warnings.push_back(where + ": " + message);
   }

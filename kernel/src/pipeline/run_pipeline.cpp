@@ -15,7 +15,9 @@
 #include <vector>
 
 #include "freeturn/core/error.hpp"
+#include "freeturn/core/number_text.hpp"
 #include "freeturn/core/parallel_for.hpp"
+#include "freeturn/core/version.hpp"
 #include "freeturn/io/output_set.hpp"
 #include "freeturn/job/job.hpp"
 #include "freeturn/job/machine_yaml.hpp"
@@ -104,6 +106,66 @@ class AxisDiscard final : public AxisSink {
 // machine's limits off, or the dialect writes no time per block. PVT programs run at one
 // speed too: the controller derives its velocities from the block times (pvt_rule.hpp),
 // so a schedule would change the cubics the chord error was measured on.
+constexpr int kMapPixels = 320;  // the report's maps, per side
+
+// The grid every report's form error map is cut on when no simulation is asked for:
+// four cells a pitch (the figure's one-pitch mean then sees the cusps), at most 3000
+// rings and 360 columns, about 10 MB and a fraction of the planning time.
+SimulationOptions report_grid(const Job& job) {
+  SimulationOptions o;
+  const double pitch = job.plan->strategy.pitch;
+  const double width = job.aperture.outer_radius - job.aperture.inner_radius;
+  o.radial_step = std::max(pitch / 4, width / 3000);
+  o.columns = 360;
+  o.band = std::max(3 * pitch, 2 * o.radial_step);
+  o.margin = std::max(pitch, o.radial_step);
+  return o;
+}
+
+JobParameters job_parameters(const Job& job) {
+  const JobPlan& plan = *job.plan;
+  JobParameters p;
+  const bool spiral = plan.strategy.mode == Strategy::Mode::kSpiral;
+  p.strategy = spiral ? (plan.strategy.space ? "space spiral" : "planar spiral") : "profile";
+  const CutterPointOptions& points = plan.strategy.points;
+  p.points_rule = points.rule == CutterPointRule::kChordError       ? "chord"
+                  : points.rule == CutterPointRule::kEqualArcLength ? "equal_arc"
+                                                                    : "equal_angle";
+  p.chord_tolerance = points.rule == CutterPointRule::kChordError ? points.tolerance : 0.0;
+  p.direction = plan.strategy.centre_to_edge ? "centre to edge" : "edge to centre";
+  p.timing = plan.cutting.timing == Cutting::Timing::kScheduled ? "scheduled" : "constant_rpm";
+  p.pitch = spiral ? plan.strategy.pitch : 0.0;
+  p.inner_radius = job.aperture.inner_radius;
+  p.outer_radius = job.aperture.outer_radius;
+  p.nose_radius = plan.tool.tool.nose_radius;
+  p.included_angle_deg = plan.tool.tool.included_angle * 180 / std::numbers::pi;
+  p.clearance_angle_deg = plan.tool.tool.clearance_angle * 180 / std::numbers::pi;
+  p.feed = plan.cutting.feed;
+  p.roughing_depths = plan.cutting.roughing_depths;
+  return p;
+}
+
+BaseFigures base_figures(const BasePlanOptions& options, const BasePlan& plan) {
+  BaseFigures b;
+  b.kind = options.kind == BaseKind::kMinimax    ? "minimax"
+           : options.kind == BaseKind::kPlane    ? "plane"
+                                                 : "least_squares";
+  b.degree = plan.base.degree();
+  b.coefficients = static_cast<int>(plan.base.coefficients().size());
+  b.rho_max = plan.base.rho_max();
+  b.axis_searched = plan.design_about_axis != nullptr;
+  if (b.axis_searched) {
+    constexpr double kDegrees = 180 / std::numbers::pi;
+    b.tilt_x_deg = plan.axis.tilt_x * kDegrees;
+    b.tilt_y_deg = plan.axis.tilt_y * kDegrees;
+    b.tilt_deg = std::acos(std::clamp(plan.axis.direction().z(), -1.0, 1.0)) * kDegrees;
+    b.crossing_x = plan.axis_crossing.x();
+    b.crossing_y = plan.axis_crossing.y();
+    b.crossing_z = plan.axis_crossing.z();
+  }
+  return b;
+}
+
 bool scheduling(const Job& job, const MachineDescription& machine) {
   const Cutting& c = job.plan->cutting;
   return c.enforce_dynamics && c.timing == Cutting::Timing::kScheduled &&
@@ -162,13 +224,14 @@ void refuse_oversized_program(const Job& job, const MachineDescription& machine)
   for (const AxisSpec& a : machine.axes) block_bytes += 2 + a.decimals + (a.decimals > 0 ? 1 : 0);
   const double bytes = plan.estimate.per_pass * block_bytes;
   if (!(bytes > plan.limits.max_file_mb * 1048576.0)) return;
-  char text[320];
-  std::snprintf(text, sizeof text,
-                "%s asks for at least %.15g points a pass: an NC program of at least %.3g MB on "
-                "machine '%s' (%.0f bytes a block at least), over limits.max_file_mb (%g MB)",
-                plan.estimate.key.c_str(), std::ceil(plan.estimate.per_pass), bytes / 1048576.0,
-                machine.name.c_str(), block_bytes, plan.limits.max_file_mb);
-  throw InputError(job.place(plan.estimate.key), text);
+  throw InputError(job.place(plan.estimate.key),
+                   plan.estimate.key + " asks for at least " +
+                       significant_text(std::ceil(plan.estimate.per_pass), 15) +
+                       " points a pass: an NC program of at least " +
+                       significant_text(bytes / 1048576.0, 3) + " MB on machine '" + machine.name +
+                       "' (" + fixed_text(block_bytes, 0) +
+                       " bytes a block at least), over limits.max_file_mb (" +
+                       significant_text(plan.limits.max_file_mb, 6) + " MB)");
 }
 
 PreparedJob prepare_job(const Job& job, std::uintmax_t max_yaml_bytes) {
@@ -219,7 +282,11 @@ RunResult execute_job(const Job& job, const PreparedJob& prepared, const std::st
 
   RunReport report;
   report.job = job.name;
-  report.job_file = job_path;
+  // Names, not paths: a report is read on another machine (and says nothing of this one's
+  // folders).
+  report.job_file = std::filesystem::path(job_path).filename().string();
+  report.version = kVersion;
+  report.parameters = job_parameters(job);
   {
     std::ifstream in(job_path, std::ios::binary);
     std::ostringstream text;
@@ -227,7 +294,14 @@ RunResult execute_job(const Job& job, const PreparedJob& prepared, const std::st
     report.job_text = text.str();
   }
   report.machine = machine.name;
-  report.plugin = plugin->path();
+  report.plugin = std::filesystem::path(plugin->path()).filename().string();
+  for (const Axis a : {Axis::kX, Axis::kZ, Axis::kC, Axis::kB}) {
+    const int i = static_cast<int>(a);
+    report.has_axis[i] = machine.has(a);
+    if (!report.has_axis[i]) continue;
+    report.max_velocity[i] = machine.spec(a).max_velocity;
+    report.max_acceleration[i] = machine.spec(a).max_acceleration;
+  }
 
   // The base surface and the frame the part is cut in.
   const bool spiral = plan.strategy.mode == Strategy::Mode::kSpiral;
@@ -235,12 +309,21 @@ RunResult execute_job(const Job& job, const PreparedJob& prepared, const std::st
   if (spiral) {
     base = plan_base_surface(*job.surface, job.aperture.inner_radius, job.aperture.outer_radius,
                              plan.strategy.base);
-    for (const std::string& w : base.warnings) {
-      report.warnings.push_back(w);
-      if (observer) observer->warning(w);
-    }
     report.alpha_max_deg = base.quasi_revolution.max_angle * 180 / std::numbers::pi;
     report.axis_moved = base.design_about_axis != nullptr;
+    report.base = base_figures(plan.strategy.base, base);
+    for (const std::string& text : base.warnings) {
+      ReportWarning w;
+      w.kind = "quasi_revolution";
+      w.message = text;
+      w.value = report.alpha_max_deg;
+      w.limit = plan.strategy.base.angle_limit * 180 / std::numbers::pi;
+      w.unit = "deg";
+      w.x_mm = base.quasi_revolution.where.x();
+      w.y_mm = base.quasi_revolution.where.y();
+      report.warnings.push_back(w);
+      if (observer) observer->warning(warning_line(w));
+    }
   }
   const Surface& design = spiral ? base.design_to_cut(*job.surface) : *job.surface;
 
@@ -299,8 +382,13 @@ RunResult execute_job(const Job& job, const PreparedJob& prepared, const std::st
     PassStage stage(*post, finishing ? files : nullptr, figures, observer);
     stage.set_limits(plan.limits, &points_so_far);
     std::unique_ptr<CutSimulator> simulator;
-    if (finishing && simulation) {
-      SimulationOptions so = *simulation;
+    // Every report shows the form error: without a simulation asked for, the finishing pass
+    // is cut on the report's coarse grid (report_grid).
+    const SimulationOptions preview = report_grid(job);
+    const SimulationOptions* cut =
+        simulation ? simulation : write && plan.outputs.report && spiral ? &preview : nullptr;
+    if (finishing && cut) {
+      SimulationOptions so = *cut;
       so.compensation = compensation;
       so.interpolation = machine.interpolation;
       so.inner_radius = job.aperture.inner_radius;
@@ -344,13 +432,29 @@ RunResult execute_job(const Job& job, const PreparedJob& prepared, const std::st
     if (scheduler) figures.take_schedule(scheduler->report());
     if (simulator) {
       report.simulation = std::make_shared<SimulationResult>(simulator->finish());
+      report.simulated = simulation != nullptr;
+      const double inner = job.aperture.inner_radius;
       report.heat_map = std::make_shared<ResidualHeatMap>(
-          residual_heat_map(*report.simulation, job.aperture.inner_radius, 320));
-      report.simulated = true;
+          residual_heat_map(*report.simulation, inner, kMapPixels));
+      const double pitch = plan.strategy.pitch;
+      report.form_error = std::make_shared<FormErrorSplit>(split_figure_finish(
+          *report.simulation, inner, job.aperture.outer_radius,
+          cut->margin > 0 ? cut->margin : pitch, pitch));
+      const FormErrorSplit& split = *report.form_error;
+      report.figure_map = std::make_shared<ResidualHeatMap>(polar_heat_map(
+          split.rings, split.columns, inner, split.radial_step,
+          [&](std::size_t k) { return static_cast<double>(split.figure[k]); }, kMapPixels));
+      // The coarse grid served the report: its cells are not kept.
+      if (!report.simulated) {
+        report.simulation->residual.clear();
+        report.simulation->residual.shrink_to_fit();
+        report.form_error->figure.clear();
+        report.form_error->figure.shrink_to_fit();
+      }
     }
-    for (const std::string& w : figures.check_warnings) {
-      report.warnings.push_back(figures.name + ": " + w);
-      if (observer) observer->warning(figures.name + ": " + w);
+    for (const ReportWarning& w : figures.findings) {
+      report.warnings.push_back(w);
+      if (observer) observer->warning(warning_line(w));
     }
   }
   judge(report);

@@ -11,9 +11,52 @@ namespace freeturn {
 namespace {
 
 constexpr std::size_t kMaxSamples = 4000;  // plot points kept per pass
+constexpr double kDegrees = 180 / std::numbers::pi;
+
+// "r = 2.5319 mm, θ = 100.054° (turn 75)": a place on the part, and on the path.
+std::string place_text(double theta, double r) {
+  return "r = " + fixed_text(r, 4) + " mm, θ = " + fixed_text(part_degrees(theta), 3) + "° (turn " +
+         std::to_string(static_cast<long>(std::floor(theta / (2 * std::numbers::pi))) + 1) + ")";
+}
+// ReportWarning::kind of each ToolCheck, in its order.
+constexpr const char* kCheckKinds[kToolCheckCount] = {"contact_angle", "clearance",  "local_gouge",
+                                                      "global_gouge",  "centre",     "b_limits"};
 
 }  // namespace
 
+
+void TurnSamples::add(double theta, double x, double y) {
+  if (!any) start_x = x, start_y = y, any = true;
+  end_x = x, end_y = y;
+  const double turn_angle = 2 * std::numbers::pi;
+  const long turn = static_cast<long>(std::floor(theta / turn_angle));
+  if (turn % turn_stride != 0) return;
+  const long step = static_cast<long>(std::floor((theta - turn * turn_angle) / turn_angle * kTurnPoints));
+  if (turn != turn_) {
+    turns.emplace_back();
+    if (static_cast<int>(turns.size()) > kMaxTurns) {
+      // Keep every other turn (those a multiple of the doubled stride) and go on.
+      turn_stride *= 2;
+      std::vector<std::vector<std::pair<float, float>>> kept;
+      long k = turn - static_cast<long>(turns.size() - 1) * (turn_stride / 2);
+      for (auto& t : turns) {
+        if (k % turn_stride == 0) kept.push_back(std::move(t));
+        k += turn_stride / 2;
+      }
+      turns = std::move(kept);
+      if (turn % turn_stride != 0) {
+        turn_ = turn;
+        return;
+      }
+      if (turns.empty() || !turns.back().empty()) turns.emplace_back();
+    }
+    turn_ = turn;
+    step_ = -1;
+  }
+  if (step == step_) return;
+  step_ = step;
+  turns.back().emplace_back(static_cast<float>(x), static_cast<float>(y));
+}
 
 void PassFigures::add(const CutterLocation& cl, const AxisRecord& record,
                       const AxisRecord& previous) {
@@ -41,6 +84,12 @@ void PassFigures::add(const CutterLocation& cl, const AxisRecord& record,
       }
     }
   }
+  const double vx = (record.x - previous.x) * rate, vz = (record.z - previous.z) * rate,
+               vc = dc * rate;
+  const double ax = (vx - last_v_[0]) * rate, az = (vz - last_v_[1]) * rate,
+               ac = (vc - last_v_[2]) * rate;
+  last_v_[0] = vx, last_v_[1] = vz, last_v_[2] = vc;
+  turns.add(cl.contact.theta, cl.contact.point.x(), cl.contact.point.y());
   const double e = cl.contact.chord_error, s = cl.contact.scallop;
   chord_max = std::max(chord_max, e);
   scallop_max = std::max(scallop_max, s);
@@ -48,8 +97,7 @@ void PassFigures::add(const CutterLocation& cl, const AxisRecord& record,
   scallop_sq_ += s * s;
   if ((points - 1) % stride == 0) {
     samples.push_back({cl.contact.point.x(), cl.contact.point.y(), cl.contact.point.z(),
-                       cl.contact.r, e, (record.x - previous.x) * rate,
-                       (record.z - previous.z) * rate, dc * rate});
+                       cl.contact.r, cl.contact.theta, e, s, vx, vz, vc, ax, az, ac});
     if (samples.size() >= kMaxSamples) {
       // Keep every other sample and halve the rate: memory stays bounded.
       std::size_t j = 0;
@@ -69,25 +117,74 @@ void PassFigures::finish(const PathSummary& s, const DynamicsReport& d, const To
   constant_rpm_cycle_time =
       d.max_rpm > 0 && std::isfinite(d.max_rpm) ? 60 * d.turns / d.max_rpm : 0.0;
   checks = c;
-  const std::string summary = c.summary();
-  std::size_t start = 0;
-  while (start < summary.size()) {
-    const std::size_t end = summary.find('\n', start);
-    check_warnings.push_back(summary.substr(start, end - start));
-    if (end == std::string::npos) break;
-    start = end + 1;
+  // A check that found something was downgraded to a warning by the job (an error would
+  // have stopped the run): the program is unsafe all the same.
+  for (int i = 0; i < kToolCheckCount; ++i) {
+    const CheckFinding& f = c.findings[static_cast<std::size_t>(i)];
+    if (f.count == 0) continue;
+    const ToolCheck check = static_cast<ToolCheck>(i);
+    ReportWarning w;
+    w.kind = kCheckKinds[i];
+    w.severity = ReportWarning::Severity::kUnsafe;
+    w.pass = name;
+    w.message = c.line(check) + " (the check is downgraded to a warning in the job)";
+    w.count = f.count;
+    w.theta_deg = part_degrees(f.theta);
+    w.r_mm = f.r;
+    w.x_mm = f.x;
+    w.y_mm = f.y;
+    switch (check) {
+      case ToolCheck::kContactAngle:
+      case ToolCheck::kClearance:
+      case ToolCheck::kBLimits:
+        w.value = f.worst * kDegrees, w.limit = f.limit * kDegrees, w.unit = "deg";
+        break;
+      case ToolCheck::kLocalGouge:  // curvatures, reported as the radii a user compares
+        w.value = 1 / f.worst, w.limit = 1 / f.limit, w.unit = "mm";
+        break;
+      default:
+        w.value = f.worst * 1e6, w.limit = f.limit * 1e6, w.unit = "nm";
+    }
+    findings.push_back(std::move(w));
   }
   if (s.jumps > 0) {
-    std::string w = std::to_string(s.jumps);
-    w +=
-        " segments where the nose centre jumps (a crease sharper than the nose), the first at θ = ";
-    w += significant_text(s.first_jump_theta * 180 / std::numbers::pi, 9);
-    w += "°, r = ";
-    w += significant_text(s.first_jump_r, 9);
-    w += " mm: the chord tolerance cannot hold there; worst ";
-    w += significant_text(s.max_jump_error * 1e6, 9);
-    w += " nm";
-    check_warnings.push_back(w);
+    ReportWarning w;
+    w.kind = "nose_jump";
+    w.severity = ReportWarning::Severity::kUnsafe;
+    w.pass = name;
+    w.message = std::to_string(s.jumps) +
+                " segments where the nose centre jumps (a crease sharper than the nose), the "
+                "first at " +
+                place_text(s.first_jump_theta, s.first_jump_r) +
+                ": the chord tolerance cannot hold there; worst " +
+                fixed_text(s.max_jump_error * 1e6, 1) + " nm";
+    w.count = s.jumps;
+    w.theta_deg = part_degrees(s.first_jump_theta);
+    w.x_mm = s.first_jump_r * std::cos(s.first_jump_theta);
+    w.y_mm = s.first_jump_r * std::sin(s.first_jump_theta);
+    w.r_mm = s.first_jump_r;
+    w.value = s.max_jump_error * 1e6;
+    w.unit = "nm";
+    findings.push_back(std::move(w));
+  }
+  if (held_points > 0) {
+    ReportWarning w;
+    w.kind = "uncut_residual";
+    w.severity = ReportWarning::Severity::kWarning;
+    w.pass = name;
+    w.message = std::to_string(held_points) +
+                " cutter locations hold the nose at a crease it cannot reach into: up to " +
+                fixed_text(uncut_max * 1e6, 1) + " nm of material is left there, the most at " +
+                place_text(uncut_theta, uncut_r) +
+                " (the design is unreachable there; the program does not gouge)";
+    w.count = held_points;
+    w.theta_deg = part_degrees(uncut_theta);
+    w.r_mm = uncut_r;
+    w.x_mm = uncut_r * std::cos(uncut_theta);
+    w.y_mm = uncut_r * std::sin(uncut_theta);
+    w.value = uncut_max * 1e6;
+    w.unit = "nm";
+    findings.push_back(std::move(w));
   }
 }
 
@@ -103,23 +200,99 @@ void PassFigures::take_schedule(const ScheduleReport& s) {
   dynamics.cycle_time = s.cycle_time;
 }
 
+double part_degrees(double theta) {
+  const double d = std::fmod(theta * kDegrees, 360.0);
+  return d < 0 ? d + 360 : d;
+}
+
+const char* to_string(ReportWarning::Severity severity) {
+  switch (severity) {
+    case ReportWarning::Severity::kNote: return "note";
+    case ReportWarning::Severity::kWarning: return "warning";
+    case ReportWarning::Severity::kUnsafe: return "unsafe";
+  }
+  return "?";
+}
+
+std::string warning_line(const ReportWarning& w) {
+  return w.pass.empty() ? w.message : w.pass + ": " + w.message;
+}
+
+bool RunReport::safe() const {
+  return std::none_of(warnings.begin(), warnings.end(), [](const ReportWarning& w) {
+    return w.severity == ReportWarning::Severity::kUnsafe;
+  });
+}
+
+std::vector<std::string> RunReport::unsafe_reasons() const {
+  std::vector<std::string> lines;
+  for (const ReportWarning& w : warnings)
+    if (w.severity == ReportWarning::Severity::kUnsafe) lines.push_back(warning_line(w));
+  return lines;
+}
+
+std::vector<std::string> RunReport::messages() const {
+  std::vector<std::string> lines;
+  for (const ReportWarning& w : warnings) lines.push_back(warning_line(w));
+  return lines;
+}
+
 void judge(RunReport& r) {
-  r.unsafe.clear();
   for (const PassFigures& f : r.passes) {
-    // Every check that found something was downgraded (an error would have stopped the run).
-    for (const std::string& w : f.check_warnings) r.unsafe.push_back(f.name + ": " + w);
     // The motion between blocks cuts into the design (blocks on the design, chords below
     // them): more than 10 nm is a gouge.
-    if (f.chord_below_max > 1e-5)
-      r.unsafe.push_back(f.name + ": the motion between blocks cuts up to " +
-                         significant_text(f.chord_below_max * 1e6, 9) +
-                         " nm into the design (equal-angle or equal-arc points sit on the "
-                         "design and their chords dip below it; use points: chord)");
-    if (!f.scheduled && r.spindle_rpm > 0 && f.dynamics.max_rpm < r.spindle_rpm * (1 - 1e-12))
-      r.unsafe.push_back(f.name + ": at " + significant_text(r.spindle_rpm, 9) +
-                         " rpm the program exceeds the machine's limits (enforce_dynamics: "
-                         "false): the highest feasible constant speed is " +
-                         significant_text(f.dynamics.max_rpm, 9) + " rpm, set by " + f.dynamics.limiting);
+    if (f.chord_below_max > 1e-5) {
+      ReportWarning w;
+      w.kind = "chord_below";
+      w.severity = ReportWarning::Severity::kUnsafe;
+      w.pass = f.name;
+      w.message = "the motion between blocks cuts up to " + fixed_text(f.chord_below_max * 1e6, 1) +
+                  " nm into the design (equal-angle or equal-arc points sit on the design and "
+                  "their chords dip below it; use points: chord)";
+      w.value = f.chord_below_max * 1e6;
+      w.limit = 10;
+      w.unit = "nm";
+      r.warnings.push_back(std::move(w));
+    }
+    if (!f.scheduled && r.spindle_rpm > 0 && f.dynamics.max_rpm < r.spindle_rpm * (1 - 1e-12)) {
+      ReportWarning w;
+      w.kind = "dynamics";
+      w.severity = ReportWarning::Severity::kUnsafe;
+      w.pass = f.name;
+      w.message = "at " + significant_text(r.spindle_rpm, 6) +
+                  " rpm the program exceeds the machine's limits (enforce_dynamics: false): the "
+                  "highest feasible constant speed is " +
+                  significant_text(f.dynamics.max_rpm, 6) + " rpm, set by " + f.dynamics.limiting;
+      w.value = r.spindle_rpm;
+      w.limit = f.dynamics.max_rpm;
+      w.unit = "rpm";
+      r.warnings.push_back(std::move(w));
+    } else if (!f.scheduled && r.spindle_rpm > 0 &&
+               r.spindle_rpm < r.requested_rpm * (1 - 1e-9)) {
+      ReportWarning w;
+      w.kind = "spindle_speed";
+      w.severity = ReportWarning::Severity::kWarning;
+      w.pass = f.name;
+      w.message = "the machine's limits allow at most " + significant_text(r.spindle_rpm, 4) +
+                  " rpm at one constant speed (set by " + f.dynamics.limiting +
+                  "), not the requested " + significant_text(r.requested_rpm, 4) +
+                  " rpm: the program runs at " + significant_text(r.spindle_rpm, 4) + " rpm";
+      w.value = r.spindle_rpm;
+      w.limit = r.requested_rpm;
+      w.unit = "rpm";
+      r.warnings.push_back(std::move(w));
+    }
+    if (f.scheduled && f.slowed_blocks > 0) {
+      ReportWarning w;
+      w.kind = "slowed_blocks";
+      w.severity = ReportWarning::Severity::kNote;
+      w.pass = f.name;
+      w.message = std::to_string(f.slowed_blocks) + " of " + std::to_string(f.points) +
+                  " blocks run slower than the requested " + significant_text(r.requested_rpm, 4) +
+                  " rpm, where the machine's axis limits demand it";
+      w.count = f.slowed_blocks;
+      r.warnings.push_back(std::move(w));
+    }
   }
 }
 

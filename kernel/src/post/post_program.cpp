@@ -3,6 +3,7 @@
 #include <filesystem>
 
 #include "freeturn/core/error.hpp"
+#include "freeturn/core/number_text.hpp"
 #include "freeturn/io/output_set.hpp"
 
 namespace freeturn {
@@ -115,8 +116,8 @@ void PostProgram::write(std::span<const AxisRecord> chunk) {
     if ((chunk[k].z - settings_.top_z) * settings_.z_away > 0)
       throw InputError("NC guard (machine '" + machine_.name + "')",
                        "block " + std::to_string(blocks_written_ + static_cast<long long>(k) + 1) +
-                           ": Z " + std::to_string(chunk[k].z) +
-                           " rises past the clearance base " + std::to_string(settings_.top_z) +
+                           ": Z " + significant_text(chunk[k].z, 9) +
+                           " rises past the clearance base " + significant_text(settings_.top_z, 9) +
                            " the approach and retract are planned from; no NC file was written");
     blocks_[k] = {chunk[k].x, chunk[k].z, chunk[k].c, chunk[k].b, chunk[k].time};
   }
@@ -166,7 +167,7 @@ int PostProgram::write_bytes(void* context, const char* data, size_t size) {
           "the program (" + self->files_.front()->path() + " and its " +
           std::to_string(self->files_.size() - 1) +
           " child files) would be larger than limits.max_file_mb = " +
-          std::to_string(static_cast<double>(self->settings_.max_file_bytes) / (1 << 20)) + " MB";
+          significant_text(static_cast<double>(self->settings_.max_file_bytes) / (1 << 20), 6) + " MB";
       return 1;
     }
     self->current_->write(bytes);

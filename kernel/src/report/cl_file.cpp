@@ -8,32 +8,36 @@
 
 namespace freeturn {
 
+std::array<double, 16> cl_values(const CutterLocation& cl, const AxisRecord& r) {
+  return {cl.contact.theta,
+          cl.contact.point.x(),
+          cl.contact.point.y(),
+          cl.contact.point.z(),
+          cl.contact.normal.x(),
+          cl.contact.normal.y(),
+          cl.contact.normal.z(),
+          cl.nose_centre.x(),
+          cl.nose_centre.y(),
+          cl.nose_centre.z(),
+          cl.b * 180 / std::numbers::pi,
+          r.x,
+          r.z,
+          r.c,
+          r.b,
+          cl.contact.chord_error};
+}
+
 ClFile::ClFile(AtomicFile& out, double max_bytes) : out_(out), max_bytes_(max_bytes) {
-  line_ = "theta,x,y,z,nx,ny,nz,tx,ty,tz,b_deg,X,Z,C,B,chord\n";
+  line_.clear();
+  for (const char* name : kClColumns) line_ += std::string(line_.empty() ? "" : ",") + name;
+  line_ += '\n';
   bytes_ = static_cast<double>(line_.size());
   out_.write(line_);
 }
 
 void ClFile::write(std::span<const CutterLocation> locations, std::span<const AxisRecord> records) {
   for (std::size_t k = 0; k < records.size(); ++k) {
-    const CutterLocation& cl = locations[k];
-    const AxisRecord& r = records[k];
-    const double values[16] = {cl.contact.theta,
-                               cl.contact.point.x(),
-                               cl.contact.point.y(),
-                               cl.contact.point.z(),
-                               cl.contact.normal.x(),
-                               cl.contact.normal.y(),
-                               cl.contact.normal.z(),
-                               cl.nose_centre.x(),
-                               cl.nose_centre.y(),
-                               cl.nose_centre.z(),
-                               cl.b * 180 / std::numbers::pi,
-                               r.x,
-                               r.z,
-                               r.c,
-                               r.b,
-                               cl.contact.chord_error};
+    const std::array<double, 16> values = cl_values(locations[k], records[k]);
     // Shortest round-trip text: nine fixed decimals would put θ alone 2.5 nm off at r = 5 mm.
     line_.clear();
     for (int i = 0; i < 16; ++i) {

@@ -31,7 +31,7 @@ void JobFiles::finishing_chunk(std::span<const CutterLocation> locations,
 void JobFiles::finish(const Job& job, const RunReport& report, const Surface& design,
                       const std::string& folder, OutputSet& outputs) {
   const double inner = job.aperture.inner_radius;
-  if (report.simulation) {
+  if (report.simulated) {
     write_residual_csv(*report.simulation, inner,
                        outputs.add(in_folder(folder, job.name + ".residual.csv")));
     write_residual_ply(*report.simulation, design, inner,
@@ -45,8 +45,8 @@ void JobFiles::finish(const Job& job, const RunReport& report, const Surface& de
     write_polyline_vtk(path, outputs.add(in_folder(folder, job.name + ".path.vtk")));
   }
   if (job.plan->outputs.report)
-    write_report(report, in_folder(folder, "report.json"), in_folder(folder, "report.html"),
-                 outputs);
+    write_report(report, design, in_folder(folder, job.name + ".report.json"),
+                 in_folder(folder, job.name + ".report.html"), outputs);
 }
 
 }  // namespace freeturn

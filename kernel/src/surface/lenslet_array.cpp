@@ -6,6 +6,7 @@
 #include <string>
 
 #include "freeturn/core/error.hpp"
+#include "freeturn/core/number_text.hpp"
 #include "freeturn/surface/conic.hpp"
 
 namespace freeturn {
@@ -17,9 +18,7 @@ double sphere_sag(double c, double a) {
 }
 
 std::string mm(double v) {
-  char buf[32];
-  std::snprintf(buf, sizeof buf, "%.6g mm", v);
-  return buf;
+  return significant_text(v, 6) + " mm";
 }
 
 }  // namespace

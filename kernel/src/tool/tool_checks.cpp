@@ -5,6 +5,7 @@
 #include <numbers>
 
 #include "freeturn/core/error.hpp"
+#include "freeturn/core/number_text.hpp"
 #include "freeturn/path/section_envelope.hpp"
 
 namespace freeturn {
@@ -12,27 +13,22 @@ namespace {
 
 // Angles in degrees, curvatures as radii, lengths in µm: the units a user reads.
 std::string value_text(ToolCheck check, double v) {
-  char buf[64];
   switch (check) {
     case ToolCheck::kContactAngle:
     case ToolCheck::kClearance:
     case ToolCheck::kBLimits:
-      std::snprintf(buf, sizeof buf, "%.4f°", v * 180 / std::numbers::pi);
-      break;
+      return fixed_text(v * 180 / std::numbers::pi, 4) + "°";
     case ToolCheck::kLocalGouge:
-      std::snprintf(buf, sizeof buf, "concave radius %.6g mm", 1 / v);
-      break;
+      return "concave radius " + significant_text(1 / v, 6) + " mm";
     default:
-      std::snprintf(buf, sizeof buf, "%.4f µm", v * 1e3);
+      return fixed_text(v * 1e3, 4) + " µm";
   }
-  return buf;
 }
 
 std::string where_text(const CheckFinding& f) {
-  char buf[160];
-  std::snprintf(buf, sizeof buf, "θ = %.6f rad (%.4f°), r = %.6f mm, (x, y) = (%.6f, %.6f) mm",
-                f.theta, f.theta * 180 / std::numbers::pi, f.r, f.x, f.y);
-  return buf;
+  return "θ = " + fixed_text(f.theta, 6) + " rad (" + fixed_text(f.theta * 180 / std::numbers::pi, 4) +
+         "°), r = " + fixed_text(f.r, 6) + " mm, (x, y) = (" + fixed_text(f.x, 6) + ", " +
+         fixed_text(f.y, 6) + ") mm";
 }
 
 }  // namespace
@@ -45,17 +41,18 @@ const char* tool_check_name(ToolCheck check) {
 
 std::string ToolCheckReport::summary() const {
   std::string out;
-  for (int i = 0; i < kToolCheckCount; ++i) {
-    const CheckFinding& f = findings[i];
-    if (f.count == 0) continue;
-    const ToolCheck c = static_cast<ToolCheck>(i);
-    const std::string limit = c == ToolCheck::kLocalGouge
-                                  ? " < nose radius " + std::to_string(1 / f.limit) + " mm"
-                                  : " > limit " + value_text(c, f.limit);
-    out += std::string(tool_check_name(c)) + ": " + std::to_string(f.count) + " points, worst " +
-           value_text(c, f.worst) + limit + " at " + where_text(f) + "\n";
-  }
+  for (int i = 0; i < kToolCheckCount; ++i)
+    if (findings[i].count > 0) out += line(static_cast<ToolCheck>(i)) + "\n";
   return out;
+}
+
+std::string ToolCheckReport::line(ToolCheck c) const {
+  const CheckFinding& f = (*this)[c];
+  const std::string limit = c == ToolCheck::kLocalGouge
+                                  ? " < nose radius " + significant_text(1 / f.limit, 6) + " mm"
+                                  : " > limit " + value_text(c, f.limit);
+  return std::string(tool_check_name(c)) + ": " + std::to_string(f.count) + " points, worst " +
+         value_text(c, f.worst) + limit + " at " + where_text(f);
 }
 
 ToolChecker::ToolChecker(const Surface& design, const CompensationOptions& compensation,

@@ -12,6 +12,10 @@
 namespace freeturn {
 namespace {
 
+constexpr std::uint16_t kHeldBit = 0x8000;
+constexpr double kOffsetSteps = 32767.0;  // the offset's 15 bits
+
+
 constexpr double kUncut = std::numeric_limits<double>::infinity();
 constexpr std::size_t kBatch = 16384;  // segments swept per parallel batch
 
@@ -37,8 +41,15 @@ const char* to_string(ResidualCause cause) {
     case ResidualCause::kScallop: return "scallop";
     case ResidualCause::kChord: return "chord";
     case ResidualCause::kGouge: return "gouge";
+    case ResidualCause::kUncut: return "uncut_residual";
   }
   return "?";
+}
+
+const char* prediction_bound_text(double ratio) {
+  return ratio < 0.9995 ? "not an upper bound"
+         : ratio <= 1.1 ? "an upper bound within 10%"
+                        : "an upper bound, loose by more than 10%";
 }
 
 CutSimulator::CutSimulator(const Surface& design, double nose_radius, const SimulationOptions& o)
@@ -59,12 +70,13 @@ CutSimulator::CutSimulator(const Surface& design, double nose_radius, const Simu
   pending_.reserve(kBatch + 1);
 }
 
-void CutSimulator::lower_column(int column, double c_r, double c_z, double p_r) {
+void CutSimulator::lower_column(int column, double c_r, double c_z, double p_r, bool held) {
   // Signed radial coordinates s within `band` of the contact p_r (and on the nose, within
   // R of its centre): s ≥ 0 in this column, s < 0 in the opposite one at radius −s.
   const int n = o_.columns;
   const double lo = std::max(p_r - o_.band, c_r - R_), hi = std::min(p_r + o_.band, c_r + R_);
-  const double to_offset = 65535.0 / o_.band;
+  const double to_offset = kOffsetSteps / o_.band;
+  const std::uint16_t held_bit = held ? kHeldBit : 0;
   for (int side = 0; side < 2; ++side) {
     const double sign = side == 0 ? 1.0 : -1.0;
     const int col = side == 0 ? column : (column + n / 2) % n;
@@ -83,7 +95,9 @@ void CutSimulator::lower_column(int column, double c_r, double c_z, double p_r) 
       const std::size_t idx = static_cast<std::size_t>(i) * static_cast<std::size_t>(n) + static_cast<std::size_t>(col);
       if (h < machined_[idx]) {
         machined_[idx] = h;
-        offset_[idx] = static_cast<std::uint16_t>(std::min(65535.0, std::abs(s - p_r) * to_offset + 0.5));
+        offset_[idx] = static_cast<std::uint16_t>(
+            static_cast<std::uint16_t>(std::min(kOffsetSteps, std::abs(s - p_r) * to_offset + 0.5)) |
+            held_bit);
       }
     }
   }
@@ -120,6 +134,7 @@ void CutSimulator::sweep_columns(std::size_t end, int pair_begin, int pair_end) 
       }
     }
     const double pa = radial_of(a.contact.point, ta), pb = radial_of(b.contact.point, tb);
+    const bool held = a.contact.uncut_residual > 0 || b.contact.uncut_residual > 0;
     for (long k = first; k <= last; ++k) {
       const int column = static_cast<int>(((k % n) + n) % n);
       const int pair = column % half;
@@ -132,7 +147,7 @@ void CutSimulator::sweep_columns(std::size_t end, int pair_begin, int pair_end) 
         q = qa + t * (qb - qa);
       }
       const Eigen::Vector2d centre = nose_centre_from_axes(q.x(), q.y(), q.z(), o_.compensation);
-      lower_column(column, centre.x(), centre.y(), pa + t * (pb - pa));
+      lower_column(column, centre.x(), centre.y(), pa + t * (pb - pa), held);
     }
   }
 }
@@ -183,7 +198,7 @@ SimulationResult CutSimulator::finish() {
     if (std::abs(k - std::round(k)) < 1e-9) {
       const Eigen::Vector2d centre = nose_centre_from_axes(cl.x, cl.z, cl.b, o_.compensation);
       lower_column(static_cast<int>((std::llround(k) % o_.columns + o_.columns) % o_.columns), centre.x(),
-                   centre.y(), radial_of(cl.contact.point, cl.contact.theta));
+                   centre.y(), radial_of(cl.contact.point, cl.contact.theta), cl.contact.uncut_residual > 0);
     }
     pending_.clear();
   }
@@ -194,7 +209,7 @@ SimulationResult CutSimulator::finish() {
   r.radial_step = o_.radial_step;
   r.predicted = predicted_;
   const int n = o_.columns;
-  const double from_offset = o_.band / 65535.0;
+  const double from_offset = o_.band / kOffsetSteps;
   std::vector<RingFigures> rings(static_cast<std::size_t>(rings_));
   // The residual replaces the machined height in place, ring by ring in parallel.
   parallel_for(threads_, rings_, [&](long begin, long end) {
@@ -261,10 +276,12 @@ SimulationResult CutSimulator::finish() {
     p.r = o_.inner_radius + best * o_.radial_step;
     p.phi = 2 * std::numbers::pi * j / n;
     p.residual = machined_[idx];
-    const double d = offset_[idx] * from_offset;
+    const double d = (offset_[idx] & ~kHeldBit) * from_offset;
     p.scallop_part = R_ - std::sqrt(std::max(0.0, R_ * R_ - d * d));
     if (p.residual < 0)
       p.cause = -p.residual > 1.1 * predicted_.max_chord_below + 1e-6 ? ResidualCause::kGouge : ResidualCause::kChord;
+    else if (offset_[idx] & kHeldBit)
+      p.cause = ResidualCause::kUncut;
     else
       p.cause = p.scallop_part >= p.residual - p.scallop_part ? ResidualCause::kScallop : ResidualCause::kChord;
     places.push_back(p);

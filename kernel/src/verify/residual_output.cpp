@@ -3,17 +3,20 @@
 #include <algorithm>
 #include <cmath>
 #include <cstdio>
+#include <functional>
 #include <limits>
 #include <numbers>
 
+#include "freeturn/core/number_text.hpp"
 #include "freeturn/io/atomic_file.hpp"
 
 namespace freeturn {
 
-ResidualHeatMap residual_heat_map(const SimulationResult& r, double inner, int size) {
+ResidualHeatMap polar_heat_map(int rings, int columns, double inner, double radial_step,
+                               const std::function<double(std::size_t)>& value, int size) {
   ResidualHeatMap map;
   map.size = size;
-  const double outer = inner + (r.rings - 1) * r.radial_step;
+  const double outer = inner + (rings - 1) * radial_step;
   map.half_width = outer;
   const double pixel = 2 * outer / size;
   map.mean.assign(static_cast<std::size_t>(size) * static_cast<std::size_t>(size),
@@ -24,20 +27,19 @@ ResidualHeatMap residual_heat_map(const SimulationResult& r, double inner, int s
     for (int px = 0; px < size; ++px) {
       const double x = -outer + (px + 0.5) * pixel, y = outer - (py + 0.5) * pixel;
       const double rad = std::hypot(x, y);
-      if (rad < inner - 0.5 * r.radial_step || rad > outer + 0.5 * r.radial_step) continue;
+      if (rad < inner - 0.5 * radial_step || rad > outer + 0.5 * radial_step) continue;
       double phi = std::atan2(y, x);
       if (phi < 0) phi += 2 * std::numbers::pi;
-      const long column = std::lround(phi / (2 * std::numbers::pi) * r.columns) % r.columns;
+      const long column = std::lround(phi / (2 * std::numbers::pi) * columns) % columns;
       const int i0 =
-          std::max(0, static_cast<int>(std::ceil((rad - 0.5 * pixel - inner) / r.radial_step)));
+          std::max(0, static_cast<int>(std::ceil((rad - 0.5 * pixel - inner) / radial_step)));
       const int i1 = std::min(
-          r.rings - 1, static_cast<int>(std::floor((rad + 0.5 * pixel - inner) / r.radial_step)));
+          rings - 1, static_cast<int>(std::floor((rad + 0.5 * pixel - inner) / radial_step)));
       double sum = 0;
       long count = 0;
       for (int i = i0; i <= i1; ++i) {
-        const double e =
-            r.residual[static_cast<std::size_t>(i) * static_cast<std::size_t>(r.columns) +
-                       static_cast<std::size_t>(column)];
+        const double e = value(static_cast<std::size_t>(i) * static_cast<std::size_t>(columns) +
+                               static_cast<std::size_t>(column));
         if (std::isnan(e)) continue;
         sum += e;
         ++count;
@@ -53,20 +55,23 @@ ResidualHeatMap residual_heat_map(const SimulationResult& r, double inner, int s
   return map;
 }
 
+ResidualHeatMap residual_heat_map(const SimulationResult& r, double inner, int size) {
+  return polar_heat_map(r.rings, r.columns, inner, r.radial_step,
+                        [&](std::size_t k) { return r.residual[k]; }, size);
+}
+
 void write_residual_csv(const SimulationResult& r, double inner, AtomicFile& f) {
-  f.write("r,phi_deg,residual_nm\n");
-  char line[96];
+  f.write("r_mm,phi_deg,residual_nm\n");
+  std::string line;
   for (int i = 0; i < r.rings; ++i)
     for (int j = 0; j < r.columns; ++j) {
       const double e =
           r.residual[static_cast<std::size_t>(i) * static_cast<std::size_t>(r.columns) +
                      static_cast<std::size_t>(j)];
-      const int n = std::isnan(e)
-                        ? std::snprintf(line, sizeof line, "%.9g,%.9g,\n",
-                                        inner + i * r.radial_step, 360.0 * j / r.columns)
-                        : std::snprintf(line, sizeof line, "%.9g,%.9g,%.6f\n",
-                                        inner + i * r.radial_step, 360.0 * j / r.columns, e * 1e6);
-      f.write(std::string_view(line, static_cast<std::size_t>(n)));
+      line = significant_text(inner + i * r.radial_step, 9) + "," +
+             significant_text(360.0 * j / r.columns, 9) + "," +
+             (std::isnan(e) ? std::string() : fixed_text(e * 1e6, 6)) + "\n";
+      f.write(line);
     }
 }
 
@@ -99,9 +104,9 @@ void write_residual_ply(const SimulationResult& r, const Surface& design, double
       const int red = t < 0 ? static_cast<int>(255 * (1 + t)) : 255;
       const int blue = t > 0 ? static_cast<int>(255 * (1 - t)) : 255;
       const int green = static_cast<int>(255 * (1 - std::abs(t)));
-      n = std::snprintf(line, sizeof line, "%.9g %.9g %.9g %d %d %d\n", x, y, design.sag(x, y), red,
-                        green, blue);
-      f.write(std::string_view(line, static_cast<std::size_t>(n)));
+      f.write(significant_text(x, 9) + " " + significant_text(y, 9) + " " +
+              significant_text(design.sag(x, y), 9) + " " + std::to_string(red) + " " +
+              std::to_string(green) + " " + std::to_string(blue) + "\n");
     }
   for (int a = 0; a + 1 < rings; ++a)
     for (int b = 0; b < columns; ++b) {

@@ -54,7 +54,8 @@ inline int format_wrapped_degrees(double value, int decimals, char* out) {
 // it into the plugin's refusal; nothing is written).
 inline std::range_error unwritable(char letter, double value, int decimals) {
   char text[32];
-  std::snprintf(text, sizeof text, "%.17g", value);
+  const auto written = std::to_chars(text, text + sizeof text - 1, value);  // locale-free
+  *(written.ec == std::errc() ? written.ptr : text) = '\0';
   return std::range_error(std::string(letter ? std::string(1, letter) + " " : "a number ") + text +
                           " cannot be written with " + std::to_string(decimals) +
                           " decimals (not finite, or too long for an NC word)");

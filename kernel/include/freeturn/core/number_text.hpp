@@ -50,4 +50,12 @@ inline std::string significant_text(double value, int digits) {
   return std::string(buf, error == std::errc() ? end : buf);
 }
 
+// `decimals` digits after the point, as printf's %.<decimals>f writes them in the C locale.
+inline std::string fixed_text(double value, int decimals) {
+  char buf[384];
+  const auto [end, error] =
+      std::to_chars(buf, buf + sizeof buf, value, std::chars_format::fixed, decimals);
+  return std::string(buf, error == std::errc() ? end : buf);
+}
+
 }  // namespace freeturn

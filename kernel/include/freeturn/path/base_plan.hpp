@@ -35,6 +35,8 @@ struct BasePlanOptions {
 struct BasePlan {
   BaseSurface base = BaseSurface::plane(1);
   BaseAxis axis;  // in the design's own frame
+  // Where the searched axis crosses the design (its frame, mm): the program's origin.
+  Eigen::Vector3d axis_crossing = Eigen::Vector3d::Zero();
   QuasiRevolution quasi_revolution;  // of the design (in the frame it is cut in) on `base`
   // The design in the axis frame when the axis moved (it refers to the design passed in,
   // which must outlive it); null when the design is cut in its own frame.

@@ -68,7 +68,7 @@ class RunObserver {
 struct RunResult {
   RunReport report;                // figures, verdict, worst places
   std::vector<std::string> files;  // the paths written, in the order they were put in place
-  bool safe() const { return report.unsafe.empty(); }
+  bool safe() const { return report.safe(); }
 };
 
 // Plans, checks and posts the job, and writes its programs and `files` into

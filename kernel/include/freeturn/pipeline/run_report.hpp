@@ -3,6 +3,7 @@
 // figures per pass, gathered while the pass streams (in bounded memory: the plot series
 // are decimated as they grow), and the verdict.
 
+#include <limits>
 #include <memory>
 #include <string>
 #include <vector>
@@ -12,13 +13,52 @@
 #include "freeturn/path/cutter_points.hpp"
 #include "freeturn/tool/tool_checks.hpp"
 #include "freeturn/verify/cut_simulation.hpp"
+#include "freeturn/verify/form_error.hpp"
 #include "freeturn/verify/residual_output.hpp"
 
 namespace freeturn {
 
+// One thing a run found, for a person (`message`) and for a program (the rest): what, how
+// bad, where the worst of it is and by how much. NaN: not known, or not a place.
+struct ReportWarning {
+  enum class Severity {
+    kNote,     // worth knowing: blocks slowed to the machine's limits
+    kWarning,  // the part may not be what the design asks: material left at creases
+    kUnsafe,   // do not cut this program as it is (the verdict turns UNSAFE)
+  };
+  static constexpr double kNone = std::numeric_limits<double>::quiet_NaN();
+  // A stable key: a tool check's ("contact_angle", "clearance", "local_gouge",
+  // "global_gouge", "centre", "b_limits"), or "nose_jump", "chord_below", "dynamics",
+  // "spindle_speed", "slowed_blocks", "uncut_residual", "quasi_revolution".
+  std::string kind;
+  Severity severity = Severity::kWarning;
+  std::string pass;     // "finish", "rough-1", …; empty: the job as a whole
+  std::string message;  // one sentence, without the pass
+  long count = 0;       // places found (cutter locations, segments, blocks); 0: not counted
+  double theta_deg = kNone, r_mm = kNone, x_mm = kNone, y_mm = kNone;  // the worst place
+  double value = kNone, limit = kNone;  // the worst value and the limit it breaks, in `unit`
+  std::string unit;                     // "deg", "mm", "nm", "rpm"
+};
+const char* to_string(ReportWarning::Severity severity);
+
 struct PlotPoint {
-  double x, y, z, r, chord;
+  double x, y, z, r, theta, chord, scallop;  // mm, rad, mm, mm
   double vx, vz, vc;  // axis velocities of the block ending here (mm/s, mm/s, °/s)
+  double ax, az, ac;  // their change from the block before over its time (mm/s², °/s²)
+};
+
+// The path from above for drawing: at most kTurnPoints points a turn (one per angle step)
+// of every `turn_stride`-th turn; turns are dropped, stride doubled, past kMaxTurns.
+struct TurnSamples {
+  static constexpr int kTurnPoints = 240, kMaxTurns = 48;
+  std::vector<std::vector<std::pair<float, float>>> turns;  // x, y (mm) per kept turn
+  long turn_stride = 1;
+  double start_x = 0, start_y = 0, end_x = 0, end_y = 0;  // the path's first and last contact
+  bool any = false;
+  void add(double theta, double x, double y);
+
+ private:
+  long turn_ = -1, step_ = -1;  // of the last point added
 };
 
 struct PassFigures {
@@ -43,9 +83,11 @@ struct PassFigures {
   double band_width = 0;           // mm
   std::vector<double> uncut_by_band;  // mm, band k covers [k, k + 1)·band_width
   ToolCheckReport checks;
-  std::vector<std::string> check_warnings;
+  // What the pass's checks, jumps and held points found (its part of RunReport::warnings).
+  std::vector<ReportWarning> findings;
   std::vector<PlotPoint> samples;  // every `stride`-th point
   long stride = 1;
+  TurnSamples turns;
   std::vector<long> points_per_revolution;  // by revolution index ⌊θ/2π⌋
 
   // `record` and `previous` are the machine blocks of this point and the one before.
@@ -56,25 +98,65 @@ struct PassFigures {
 
  private:
   double chord_sq_ = 0, scallop_sq_ = 0;
+  double last_v_[3] = {0, 0, 0};  // the last block's X, Z, C velocities
+};
+
+// The base surface a spiral is planned on, and the frame the part is cut in.
+struct BaseFigures {
+  std::string kind;  // "least_squares", "minimax"
+  int degree = 0, coefficients = 0;
+  double rho_max = 0;  // mm
+  // When the axis was searched (strategy.base_surface.search_axis), the turning axis in the
+  // design's frame: tilted by tilt_x about x then tilt_y about y, crossing the design at
+  // `crossing`, which the program puts at the origin. The part is mounted to match.
+  bool axis_searched = false;
+  double tilt_x_deg = 0, tilt_y_deg = 0, tilt_deg = 0;  // tilt_deg: from the z axis
+  double crossing_x = 0, crossing_y = 0, crossing_z = 0;  // mm
+};
+
+// The job's own settings, as the report prints them (docs/job-schema.md names each).
+struct JobParameters {
+  std::string strategy, points_rule, direction, timing;
+  double pitch = 0, inner_radius = 0, outer_radius = 0;                   // mm
+  double chord_tolerance = 0;                                              // mm; 0: not the chord rule
+  double nose_radius = 0, included_angle_deg = 0, clearance_angle_deg = 0;  // mm, °
+  double feed = 0;                                                         // mm/min
+  std::vector<double> roughing_depths;                                     // mm
 };
 
 struct RunReport {
   std::string job, job_file, job_text, machine, plugin;
+  std::string version;        // freeturn's
+  JobParameters parameters;
   double alpha_max_deg = -1;  // spirals: the quasi-revolution angle on the base
   bool axis_moved = false;
-  std::vector<std::string> warnings;
+  BaseFigures base;
+  // Everything the run found, in the order found: the base surface's, each pass's, then
+  // the verdict's (judge). The verdict is UNSAFE when any is kUnsafe.
+  std::vector<ReportWarning> warnings;
   std::vector<PassFigures> passes;
   bool scheduled = false;       // spiral block times scheduled to the machine's limits
   bool enforce_dynamics = true;
+  // The machine's dynamic limits per Axis (mm/s, °/s; infinite: none stated) and which
+  // axes it has.
+  double max_velocity[4] = {0, 0, 0, 0}, max_acceleration[4] = {0, 0, 0, 0};
+  bool has_axis[4] = {false, false, false, false};
   double spindle_rpm = 0;       // as programmed (constant-rpm programs: the highest feasible)
   double requested_rpm = 0;     // as the job asked
-  // Why the program is not safe to cut, each with its worst place: a check the job
-  // downgraded to a warning that found something, a jump of the nose, a dynamics limit the
-  // program exceeds. Empty: PASS.
-  std::vector<std::string> unsafe;
+  // The finishing pass cut in simulation: at the user's grid when `simulated` (simulate,
+  // --simulate), else at the report's coarse grid (the form error map every report has).
   bool simulated = false;
-  std::shared_ptr<SimulationResult> simulation;  // of the finishing pass, when simulated
+  std::shared_ptr<SimulationResult> simulation;
+  std::shared_ptr<FormErrorSplit> form_error;    // its figure and finish
   std::shared_ptr<ResidualHeatMap> heat_map;     // its residual from above
+  std::shared_ptr<ResidualHeatMap> figure_map;   // its figure from above
+
+  // PASS: no warning is kUnsafe.
+  bool safe() const;
+  // Why the program is not safe to cut ("finish: clearance: 12 points, …"), one line each.
+  std::vector<std::string> unsafe_reasons() const;
+  // Every warning as one line, "pass: message" (the pass left out for the job's own).
+  std::vector<std::string> messages() const;
 
   PassFigures& add_pass(const std::string& name, double stock) {
     passes.emplace_back();
@@ -84,7 +166,14 @@ struct RunReport {
   }
 };
 
-// Fills r.unsafe from the passes' figures (call once every pass is done).
+// A path's angle θ (rad, counting turns) as a place on the part: degrees in [0, 360).
+double part_degrees(double theta);
+
+// One warning as a line: "finish: message".
+std::string warning_line(const ReportWarning& w);
+
+// Adds the verdict's own warnings (the motion between blocks below the design, a dynamics
+// limit exceeded) from the passes' figures. Call once, when every pass is done.
 void judge(RunReport& r);
 
 }  // namespace freeturn

@@ -2,11 +2,14 @@
 // The CL data as CSV: one row per cutter location of the finishing pass, in path order,
 // with the machine block made of it.
 //
-// Columns: theta (rad), x y z (contact point, mm), nx ny nz (surface normal), tx ty tz
-// (nose centre, mm), b_deg (tool tilt), X Z (mm) C B (deg) as programmed, chord (mm).
+// Columns (kClColumns), each named with its unit: theta_rad (the path's angle, counting
+// turns), x_mm y_mm z_mm (contact point), nx ny nz (surface normal), tx_mm ty_mm tz_mm
+// (nose centre), b_deg (tool tilt), X_mm Z_mm C_deg B_deg as programmed, chord_mm (the
+// predicted chord error of the segment ending at the row).
 // Numbers are the shortest text that reads back as the same double (std::to_chars), so
 // the CL data can be checked to the nanometre and no locale changes a byte.
 
+#include <array>
 #include <span>
 
 #include "freeturn/io/atomic_file.hpp"
@@ -14,6 +17,13 @@
 #include "freeturn/tool/cutter_location.hpp"
 
 namespace freeturn {
+
+inline constexpr std::array<const char*, 16> kClColumns = {
+    "theta_rad", "x_mm",  "y_mm",  "z_mm", "nx",   "ny",    "nz",    "tx_mm",
+    "ty_mm",     "tz_mm", "b_deg", "X_mm", "Z_mm", "C_deg", "B_deg", "chord_mm"};
+
+// One row's values, in kClColumns' order.
+std::array<double, 16> cl_values(const CutterLocation& location, const AxisRecord& record);
 
 class ClFile {
  public:

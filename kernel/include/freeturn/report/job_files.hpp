@@ -4,7 +4,7 @@
 //   <job>.cl.csv            the finishing pass's CL data (cl_csv: true; report/cl_file.hpp)
 //   <job>.residual.csv/.ply the simulated residual (when the run simulates; verify/)
 //   <job>.surface.obj, <job>.path.vtk  the design and the path as meshes (mesh: true)
-//   report.json, report.html           the report (report: true; report/report_files.hpp)
+//   <job>.report.json, <job>.report.html  the report (report: true; report/report_files.hpp)
 
 #include <memory>
 

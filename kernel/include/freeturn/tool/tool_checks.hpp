@@ -50,6 +50,8 @@ struct ToolCheckReport {
   // One line per check that found something ("clearance: 312 points, worst 12.1° > 10°
   // at θ = …").
   std::string summary() const;
+  // The line of one check ("clearance: 312 points, worst …"), without the newline.
+  std::string line(ToolCheck check) const;
 };
 
 // Runs every enabled check on a cutter location. A check whose policy is kError throws

@@ -55,6 +55,7 @@ enum class ResidualCause {
   kScallop,  // above the design, mostly the nose's flank between passes
   kChord,    // the interpolated motion between blocks, above or below the design
   kGouge,    // below the design by more than the predicted chord error allows
+  kUncut,    // above the design where the nose was held at a crease it cannot reach into
 };
 const char* to_string(ResidualCause cause);
 
@@ -75,6 +76,12 @@ struct ResidualPrediction {
   double min() const { return -max_chord_below; }
   double pv() const { return max() - min(); }
 };
+
+// How the planner's predicted PV compares with the simulated one (ratio = predicted /
+// simulated): "an upper bound within 10%", "an upper bound, loose by more than 10%", or
+// "not an upper bound". A ratio that shows as 1.000 is a bound: the grid's own sampling
+// moves the simulated PV by more than that.
+const char* prediction_bound_text(double ratio);
 
 struct SimulationResult {
   int rings = 0, columns = 0;
@@ -105,14 +112,17 @@ class CutSimulator final : public CutterSink {
  private:
   void sweep_batch(bool last);
   void sweep_columns(std::size_t end, int pair_begin, int pair_end);
-  void lower_column(int column, double c_r, double c_z, double p_r);
+  // held: the segment's nose is held at a crease (its cells are marked uncut residual).
+  void lower_column(int column, double c_r, double c_z, double p_r, bool held);
 
   const Surface& design_;
   double R_;
   SimulationOptions o_;
   int rings_ = 0, threads_ = 1;
   std::vector<double> machined_;       // rings × columns
-  std::vector<std::uint16_t> offset_;  // |ρ − contact| of the cut that set the cell, in band/65535
+  // |ρ − contact| of the cut that set the cell in band/32767 (low 15 bits), and whether that
+  // cut's nose was held at a crease (kHeldBit).
+  std::vector<std::uint16_t> offset_;
   // The batch: locations from pending_[first_] on start segments still to sweep; the one
   // before (if any) gives the first block's velocity in PVT.
   std::vector<CutterLocation> pending_;

@@ -1,8 +1,9 @@
 #pragma once
-// The simulated residual as files: the grid as CSV (r, phi_deg, residual_nm; empty where
+// The simulated residual as files: the grid as CSV (r_mm, phi_deg, residual_nm; empty where
 // no pass reached) and a PLY mesh of the design coloured by the residual (blue below the
 // design, white on it, red above), both written atomically.
 
+#include <functional>
 #include <string>
 #include <vector>
 
@@ -24,6 +25,11 @@ struct ResidualHeatMap {
   double low = 0, high = 0;  // the smallest and largest pixel means (mm)
 };
 ResidualHeatMap residual_heat_map(const SimulationResult& r, double inner_radius, int size);
+// The same raster from any polar grid laid out as SimulationResult::residual (rings ×
+// columns, ring-major, ring i at inner_radius + i·radial_step); value(k) is cell k, NaN
+// where there is nothing to show.
+ResidualHeatMap polar_heat_map(int rings, int columns, double inner_radius, double radial_step,
+                               const std::function<double(std::size_t)>& value, int size);
 
 // Both write into an AtomicFile the caller commits (with the rest of a run,
 // io/output_set.hpp).
