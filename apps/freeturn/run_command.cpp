@@ -2,6 +2,7 @@
 // (freeturn/report/run_job.hpp), its figures and verdict printed.
 #include <unistd.h>
 
+#include <algorithm>
 #include <cmath>
 #include <cstdio>
 #include <memory>
@@ -115,9 +116,12 @@ int run_simulate(const SimulateArgs& args) {
                 e.figure_pv * 1e6, e.figure_rms * 1e6, e.finish_pv * 1e6,
                 e.resolved ? "" : " (the grid is coarser than a third of the pitch: not resolved)");
   }
-  for (const ResidualPlace& p : s.worst)
+  for (const ResidualPlace& p : s.worst) {
+    std::string cause = to_string(p.cause);
+    std::replace(cause.begin(), cause.end(), '_', ' ');
     std::printf("  worst: %+.3f nm at r = %.4f mm, θ = %.2f° (%s)\n", p.residual * 1e6, p.r,
-                p.phi * 180 / std::numbers::pi, to_string(p.cause));
+                p.phi * 180 / std::numbers::pi, cause.c_str());
+  }
   return say_unsafe(r) ? kExitCheckFailed : kExitOk;
 }
 

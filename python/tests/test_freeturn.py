@@ -4,6 +4,7 @@ program). Run by ctest with FREETURN_CLI and FREETURN_SOURCE_DIR set and the mod
 PYTHONPATH."""
 import csv
 import math
+import json
 import os
 import subprocess
 
@@ -84,6 +85,10 @@ def test_run_job_writes_the_cli_nc(tmp_path):
         assert open(nc, "rb").read() == open(tmp_path / "cli" / os.path.basename(nc), "rb").read()
     finish = result["passes"][-1]
     assert finish["name"] == "finish" and finish["chord_error_max_mm"] <= 1e-4
+    # The warnings as records, equal to report.json's: the ring's cone point holds the nose.
+    report = json.load(open(tmp_path / "py" / "sinusoidal_ring.report.json", encoding="utf-8"))
+    assert result["warning_records"] == report["warnings"]
+    assert [w["kind"] for w in result["warning_records"]] == ["uncut_residual", "uncut_residual"]
 
 
 def test_errors_carry_their_place(tmp_path):

@@ -98,7 +98,7 @@ TEST_SUITE("nurbs") {
                          InputError);
     CHECK_THROWS_WITH_AS(
         NurbsCurve(2, {0, 0, 0, 1, 1, 1}, {{0, 0, 0}, {1, 0, 0}, {2, 0, 0}}, {1, -1, 1}),
-        "weight 1: must be a finite number greater than 0, not -1.000000", InputError);
+        "weight 1: must be a finite number greater than 0, not -1", InputError);
     CHECK_THROWS_WITH_AS(NurbsCurve(2, {0, 0, 0, 1, 1, 1}, {{0, 0, 0}, {1, NAN, 0}, {2, 0, 0}}),
                          "control point 1: has a coordinate that is not finite", InputError);
     CHECK_THROWS_WITH_AS(

@@ -116,7 +116,7 @@ TEST_SUITE("nurbs") {
                          "control points: 3 control points, but the knot vectors need 4",
                          InputError);
     CHECK_THROWS_WITH_AS(NurbsSurface(1, 1, k, k, four, {1, 1, 0, 1}),
-                         "weight 1,0: must be a finite number greater than 0, not 0.000000",
+                         "weight 1,0: must be a finite number greater than 0, not 0",
                          InputError);
   }
 }

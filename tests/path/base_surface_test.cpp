@@ -182,6 +182,15 @@ TEST_SUITE("path") {
         CHECK(cut.sag(r * std::cos(phi), r * std::sin(phi)) ==
               doctest::Approx(r * r / 20).epsilon(1e-9).scale(1));
     CHECK(plan.quasi_revolution.max_angle < 1e-8);
+    // What the report tells the shop to mount the part by: the axis is the paraboloid's,
+    // tilted from z by the angle the part was rotated by (acos of R's zz entry, whichever
+    // way R is read), and it crosses the design at axis_crossing, a point on both.
+    const Eigen::Vector3d t = plan.axis.direction();
+    CHECK(std::acos(t.z()) == doctest::Approx(std::acos(rotation(2, 2))).epsilon(1e-7));
+    const Eigen::Vector3d c = plan.axis_crossing;
+    CHECK(part.sag(c.x(), c.y()) == doctest::Approx(c.z()).epsilon(1e-9).scale(1));
+    const Eigen::Vector3d off_axis = (c - plan.axis.point()) - (c - plan.axis.point()).dot(t) * t;
+    CHECK(off_axis.norm() < 1e-8);
 
     const LensletArray eye(eye_options());
     BasePlanOptions limited;

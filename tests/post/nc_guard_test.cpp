@@ -48,7 +48,7 @@ TEST_SUITE("plugins") {
                            Bad{{1, -50.01, 0, 0, 0.01}, "Z = -50.01 is outside its travel"},
                            Bad{{1, 0, 0, 0, nan}, "block time nan s is not a finite duration"},
                            Bad{{1, 0, 0, 0, -1}, "block time -1 s"},
-                           Bad{{1, 1.000001, 0, 0, 0.01}, "Z 1.000001 rises past the clearance base 1.000000"}}) {
+                           Bad{{1, 1.000001, 0, 0, 0.01}, "Z 1.000001 rises past the clearance base 1 "}}) {
       test::TempDir dir;
       {
         PostProgram program(*iso, lathe(), {"job", 100, 0, -1, -1, 1.0, 1}, dir.file("job.nc"));

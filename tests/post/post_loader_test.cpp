@@ -187,7 +187,10 @@ TEST_SUITE("plugins") {
       program.write(r);
       program.finish();
     }
-    const std::string text = test::read_file(path);
+    // The blocks are in the child point file the main program calls (M98(times_001.nc)).
+    const std::string main_text = test::read_file(path);
+    REQUIRE(main_text.find("M98(times_001.nc)") != std::string::npos);
+    const std::string text = test::read_file(dir.file("times_001.nc"));
     std::vector<std::string> feeds;
     for (std::size_t at = text.find("G93 F"); at != std::string::npos; at = text.find("G93 F", at + 1))
       feeds.push_back(text.substr(at, text.find('\n', at) - at));

@@ -106,8 +106,8 @@ TEST_SUITE("report") {
   TEST_CASE("a CL file past its byte bound stops at limits.max_file_mb") {
     test::TempDir dir;
     AtomicFile out(dir.file("b.cl.csv"));
-    // The header is 50 bytes; one row of zeros is 32 ("0," fifteen times, "0\n").
-    ClFile file(out, 50 + 32);
+    // The header is 89 bytes; one row of zeros is 32 ("0," fifteen times, "0\n").
+    ClFile file(out, 89 + 32);
     const CutterLocation cl;
     const AxisRecord r;
     file.write(std::span<const CutterLocation>(&cl, 1), std::span<const AxisRecord>(&r, 1));

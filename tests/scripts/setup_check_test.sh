@@ -18,7 +18,7 @@ exit 1
 FAKE
 chmod +x "$tmp/dpkg-query"
 
-all="cmake g++ make pkg-config libeigen3-dev libopenmesh-dev libyaml-cpp-dev doctest-dev libbenchmark-dev libcli11-dev python3 python3-dev pybind11-dev python3-numpy python3-pytest"
+all="cmake g++ make pkg-config libeigen3-dev libopenmesh-dev libyaml-cpp-dev doctest-dev libbenchmark-dev libcli11-dev nlohmann-json3-dev python3-jsonschema locales python3 python3-dev pybind11-dev python3-numpy python3-pytest"
 fail=0
 check() {  # $1: installed list, $2: expected output, $3: expected exit code
   local out code
@@ -34,8 +34,8 @@ check() {  # $1: installed list, $2: expected output, $3: expected exit code
   fi
 }
 
-check "$all" "all 15 packages are installed" 0
-check "cmake g++ make pkg-config libeigen3-dev libyaml-cpp-dev libbenchmark-dev libcli11-dev python3 python3-dev pybind11-dev python3-numpy python3-pytest" \
+check "$all" "all 18 packages are installed" 0
+check "cmake g++ make pkg-config libeigen3-dev libyaml-cpp-dev libbenchmark-dev libcli11-dev nlohmann-json3-dev python3-jsonschema locales python3 python3-dev pybind11-dev python3-numpy python3-pytest" \
       $'libopenmesh-dev\ndoctest-dev' 1
 check "" "$(echo "$all" | tr ' ' '\n')" 1
 EXTRA="linuxcnc-uspace" check "$all" "linuxcnc-uspace" 1

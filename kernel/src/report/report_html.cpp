@@ -197,11 +197,15 @@ std::string path_overlay(const TurnSamples& t, double outer) {
   return s;
 }
 
+// Index 0 is "no data" (light grey); 1…255 run from −limit (blue) to +limit (red).
 std::string diverging_image(const ResidualHeatMap& m, double limit) {
-  std::vector<unsigned char> rgb(m.mean.size() * 3, 244);
+  std::vector<unsigned char> palette(256 * 3, 244), index(m.mean.size(), 0);
+  for (std::size_t k = 1; k < 256; ++k) put_pixel(palette, k, diverging((k - 1) / 254.0 * 2 - 1));
   for (std::size_t k = 0; k < m.mean.size(); ++k)
-    if (!std::isnan(m.mean[k])) put_pixel(rgb, k, diverging(m.mean[k] / limit));
-  return bmp_rgb_data_url(rgb, m.size);
+    if (!std::isnan(m.mean[k]))
+      index[k] = static_cast<unsigned char>(
+          1 + std::lround((std::clamp(m.mean[k] / limit, -1.0, 1.0) + 1) / 2 * 254));
+  return bmp_indexed_data_url(index, palette, m.size);
 }
 
 std::string row(const std::string& key, const std::string& value) {

@@ -177,11 +177,13 @@ std::string svg_chart(const Chart& c) {
   return svg;
 }
 
-std::string bmp_rgb_data_url(const std::vector<unsigned char>& rgb, int size) {
-  const int row = (3 * size + 3) / 4 * 4;
-  const std::uint32_t offset = 14 + 40, image = static_cast<std::uint32_t>(row * size);
+namespace {
+
+// The 54-byte BMP header of a size × size image, rows top-down, `bits` per pixel, with
+// `colours` palette entries after it.
+std::string bmp_header(int size, int bits, int colours, std::uint32_t image) {
+  const std::uint32_t offset = 14 + 40 + 4 * static_cast<std::uint32_t>(colours);
   std::string b;
-  b.reserve(offset + image);
   const auto u16 = [&](std::uint32_t v) {
     b += static_cast<char>(v & 255);
     b += static_cast<char>((v >> 8) & 255);
@@ -198,13 +200,21 @@ std::string bmp_rgb_data_url(const std::vector<unsigned char>& rgb, int size) {
   u32(static_cast<std::uint32_t>(size));
   u32(static_cast<std::uint32_t>(-size));  // negative height: rows top-down
   u16(1);
-  u16(24);
+  u16(static_cast<std::uint32_t>(bits));
   u32(0);
   u32(image);
   u32(2835);
   u32(2835);
+  u32(static_cast<std::uint32_t>(colours));
   u32(0);
-  u32(0);
+  return b;
+}
+
+}  // namespace
+
+std::string bmp_rgb_data_url(const std::vector<unsigned char>& rgb, int size) {
+  const int row = (3 * size + 3) / 4 * 4;
+  std::string b = bmp_header(size, 24, 0, static_cast<std::uint32_t>(row * size));
   for (int y = 0; y < size; ++y) {
     for (int x = 0; x < size; ++x) {
       const std::size_t k = (static_cast<std::size_t>(y) * static_cast<std::size_t>(size) +
@@ -214,6 +224,24 @@ std::string bmp_rgb_data_url(const std::vector<unsigned char>& rgb, int size) {
       b += static_cast<char>(rgb[k]);
     }
     b.append(static_cast<std::size_t>(row - 3 * size), '\0');
+  }
+  return "data:image/bmp;base64," + base64(b);
+}
+
+std::string bmp_indexed_data_url(const std::vector<unsigned char>& index,
+                                 const std::vector<unsigned char>& palette_rgb, int size) {
+  const int row = (size + 3) / 4 * 4;
+  std::string b = bmp_header(size, 8, 256, static_cast<std::uint32_t>(row * size));
+  for (std::size_t k = 0; k < 256; ++k) {
+    b += static_cast<char>(palette_rgb[3 * k + 2]);
+    b += static_cast<char>(palette_rgb[3 * k + 1]);
+    b += static_cast<char>(palette_rgb[3 * k]);
+    b += '\0';
+  }
+  for (int y = 0; y < size; ++y) {
+    b.append(reinterpret_cast<const char*>(index.data()) + static_cast<std::size_t>(y) * static_cast<std::size_t>(size),
+             static_cast<std::size_t>(size));
+    b.append(static_cast<std::size_t>(row - size), '\0');
   }
   return "data:image/bmp;base64," + base64(b);
 }

@@ -52,5 +52,9 @@ std::string html_escape(const std::string& s);
 
 // An image as a data: URL, from rows of 8-bit RGB (size × size × 3, top row first).
 std::string bmp_rgb_data_url(const std::vector<unsigned char>& rgb, int size);
+// The same from palette indices (size × size, top row first) and a palette of 256 RGB
+// entries: a third of the bytes, for maps of one quantity.
+std::string bmp_indexed_data_url(const std::vector<unsigned char>& index,
+                                 const std::vector<unsigned char>& palette_rgb, int size);
 
 }  // namespace freeturn::detail

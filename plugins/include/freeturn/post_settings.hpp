@@ -5,11 +5,13 @@
 // is for them. A key the plugin does not know is an error, as in every other YAML
 // freeturn reads.
 
+#include <charconv>
 #include <cmath>
 #include <cstdio>
 #include <cstdlib>
 #include <map>
 #include <string>
+#include <system_error>
 
 namespace freeturn::post {
 
@@ -51,9 +53,12 @@ class FlatSettings {
       out = fallback;
       return true;
     }
-    char* end = nullptr;
-    out = std::strtod(v.c_str(), &end);
-    if (end == v.c_str() || *end != '\0') {
+    // std::from_chars, not strtod: a host program in a German locale would have strtod stop
+    // at the '.' of "1.0".
+    const char* first = v.data() + (v[0] == '+' ? 1 : 0);
+    const char* last = v.data() + v.size();
+    const auto [end, ec] = std::from_chars(first, last, out);
+    if (first == last || ec != std::errc() || end != last || !std::isfinite(out)) {
       error = "dialect setting '" + key + "' must be a number, not '" + v + "'";
       return false;
     }
