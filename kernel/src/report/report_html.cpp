@@ -115,7 +115,7 @@ std::string map_figure(const std::string& id, const std::string& caption, const 
 // from the upper left), so the small features on a large sag (lenslets) show.
 std::string part_image(const Surface& design, double inner, double outer, double& low, double& high) {
   const int n = kPartPixels;
-  std::vector<double> z(static_cast<std::size_t>(n) * n, std::nan("")), shade(z.size(), 1.0);
+  std::vector<double> z(static_cast<std::size_t>(n) * n, std::nan(""));
   low = 1e300, high = -1e300;
   double slope_scale = 0;
   std::vector<std::array<double, 2>> gradient(z.size());
@@ -133,17 +133,9 @@ std::string part_image(const Surface& design, double inner, double outer, double
       low = std::min(low, h), high = std::max(high, h);
     }
   if (low > high) low = high = 0;
-  // Shading from the slope less its mean trend: the base sphere's slope would drown the
-  // lenslets' own. The local slope's spread sets the shading's contrast.
-  double sum_x = 0, sum_y = 0, count = 0;
-  for (std::size_t k = 0; k < z.size(); ++k)
-    if (!std::isnan(z[k])) {
-      const int py = static_cast<int>(k) / n, px = static_cast<int>(k) % n;
-      const double x = -outer + (px + 0.5) * 2 * outer / n, y = outer - (py + 0.5) * 2 * outer / n;
-      (void)x, (void)y;
-      sum_x += gradient[k][0], sum_y += gradient[k][1], ++count;
-    }
-  // Each pixel's slope relative to its neighbourhood's (3 px): the features, not the bowl.
+  // Shading from each pixel's slope less its neighbourhood's (7 × 7 px): the features, not
+  // the bowl (the base sphere's slope would drown the lenslets' own). The largest such
+  // slope sets the shading's contrast.
   std::vector<double> detail(z.size(), 0.0);
   for (int py = 1; py + 1 < n; ++py)
     for (int px = 1; px + 1 < n; ++px) {
@@ -183,8 +175,12 @@ std::string path_overlay(const TurnSamples& t, double outer) {
   for (const auto& turn : t.turns) {
     if (turn.size() < 2) continue;
     std::string d;
-    for (std::size_t i = 0; i < turn.size(); ++i)
-      d += (i ? "L" : "M") + fixed_text(u(turn[i].first), 1) + " " + fixed_text(v(turn[i].second), 1);
+    for (std::size_t i = 0; i < turn.size(); ++i) {
+      d += i ? 'L' : 'M';
+      d += fixed_text(u(turn[i].first), 1);
+      d += ' ';
+      d += fixed_text(v(turn[i].second), 1);
+    }
     s += "<path d=\"" + d + "\"/>";
   }
   s += "</g>";
