@@ -2,6 +2,7 @@
 
 #include "freeturn/job/surface_yaml.hpp"
 #include "freeturn/job/yaml_reader.hpp"
+#include "compensation_yaml.hpp"
 #include "job_plan_yaml.hpp"
 
 namespace freeturn {
@@ -70,6 +71,9 @@ Job load_job(const std::string& path, std::uintmax_t max_bytes) {
                          "' must use only letters, digits, '-', '_' and '.' (it names files)");
   job.aperture = read_aperture(map.child("aperture"), path);
   job.surface = surface_from_yaml(map.child("surface"), path, job.aperture.outer_radius);
+  if (const auto compensation = map.optional_child("compensation"))
+    job.surface = detail::read_compensation(*compensation, path, std::move(job.surface),
+                                            job.aperture, job.compensation);
   job.plan = detail::read_job_plan(map, job.aperture);
   map.finish();
   record_places(root, "", path, job.places);

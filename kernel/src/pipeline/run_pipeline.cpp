@@ -287,6 +287,7 @@ RunResult execute_job(const Job& job, const PreparedJob& prepared, const std::st
   report.job_file = std::filesystem::path(job_path).filename().string();
   report.version = kVersion;
   report.parameters = job_parameters(job);
+  report.compensation = job.compensation;
   {
     std::ifstream in(job_path, std::ios::binary);
     std::ostringstream text;

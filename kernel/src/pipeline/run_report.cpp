@@ -200,6 +200,17 @@ void PassFigures::take_schedule(const ScheduleReport& s) {
   dynamics.cycle_time = s.cycle_time;
 }
 
+double zernike_rms(const std::vector<double>& a) {
+  double sq = 0;
+  for (std::size_t j = 1; j < a.size(); ++j) sq += a[j] * a[j];
+  return std::sqrt(sq);
+}
+
+double compensated_rms(const MeasuredPart& part) {
+  const double kept = (1 - part.gain) * zernike_rms(part.registration.zernike);
+  return std::hypot(kept, part.registration.fit_rms);
+}
+
 double part_degrees(double theta) {
   const double d = std::fmod(theta * kDegrees, 360.0);
   return d < 0 ? d + 360 : d;

@@ -7,6 +7,7 @@
 #include <numbers>
 
 #include "freeturn/core/number_text.hpp"
+#include "freeturn/surface/zernike.hpp"
 #include "report_writers.hpp"
 #include "svg_chart.hpp"
 
@@ -15,6 +16,7 @@ namespace {
 
 constexpr double kDegrees = 180 / std::numbers::pi;
 constexpr int kPartPixels = 280;
+constexpr int kMapPixels = 240;  // the correction maps, per side
 constexpr const char* kAxes[4] = {"X", "Z", "C", "B"};
 
 using Rgb = std::array<double, 3>;
@@ -445,6 +447,56 @@ std::string report_html(const RunReport& r, const Surface& design) {
     h += svg_chart(c);
   }
   h += "</div>\n";
+
+  // The metrology loop: each measured part, its registration, the error fitted and the
+  // correction cut.
+  if (!r.compensation.empty()) {
+    h += "<h2>Compensation</h2>\n<p>The job cuts the design less gain × the error each measured "
+         "part showed (docs/metrology.md).</p><table id=\"compensation\"><tr><th>measured part</th>"
+         "<th>points used</th><th>registration (decentre, tilt, clocking, piston)</th>"
+         "<th>measured error</th><th>fit residual</th><th>gain</th><th>correction</th>"
+         "<th>predicted after</th></tr>\n";
+    for (const MeasuredPart& m : r.compensation) {
+      const Registration& g = m.registration;
+      h += "<tr><td>" + html_escape(m.file) + " (" + html_escape(m.format) + ")</td><td class=\"n\">" +
+           std::to_string(g.used) + " of " + std::to_string(m.points + m.invalid) + " (" +
+           std::to_string(m.invalid) + " invalid, " + std::to_string(g.outliers) + " outliers)</td><td>(" +
+           readable(g.decentre_x * 1e3, 2) + ", " + readable(g.decentre_y * 1e3, 2) + ") µm, (" +
+           readable(g.tilt_x * 1e6, 2) + ", " + readable(g.tilt_y * 1e6, 2) + ") µrad, " +
+           readable(g.clocking * kDegrees, 4) + "°, " + readable(g.piston * 1e3, 3) + " µm</td><td class=\"n\">RMS " +
+           nm(g.measured_rms) + ", PV " + nm(g.measured_pv) + "</td><td class=\"n\">" + nm(g.fit_rms) +
+           " RMS</td><td class=\"n\">" + readable(m.gain, 2) + "</td><td class=\"n\">" +
+           nm(m.gain * zernike_rms(g.zernike)) + " RMS</td><td class=\"n\">" + nm(compensated_rms(m)) +
+           " RMS</td></tr>\n";
+    }
+    h += "</table><div class=\"grid2\">\n";
+    for (std::size_t k = 0; k < r.compensation.size(); ++k) {
+      const MeasuredPart& m = r.compensation[k];
+      const Zernike error(0, 0, {}, m.registration.normalization_radius, m.registration.zernike);
+      ResidualHeatMap map;
+      map.size = kMapPixels;
+      map.half_width = outer;
+      map.mean.assign(static_cast<std::size_t>(kMapPixels) * kMapPixels, std::nan(""));
+      double limit = 1e-12;
+      for (int py = 0; py < kMapPixels; ++py)
+        for (int px = 0; px < kMapPixels; ++px) {
+          const double x = -outer + (px + 0.5) * 2 * outer / kMapPixels;
+          const double y = outer - (py + 0.5) * 2 * outer / kMapPixels;
+          const double rad = std::hypot(x, y);
+          if (rad > outer || rad < p.inner_radius) continue;
+          const double e = m.gain * error.sag(x, y);
+          map.mean[static_cast<std::size_t>(py) * kMapPixels + static_cast<std::size_t>(px)] = e;
+          limit = std::max(limit, std::abs(e));
+        }
+      h += map_figure("fig-correction-" + std::to_string(k + 1),
+                      "The correction cut for " + m.file + ": gain × the fitted error (" +
+                          std::to_string(m.registration.zernike.size()) +
+                          " Zernike terms), subtracted from the design",
+                      diverging_image(map, limit), kMapPixels, outer, "", diverging, true,
+                      -limit * 1e6, limit * 1e6, "nm", 1);
+    }
+    h += "</div>\n";
+  }
 
   // The passes and, when simulated, the worst places.
   h += "<h2>Passes</h2><table id=\"passes\"><tr><th>pass</th><th>stock</th><th>points</th>"

@@ -123,6 +123,30 @@ Json simulation_json(const RunReport& r) {
   return j;
 }
 
+Json compensation_json(const MeasuredPart& m) {
+  const Registration& g = m.registration;
+  Json zernike = Json::array();
+  for (const double a : g.zernike) zernike.push_back(a * 1e6);
+  Json j;
+  j["file"] = m.file;
+  j["format"] = m.format;
+  j["gain"] = m.gain;
+  j["points"] = {{"valid", m.points}, {"invalid", m.invalid}, {"used", g.used},
+                 {"outliers", g.outliers}, {"outside_aperture", g.outside}};
+  j["registration"] = {{"piston_mm", g.piston},          {"tilt_x_rad", g.tilt_x},
+                       {"tilt_y_rad", g.tilt_y},         {"decentre_x_mm", g.decentre_x},
+                       {"decentre_y_mm", g.decentre_y},  {"clocking_deg", g.clocking * kDegrees},
+                       {"iterations", g.iterations}};
+  j["fit"] = {{"zernike_terms", static_cast<long>(g.zernike.size())},
+              {"normalization_radius_mm", g.normalization_radius},
+              {"zernike_nm", std::move(zernike)},
+              {"residual_rms_nm", g.fit_rms * 1e6}};
+  j["measured_error_nm"] = {{"rms", g.measured_rms * 1e6}, {"pv", g.measured_pv * 1e6}};
+  j["correction_rms_nm"] = m.gain * zernike_rms(g.zernike) * 1e6;
+  j["predicted_after_rms_nm"] = compensated_rms(m) * 1e6;
+  return j;
+}
+
 }  // namespace
 
 std::string report_json(const RunReport& r) {
@@ -180,6 +204,9 @@ std::string report_json(const RunReport& r) {
   for (const PassFigures& f : r.passes) passes.push_back(pass_json(r, f));
   j["passes"] = std::move(passes);
   j["form_error"] = r.simulation ? simulation_json(r) : Json(nullptr);
+  Json compensation = Json::array();
+  for (const MeasuredPart& m : r.compensation) compensation.push_back(compensation_json(m));
+  j["compensation"] = std::move(compensation);
   // A byte that is not UTF-8 (a Latin-1 comment the reader let through) becomes U+FFFD:
   // the file stays valid JSON.
   return j.dump(2, ' ', false, Json::error_handler_t::replace) + "\n";

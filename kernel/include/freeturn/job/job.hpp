@@ -10,6 +10,7 @@
 
 #include "freeturn/core/error.hpp"
 #include "freeturn/job/yaml_limits.hpp"
+#include "freeturn/metrology/registration.hpp"
 #include "freeturn/path/base_plan.hpp"
 #include "freeturn/path/cutter_points.hpp"
 #include "freeturn/surface/surface.hpp"
@@ -77,11 +78,26 @@ struct JobPlan {
   PointEstimate estimate;
 };
 
+// One measured part the job corrects for (the `compensation:` section, docs/metrology.md):
+// the file, how it was read and registered, and what registering it found. The job cuts
+// design − Σ gain · error over its entries.
+struct MeasuredPart {
+  std::string file;    // as the job names it (relative to the job file)
+  std::string format;  // zygo_xyz, xyz, csv, grid, profile
+  double gain = 1;
+  long invalid = 0;    // points the file marks invalid
+  long points = 0;     // valid points read
+  Registration registration;
+};
+
 struct Job {
   std::string file;  // where it was read from
   std::string name;  // used in output file names: letters, digits, '-', '_', '.'
   Aperture aperture;
+  // The surface the job cuts: the design, or with `compensation:` a CorrectedSurface
+  // (surface/corrected_surface.hpp) that holds the design.
   std::unique_ptr<Surface> surface;
+  std::vector<MeasuredPart> compensation;
   std::optional<JobPlan> plan;  // present when the job has tool, strategy, cutting, machine
   // Where each value stands in the file, by its dotted key ("strategy.mode",
   // "tool.nose_radius"): errors found later, while planning or posting, are reported there.

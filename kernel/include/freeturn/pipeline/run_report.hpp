@@ -8,6 +8,7 @@
 #include <string>
 #include <vector>
 
+#include "freeturn/job/job.hpp"
 #include "freeturn/machine/axis_mapper.hpp"
 #include "freeturn/machine/block_schedule.hpp"
 #include "freeturn/path/cutter_points.hpp"
@@ -131,6 +132,9 @@ struct RunReport {
   double alpha_max_deg = -1;  // spirals: the quasi-revolution angle on the base
   bool axis_moved = false;
   BaseFigures base;
+  // The measured parts the job corrects for (`compensation:`), with their registration and
+  // fitted error; empty without compensation.
+  std::vector<MeasuredPart> compensation;
   // Everything the run found, in the order found: the base surface's, each pass's, then
   // the verdict's (judge). The verdict is UNSAFE when any is kUnsafe.
   std::vector<ReportWarning> warnings;
@@ -165,6 +169,14 @@ struct RunReport {
     return passes.back();
   }
 };
+
+// The RMS of a fitted error over its normalisation disk, piston left out: Noll's terms are
+// orthonormal there (the mean of Z_j² over the unit disk is 1), so it is √(Σ_{j≥2} a_j²).
+double zernike_rms(const std::vector<double>& a);
+// What a part cut with this correction is predicted to keep of the measured error (mm RMS):
+// the share the gain leaves, (1 − gain)·RMS(E), and what the fit did not explain, added in
+// quadrature.
+double compensated_rms(const MeasuredPart& part);
 
 // A path's angle θ (rad, counting turns) as a place on the part: degrees in [0, 360).
 double part_degrees(double theta);

@@ -1,0 +1,228 @@
+// The registration's least squares (registration.hpp): dense normal equations of a few
+// dozen unknowns, solved by Eigen's LDLT, in their own translation unit.
+#include "freeturn/metrology/registration.hpp"
+
+#include <Eigen/Cholesky>
+#include <Eigen/Geometry>
+#include <algorithm>
+#include <cmath>
+#include <memory>
+
+#include "freeturn/core/error.hpp"
+#include "freeturn/core/number_text.hpp"
+#include "freeturn/surface/zernike.hpp"
+
+namespace freeturn {
+namespace {
+
+constexpr int kPose = 6;  // piston, tilt_x, tilt_y, decentre_x, decentre_y, clocking
+
+Eigen::Matrix3d rotation(double tilt_x, double tilt_y, double clocking) {
+  return (Eigen::AngleAxisd(clocking, Eigen::Vector3d::UnitZ()) *
+          Eigen::AngleAxisd(tilt_y, Eigen::Vector3d::UnitY()) *
+          Eigen::AngleAxisd(tilt_x, Eigen::Vector3d::UnitX()))
+      .toRotationMatrix();
+}
+
+// The unknowns: the pose, then one a_j per fitted term.
+struct Model {
+  Eigen::VectorXd x;
+  std::vector<int> terms;  // Noll j of each coefficient
+  double rn = 1;
+
+  Eigen::Vector3d to_design(const Eigen::Vector3d& p) const {
+    return rotation(x[1], x[2], x[5]) * p + Eigen::Vector3d(x[3], x[4], x[0]);
+  }
+  std::unique_ptr<Zernike> error() const {
+    std::vector<double> a(static_cast<std::size_t>(terms.empty() ? 0 : terms.back()), 0.0);
+    for (std::size_t k = 0; k < terms.size(); ++k)
+      a[static_cast<std::size_t>(terms[k] - 1)] = x[kPose + static_cast<Eigen::Index>(k)];
+    return std::make_unique<Zernike>(0, 0, std::array<double, 9>{}, rn, a);
+  }
+};
+
+}  // namespace
+
+Registration register_measurement(const Surface& design, const Measurement& m,
+                                  const RegistrationOptions& o, const std::string& where) {
+  Model model;
+  model.rn = o.normalization_radius;
+  for (int j = 1; j <= o.zernike_terms; ++j) {
+    if (j == 1 && o.piston) continue;
+    if ((j == 2 || j == 3) && o.tilt) continue;
+    if (o.profile && noll_to_nm(j).m != 0) continue;
+    model.terms.push_back(j);
+  }
+  const int unknowns = kPose + static_cast<int>(model.terms.size());
+  const bool free[kPose] = {o.piston,   o.tilt && !o.profile,     o.tilt,
+                            o.decentre, o.decentre && !o.profile, o.clocking && !o.profile};
+  model.x = Eigen::VectorXd::Zero(unknowns);
+  // One Zernike per term: its value at a point is that term's column of the Jacobian.
+  std::vector<std::unique_ptr<Zernike>> basis;
+  for (const int j : model.terms) {
+    std::vector<double> unit(static_cast<std::size_t>(j), 0.0);
+    unit.back() = 1;
+    basis.push_back(std::make_unique<Zernike>(0, 0, std::array<double, 9>{}, model.rn, unit));
+  }
+  const std::size_t n = m.points.size();
+  std::vector<char> excluded(n, 0);
+  const double width = o.outer_radius - o.inner_radius;
+
+  // Σ r², JᵀJ and Jᵀr over the points used at `model`; false when too few are inside.
+  Eigen::MatrixXd jtj(unknowns, unknowns);
+  Eigen::VectorXd jtr(unknowns), row(unknowns);
+  std::vector<double> residual(n, 0.0);
+  std::vector<char> inside(n, 0);
+  const auto evaluate = [&](const Model& at, bool with_jacobian, long& used) {
+    const std::unique_ptr<Zernike> error = at.error();
+    const Eigen::Matrix3d r = rotation(at.x[1], at.x[2], at.x[5]);
+    // Derivatives of R·p in the three angles, by central differences of R (exact enough:
+    // the angles are small and the step is 1e-7 rad).
+    const double h = 1e-7;
+    const Eigen::Matrix3d d_tx = (rotation(at.x[1] + h, at.x[2], at.x[5]) - rotation(at.x[1] - h, at.x[2], at.x[5])) / (2 * h);
+    const Eigen::Matrix3d d_ty = (rotation(at.x[1], at.x[2] + h, at.x[5]) - rotation(at.x[1], at.x[2] - h, at.x[5])) / (2 * h);
+    const Eigen::Matrix3d d_c = (rotation(at.x[1], at.x[2], at.x[5] + h) - rotation(at.x[1], at.x[2], at.x[5] - h)) / (2 * h);
+    double cost = 0;
+    used = 0;
+    if (with_jacobian) jtj.setZero(), jtr.setZero();
+    for (std::size_t i = 0; i < n; ++i) {
+      inside[i] = 0;
+      if (excluded[i]) continue;
+      const Eigen::Vector3d& p = m.points[i];
+      const Eigen::Vector3d q = r * p + Eigen::Vector3d(at.x[3], at.x[4], at.x[0]);
+      const double rho = std::hypot(q.x(), q.y());
+      if (rho < o.inner_radius || rho > o.outer_radius) continue;
+      double z, zx, zy, e, ex, ey;
+      design.sag_gradient(q.x(), q.y(), z, zx, zy);
+      error->sag_gradient(q.x(), q.y(), e, ex, ey);
+      if (!std::isfinite(z)) continue;
+      inside[i] = 1;
+      ++used;
+      const double res = q.z() - z - e;
+      residual[i] = res;
+      cost += res * res;
+      if (!with_jacobian) continue;
+      // ∂r/∂q = (−(zx + ex), −(zy + ey), 1).
+      const Eigen::Vector3d g(-(zx + ex), -(zy + ey), 1.0);
+      row.setZero();
+      row[0] = 1;
+      row[1] = g.dot(d_tx * p);
+      row[2] = g.dot(d_ty * p);
+      row[3] = g.x();
+      row[4] = g.y();
+      row[5] = g.dot(d_c * p);
+      for (std::size_t k = 0; k < basis.size(); ++k)
+        row[kPose + static_cast<Eigen::Index>(k)] = -basis[k]->sag(q.x(), q.y());
+      for (int k = 0; k < kPose; ++k)
+        if (!free[k]) row[k] = 0;
+      jtj.selfadjointView<Eigen::Lower>().rankUpdate(row);
+      jtr += row * res;
+    }
+    return cost;
+  };
+
+  Registration out;
+  long used = 0;
+  int iterations = 0;
+  for (int round = 0; round < 6; ++round) {
+    double lambda = 1e-6;
+    double cost = evaluate(model, true, used);
+    if (used < std::max<long>(3L * unknowns, 30))
+      throw InputError(where, std::to_string(used) + " valid points fall inside the aperture (" +
+                                  fixed_text(o.inner_radius, 3) + " – " + fixed_text(o.outer_radius, 3) +
+                                  " mm) once registered: too few to register and fit " +
+                                  std::to_string(unknowns) + " unknowns (is the measurement "
+                                  "outside the aperture, or in other units?)");
+    for (int it = 0; it < o.max_iterations; ++it, ++iterations) {
+      const Eigen::MatrixXd full = jtj.selfadjointView<Eigen::Lower>();
+      bool improved = false;
+      for (int attempt = 0; attempt < 12 && !improved; ++attempt) {
+        Eigen::MatrixXd a = full;
+        for (int k = 0; k < unknowns; ++k) {
+          const bool fixed = k < kPose && !free[k];
+          a(k, k) += fixed ? 1.0 : lambda * std::max(full(k, k), 1e-12);
+        }
+        const Eigen::VectorXd step = a.ldlt().solve(-jtr);
+        Model trial = model;
+        trial.x += step;
+        long trial_used = 0;
+        const double trial_cost = evaluate(trial, false, trial_used);
+        if (std::isfinite(trial_cost) && trial_cost <= cost && trial_used >= used * 9 / 10) {
+          const bool small = step.head(kPose).cwiseAbs().maxCoeff() < 1e-12 &&
+                             (step.size() == kPose || step.tail(step.size() - kPose).cwiseAbs().maxCoeff() < 1e-15);
+          const double before = cost;
+          model = trial;
+          lambda = std::max(lambda / 10, 1e-12);
+          improved = true;
+          cost = evaluate(model, true, used);
+          // Converged: the pose no longer moves, or the cost no longer falls.
+          if (small || before - cost <= 1e-12 * before) it = o.max_iterations;
+        } else {
+          lambda *= 10;
+        }
+      }
+      if (!improved) break;  // no step lowers the cost: the minimum, to the damping's resolution
+      if (std::abs(model.x[3]) > width || std::abs(model.x[4]) > width || std::abs(model.x[1]) > 0.5 ||
+          std::abs(model.x[2]) > 0.5)
+        throw InputError(where, "the registration diverges (decentre " +
+                                    significant_text(std::hypot(model.x[3], model.x[4]), 3) +
+                                    " mm, tilt " + significant_text(std::hypot(model.x[1], model.x[2]), 3) +
+                                    " rad): is the measurement of this part, in these units?");
+    }
+    // Outliers against this fit, by a robust σ of the points it used; every point is judged
+    // anew (a point the first, spike-pulled fit dropped comes back once the fit settles).
+    std::vector<double> sorted;
+    for (std::size_t i = 0; i < n; ++i)
+      if (inside[i]) sorted.push_back(residual[i]);
+    std::nth_element(sorted.begin(), sorted.begin() + static_cast<std::ptrdiff_t>(sorted.size() / 2), sorted.end());
+    const double median = sorted[sorted.size() / 2];
+    for (double& v : sorted) v = std::abs(v - median);
+    std::nth_element(sorted.begin(), sorted.begin() + static_cast<std::ptrdiff_t>(sorted.size() / 2), sorted.end());
+    const double sigma = 1.4826 * sorted[sorted.size() / 2];
+    std::fill(excluded.begin(), excluded.end(), 0);
+    long dropped = 0;
+    evaluate(model, false, used);  // every point's residual, none excluded
+    for (std::size_t i = 0; i < n; ++i)
+      if (inside[i] && sigma > 0 && std::abs(residual[i] - median) > o.outlier_sigmas * sigma) {
+        excluded[i] = 1;
+        ++dropped;
+      }
+    const bool settled = dropped == out.outliers;
+    out.outliers = dropped;
+    if (dropped == 0 || settled) break;
+  }
+  evaluate(model, false, used);
+  out.piston = model.x[0];
+  out.tilt_x = model.x[1];
+  out.tilt_y = model.x[2];
+  out.decentre_x = model.x[3];
+  out.decentre_y = model.x[4];
+  out.clocking = model.x[5];
+  out.normalization_radius = model.rn;
+  out.zernike.assign(static_cast<std::size_t>(std::max(o.zernike_terms, 0)), 0.0);
+  for (std::size_t k = 0; k < model.terms.size(); ++k)
+    out.zernike[static_cast<std::size_t>(model.terms[k] - 1)] = model.x[kPose + static_cast<Eigen::Index>(k)];
+  out.used = used;
+  out.iterations = iterations;
+  const std::unique_ptr<Zernike> error = model.error();
+  double fit_sq = 0, e_sq = 0, e_max = -1e300, e_min = 1e300;
+  long outside = 0;
+  for (std::size_t i = 0; i < n; ++i) {
+    if (!inside[i]) {
+      if (!excluded[i]) ++outside;
+      continue;
+    }
+    const Eigen::Vector3d q = model.to_design(m.points[i]);
+    const double e = residual[i] + error->sag(q.x(), q.y());
+    fit_sq += residual[i] * residual[i];
+    e_sq += e * e;
+    e_max = std::max(e_max, e), e_min = std::min(e_min, e);
+  }
+  out.outside = outside;
+  out.fit_rms = std::sqrt(fit_sq / static_cast<double>(std::max(used, 1L)));
+  out.measured_rms = std::sqrt(e_sq / static_cast<double>(std::max(used, 1L)));
+  out.measured_pv = used > 0 ? e_max - e_min : 0.0;
+  return out;
+}
+
+}  // namespace freeturn

@@ -1,0 +1,137 @@
+#include <doctest/doctest.h>
+
+#include <Eigen/Geometry>
+#include <cmath>
+#include <numbers>
+#include <random>
+#include <yaml-cpp/yaml.h>
+
+#include "freeturn/core/error.hpp"
+#include "freeturn/job/surface_yaml.hpp"
+#include "freeturn/metrology/registration.hpp"
+#include "freeturn/surface/zernike.hpp"
+
+using namespace freeturn;
+
+namespace {
+
+constexpr double kDeg = std::numbers::pi / 180;
+
+// The demo's compound eye: lenslets on a sphere. Its lenslets pin the pose: a decentre or a
+// clocking moves them, which no smooth error can mimic.
+std::unique_ptr<Surface> compound_eye() {
+  return surface_from_yaml(YAML::Load("{type: compound_eye, base_radius: 20.0, lens_radius: -5.0, "
+                                      "lens_diameter: 0.9, pitch: 1.0, pattern: rings}"),
+                           "<test>", 4.0);
+}
+
+// A known form error in the design's frame: astigmatism (Z6) 0.3 µm, trefoil (Z9) 0.2 µm,
+// Z5 0.1 µm, over R_n = 4 mm.
+std::vector<double> known_error() {
+  std::vector<double> a(11, 0.0);
+  a[4] = 0.1e-3;
+  a[5] = 0.3e-3;
+  a[8] = 0.2e-3;
+  return a;
+}
+
+struct Pose {
+  double piston = 5e-3, tilt_x = 1e-4, tilt_y = -0.7e-4, dx = 0.030, dy = -0.020,
+         clocking = 0.5 * kDeg;
+  Eigen::Matrix3d rotation() const {
+    return (Eigen::AngleAxisd(clocking, Eigen::Vector3d::UnitZ()) *
+            Eigen::AngleAxisd(tilt_y, Eigen::Vector3d::UnitY()) *
+            Eigen::AngleAxisd(tilt_x, Eigen::Vector3d::UnitX()))
+        .toRotationMatrix();
+  }
+};
+
+// The part (design + error) measured in a frame moved by the pose's inverse, on a grid of
+// `step` mm, with Gaussian noise of `noise` mm and `dropouts` of the points lost.
+Measurement measure(const Surface& design, const Zernike& error, const Pose& pose, double step,
+                    double noise, double dropouts) {
+  std::mt19937 random(7);
+  std::normal_distribution<double> gauss(0, noise);
+  std::uniform_real_distribution<double> uniform(0, 1);
+  const Eigen::Matrix3d r = pose.rotation();
+  const Eigen::Vector3d t(pose.dx, pose.dy, pose.piston);
+  Measurement m;
+  for (double x = -3.9; x <= 3.9; x += step)
+    for (double y = -3.9; y <= 3.9; y += step) {
+      if (std::hypot(x, y) > 3.9) continue;
+      if (uniform(random) < dropouts) {
+        ++m.invalid;
+        continue;
+      }
+      const Eigen::Vector3d q(x, y, design.sag(x, y) + error.sag(x, y) + gauss(random));
+      m.points.push_back(r.transpose() * (q - t));
+    }
+  return m;
+}
+
+}  // namespace
+
+TEST_SUITE("metrology") {
+  TEST_CASE("a misregistered compound eye with astigmatism and trefoil: the pose and the error recovered") {
+    const auto design = compound_eye();
+    const Zernike error(0, 0, {}, 4.0, known_error());
+    const Pose pose;
+    const Measurement m = measure(*design, error, pose, 0.02, 1e-6, 0.05);
+    RegistrationOptions o;
+    o.zernike_terms = 21;
+    o.normalization_radius = 4.0;
+    o.outer_radius = 4.0;
+    const Registration r = register_measurement(*design, m, o, "m.xyz");
+    MESSAGE("iterations " << r.iterations << ", used " << r.used << ", outliers " << r.outliers
+                          << ", fit RMS " << r.fit_rms * 1e6 << " nm");
+    // The bounds: decentre to 0.5 µm, tilt to 1e-6 rad, clocking to 0.01°.
+    CHECK(std::abs(r.decentre_x - pose.dx) < 0.5e-3);
+    CHECK(std::abs(r.decentre_y - pose.dy) < 0.5e-3);
+    CHECK(std::abs(r.tilt_x - pose.tilt_x) < 1e-6);
+    CHECK(std::abs(r.tilt_y - pose.tilt_y) < 1e-6);
+    CHECK(std::abs(r.clocking - pose.clocking) < 0.01 * kDeg);
+    CHECK(std::abs(r.piston - pose.piston) < 1e-5);
+    // The fitted error equals the known one to ≤ 2 nm RMS over the aperture.
+    const Zernike fitted(0, 0, {}, r.normalization_radius, r.zernike);
+    double sq = 0;
+    long n = 0;
+    for (double x = -3.95; x <= 3.95; x += 0.05)
+      for (double y = -3.95; y <= 3.95; y += 0.05) {
+        if (std::hypot(x, y) > 3.95) continue;
+        const double d = fitted.sag(x, y) - error.sag(x, y);
+        sq += d * d;
+        ++n;
+      }
+    const double rms = std::sqrt(sq / static_cast<double>(n));
+    MESSAGE("fitted error against the known: " << rms * 1e6 << " nm RMS");
+    CHECK(rms < 2e-6);
+    // What the fit leaves is the noise (1 nm RMS).
+    CHECK(r.fit_rms == doctest::Approx(1e-6).epsilon(0.2));
+  }
+
+  TEST_CASE("outliers beyond five robust sigmas are dropped, and only they") {
+    const auto design = compound_eye();
+    const Zernike error(0, 0, {}, 4.0, known_error());
+    Measurement m = measure(*design, error, Pose{}, 0.05, 1e-6, 0);
+    // Spikes of 5 µm on every 97th point.
+    long spikes = 0;
+    for (std::size_t i = 0; i < m.points.size(); i += 97, ++spikes) m.points[i].z() += 5e-3;
+    RegistrationOptions o;
+    o.zernike_terms = 21;
+    o.normalization_radius = o.outer_radius = 4.0;
+    const Registration r = register_measurement(*design, m, o, "m.xyz");
+    CHECK(r.outliers == spikes);
+    CHECK(r.fit_rms < 1.5e-6);
+  }
+
+  TEST_CASE("a measurement outside the aperture, or running away, is an error at its file") {
+    const auto design = compound_eye();
+    Measurement far;
+    for (int i = 0; i < 500; ++i) far.points.emplace_back(50.0 + i * 0.01, 50.0, 0.0);
+    RegistrationOptions o;
+    o.normalization_radius = o.outer_radius = 4.0;
+    CHECK_THROWS_WITH_AS(register_measurement(*design, far, o, "far.xyz"),
+                         doctest::Contains("far.xyz: 0 valid points fall inside the aperture"),
+                         InputError);
+  }
+}
