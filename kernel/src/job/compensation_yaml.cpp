@@ -6,7 +6,7 @@
 #include "freeturn/core/number_text.hpp"
 #include "freeturn/io/measurement_file.hpp"
 #include "freeturn/surface/corrected_surface.hpp"
-#include "freeturn/surface/zernike.hpp"
+#include "freeturn/surface/polynomial_height.hpp"
 
 namespace freeturn::detail {
 namespace {
@@ -113,8 +113,10 @@ std::unique_ptr<Surface> read_compensation(const YAML::Node& node, const std::st
     // design's), so the corrections add: design − Σ gain · error.
     parts.push_back(read_part(entry, job_file, *design, aperture));
     const Registration& r = parts.back().registration;
-    corrections.push_back({std::make_unique<Zernike>(0, 0, std::array<double, 9>{},
-                                                     r.normalization_radius, r.zernike),
+    // The fitted Zernike sum expanded into powers of x and y once: the planner evaluates it
+    // hundreds of times a cutter point.
+    corrections.push_back({std::make_unique<PolynomialHeight>(
+                               PolynomialHeight::from_zernike(r.normalization_radius, r.zernike)),
                            parts.back().gain});
   }
   return std::make_unique<CorrectedSurface>(std::move(design), std::move(corrections));

@@ -141,7 +141,7 @@ void read_strategy(MapReader& job, JobPlan& plan, const Aperture& aperture,
     if (!(st.pitch < 2 * plan.tool.tool.nose_radius))
       s.fail("pitch", "strategy.pitch " + s.node()["pitch"].Scalar() +
                           " mm is not below the nose diameter (2 × " +
-                          std::to_string(plan.tool.tool.nose_radius) +
+                          shortest_text(plan.tool.tool.nose_radius) +
                           " mm): the passes would not overlap");
     st.base.kind = st.space ? BaseKind::kLeastSquares : BaseKind::kPlane;
   }

@@ -9,6 +9,7 @@
 #include <vector>
 
 #include "freeturn/io/iges_surface.hpp"
+#include "freeturn/core/number_text.hpp"
 #include "freeturn/io/xyz_points.hpp"
 #include "freeturn/nurbs/interpolation.hpp"
 #include "freeturn/nurbs/least_squares.hpp"
@@ -192,7 +193,7 @@ std::unique_ptr<Surface> read_height_grid(MapReader& map) {
       const auto j = std::lower_bound(ys.begin(), ys.end(), p.y() - tolerance) - ys.begin();
       Eigen::Vector3d& cell = grid[static_cast<std::size_t>(i) * ys.size() + static_cast<std::size_t>(j)];
       if (!std::isnan(cell.z()))
-        map.fail("file", "the point (" + std::to_string(p.x()) + ", " + std::to_string(p.y()) +
+        map.fail("file", "the point (" + shortest_text(p.x()) + ", " + shortest_text(p.y()) +
                              ") appears twice");
       cell = {xs[static_cast<std::size_t>(i)], ys[static_cast<std::size_t>(j)], p.z()};
     }
@@ -333,11 +334,11 @@ std::unique_ptr<Surface> read_point_cloud(MapReader& map) {
       }
     }
     map.fail("tolerance", "the fit misses point " + std::to_string(worst + 1) + " (" +
-                              std::to_string(points[worst].x()) + ", " +
-                              std::to_string(points[worst].y()) + ") by " +
-                              std::to_string(worst_error * 1e3) + " µm, above the tolerance (" +
-                              std::to_string(tolerance * 1e3) + " µm); rms " +
-                              std::to_string(fit.rms_error * 1e3) + " µm");
+                              shortest_text(points[worst].x()) + ", " +
+                              shortest_text(points[worst].y()) + ") by " +
+                              significant_text(worst_error * 1e3, 6) + " µm, above the tolerance (" +
+                              significant_text(tolerance * 1e3, 6) + " µm); rms " +
+                              significant_text(fit.rms_error * 1e3, 6) + " µm");
   }
   return height_field(map, data_key, std::move(fit.surface));
 }

@@ -27,6 +27,7 @@
 #include <numbers>
 #include <string>
 
+#include "freeturn/core/number_text.hpp"
 #include "freeturn/core/error.hpp"
 #include "freeturn/path/contact_point.hpp"
 #include "freeturn/path/cutter_points.hpp"
@@ -435,7 +436,7 @@ void distribute(Path& path, const CutterPointOptions& o, Emit&& emit, double beg
                              " rad, r = " + std::to_string(current.contact_r) + " mm",
                          (exhausted ? "cannot meet the chord tolerance "
                                     : "no step meets the chord tolerance ") +
-                             std::to_string(o.tolerance * 1e3) +
+                             significant_text(o.tolerance * 1e3, 6) +
                              (exhausted ? " µm: the path is not smooth here" : " µm"),
                          "strategy.points.chord.tolerance");
       }

@@ -4,6 +4,7 @@
 #include <numbers>
 #include <string>
 
+#include "freeturn/core/number_text.hpp"
 #include "freeturn/core/error.hpp"
 #include "freeturn/path/section_envelope.hpp"
 #include "nose_section.hpp"
@@ -90,7 +91,7 @@ PathSummary plan_profile(const Surface& design, const ProfileOptions& o, Contact
         throw InputError("r = " + std::to_string(r) + " mm, θ = " +
                              std::to_string(phi * 180 / std::numbers::pi) + "°",
                          "the design surface is not rotationally symmetric: its sag differs from "
-                         "the profile by " + std::to_string(dz * 1e3) +
+                         "the profile by " + significant_text(dz * 1e3, 6) +
                              " µm; cut it with a spiral",
                          "strategy.mode");
     }

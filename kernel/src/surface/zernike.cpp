@@ -28,6 +28,37 @@ double normalization(int n, int m) {
 
 }  // namespace
 
+std::vector<double> zernike_power_coefficients(const std::vector<double>& a, int& degree) {
+  degree = 0;
+  for (std::size_t i = 0; i < a.size(); ++i)
+    if (a[i] != 0) degree = std::max(degree, noll_to_nm(static_cast<int>(i) + 1).n);
+  const int d = degree, w = d + 1;
+  std::vector<double> c(static_cast<std::size_t>(w * w), 0.0);
+  const auto binomial = [](int n, int k) { return factorial(n) / (factorial(k) * factorial(n - k)); };
+  for (std::size_t i = 0; i < a.size(); ++i) {
+    if (a[i] == 0) continue;
+    const ZernikeIndex z = noll_to_nm(static_cast<int>(i) + 1);
+    const int am = std::abs(z.m);
+    const double scale = a[i] * normalization(z.n, z.m);
+    // {Re, Im}((X + iY)^|m|) = Σ_t C(|m|, t) X^{|m|−t} (iY)^t: even t for the real part,
+    // odd for the imaginary, with i^t's sign.
+    for (int t = 0; t <= am; ++t) {
+      const bool real = t % 2 == 0;
+      if (real != (z.m >= 0)) continue;
+      const double angular = binomial(am, t) * ((real ? t / 2 : (t - 1) / 2) % 2 ? -1.0 : 1.0);
+      for (int k = 0; k <= (z.n - am) / 2; ++k) {
+        const int s = (z.n - 2 * k - am) / 2;  // the power of X² + Y²
+        const double radial = radial_coefficient(z.n, am, k);
+        for (int u = 0; u <= s; ++u) {
+          const int px = am - t + 2 * u, py = t + 2 * (s - u);
+          c[static_cast<std::size_t>(px * w + py)] += scale * angular * radial * binomial(s, u);
+        }
+      }
+    }
+  }
+  return c;
+}
+
 ZernikeIndex noll_to_nm(int j) {
   if (j < 1 || j > 231)
     throw InputError("term " + std::to_string(j), "Zernike terms are numbered 1 to 231 (Noll)");

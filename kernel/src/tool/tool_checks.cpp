@@ -100,7 +100,7 @@ void ToolChecker::found(ToolCheck check, double value, double limit, const Cutte
     throw CheckFailure(where_text(here),
                      std::string(tool_check_name(check)) + " check: " + value_text(check, value) +
                          (curvature ? " is below the nose radius " +
-                                          std::to_string(compensation_.tool.nose_radius) + " mm"
+                                          shortest_text(compensation_.tool.nose_radius) + " mm"
                                     : " exceeds the limit " + value_text(check, limit)),
                        kCause[i]);
   }

@@ -28,6 +28,13 @@ ZernikeIndex noll_to_nm(int j);
 // reference the tests compare the polynomial form with.
 double zernike_polar(int j, double rho, double phi);
 
+// Σ a_j Z_j as a polynomial in the normalised X = x/R_n, Y = y/R_n, expanded exactly:
+// ρ^{n−2k} {cos, sin}(|m|φ) = (X² + Y²)^{(n−2k−|m|)/2} {Re, Im}((X + iY)^|m|). Returns the
+// coefficient of X^a Y^b at [a·(degree + 1) + b] and sets `degree` (the largest n). For
+// the low orders a measured error is fitted with (n ≤ 10) the coefficients stay small;
+// at n = 20 they reach 1e5 and the Jacobi form (Zernike) is the one to use.
+std::vector<double> zernike_power_coefficients(const std::vector<double>& a, int& degree);
+
 class Zernike final : public JetSurface<Zernike> {
  public:
   // coefficients[j − 1] is A_j (mm); asphere: A4 … A20 on r⁴ … r²⁰ as in EvenAsphere.
