@@ -33,6 +33,7 @@ struct SimulateArgs {
   double radial_step = 0;  // mm (0: an eighth of the pitch)
   int columns = 360;
   int threads = 0;
+  std::string program;  // an NC program to simulate instead of the job's own
 };
 
 struct SampleArgs {

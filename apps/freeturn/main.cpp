@@ -121,6 +121,9 @@ int main(int argc, char** argv) {
   simulate_app->add_option("--columns", simulate.columns, "angles of the grid over a turn (even)")
       ->check(CLI::Range(2, 1'000'000))->capture_default_str();
   threads_option(simulate_app, simulate.threads);
+  simulate_app->add_option("--program", simulate.program,
+                           "an NC program for the job's machine (from freeturn or another CAM) "
+                           "to simulate instead of the job's own: nothing is planned");
   simulate_app->callback([&] { code = guarded("simulate", [&] { return run_simulate(simulate); }); });
 
   SampleArgs sample;

@@ -97,7 +97,9 @@ int run_simulate(const SimulateArgs& args) {
   Observer observer(args.quiet);
   RunOptions options = run_options(args.output);
   options.threads = args.threads;
-  const RunReport r = simulate_job(job, simulation, options, &observer).report;
+  const RunReport r = args.program.empty()
+                          ? simulate_job(job, simulation, options, &observer).report
+                          : simulate_program(job, args.program, simulation, options).report;
   const SimulationResult& s = *r.simulation;
   std::printf(
       "%s: simulated form error PV %.3f nm, RMS %.3f nm (max %+.3f nm at r = %.4f mm, min %+.3f nm "
@@ -105,10 +107,11 @@ int run_simulate(const SimulateArgs& args) {
       job.name.c_str(), s.pv * 1e6, s.rms * 1e6, s.max * 1e6, s.max_r, s.min * 1e6, s.min_r,
       s.uncut);
   const double ratio = s.pv > 0 ? s.predicted.pv() / s.pv : 0;
-  std::printf(
-      "  the planner predicted PV %.3f nm (max %+.3f, min %+.3f nm): %.3f× the simulation, %s\n",
-      s.predicted.pv() * 1e6, s.predicted.max() * 1e6, s.predicted.min() * 1e6, ratio,
-      prediction_bound_text(ratio));
+  if (args.program.empty())  // a program from elsewhere comes with no prediction
+    std::printf(
+        "  the planner predicted PV %.3f nm (max %+.3f, min %+.3f nm): %.3f× the simulation, %s\n",
+        s.predicted.pv() * 1e6, s.predicted.max() * 1e6, s.predicted.min() * 1e6, ratio,
+        prediction_bound_text(ratio));
   if (r.form_error) {
     const FormErrorSplit& e = *r.form_error;
     std::printf("  figure (the residual's mean over a pitch) PV %.3f nm, RMS %.3f nm; finish "

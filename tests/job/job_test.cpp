@@ -294,7 +294,7 @@ TEST_SUITE("job") {
          "surface.control_points must be [count_x, count_y], each at least 4, with "
          "count_x·count_y at most the 625 points"},
         {"{type: point_cloud, file: ../bumps.xyz, control_points: [4, 4], tolerance: 1e-6}",
-         "the fit misses point 3 (-6.000000, 6.000000) by 14"},
+         "the fit misses point 3 (-6, 6) by 14"},
         {"{type: nurbs, degree_u: 1, degree_v: 1, knots_u: [0, 0, 1, 1], knots_v: [0, 0, 1, 1], "
          "points: [[-6, -6, 0], [-6, 6, 0], [6, -6, 0]]}",
          "the knots give 2 × 2 control points (u-major: 2 per row); the list has 3"},

@@ -1,16 +1,19 @@
 #include "freeturn/io/nc_program.hpp"
 
-#include "freeturn/core/number_text.hpp"
-
 #include <algorithm>
 #include <cctype>
 #include <cmath>
 #include <cstdio>
 #include <cstdlib>
+#include <filesystem>
+#include <fstream>
 #include <map>
 #include <set>
+#include <sstream>
+#include <string>
 
 #include "freeturn/core/error.hpp"
+#include "freeturn/core/number_text.hpp"
 
 namespace freeturn {
 
@@ -213,6 +216,36 @@ NcDiffResult nc_diff(const std::vector<NcBlock>& a, const std::string& name_a,
                          " has " + std::to_string(b.size());
   }
   return r;
+}
+
+std::vector<NcBlock> read_nc_program(const std::string& path) {
+  const auto read = [](const std::string& file) {
+    std::ifstream in(file, std::ios::binary);
+    if (!in) throw InputError(SourceLocation{file, 0, 0}, "cannot open the NC program");
+    std::ostringstream text;
+    text << in.rdbuf();
+    return parse_nc(text.str(), file);
+  };
+  std::vector<NcBlock> blocks;
+  for (NcBlock& b : read(path)) {
+    std::string child;
+    for (const NcWord& w : b.words)
+      if (!w.numeric && w.text.rfind("M98(", 0) == 0 && w.text.back() == ')')
+        child = w.text.substr(4, w.text.size() - 5);
+    if (child.empty()) {
+      blocks.push_back(std::move(b));
+      continue;
+    }
+    const std::string child_path = (std::filesystem::path(path).parent_path() / child).string();
+    for (NcBlock& cb : read(child_path)) {
+      for (const NcWord& w : cb.words)
+        if (!w.numeric && w.text.rfind("M98(", 0) == 0)
+          throw InputError(SourceLocation{child_path, cb.line, 0},
+                           "a child program calls another (one level of M98 is read)");
+      blocks.push_back(std::move(cb));
+    }
+  }
+  return blocks;
 }
 
 }  // namespace freeturn

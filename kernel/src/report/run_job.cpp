@@ -15,4 +15,11 @@ RunResult simulate_job(const Job& job, const SimulationOptions& simulation, RunO
   return run_job(job, options, observer);
 }
 
+RunResult simulate_program(const Job& job, const std::string& program,
+                           const SimulationOptions& simulation, RunOptions options) {
+  options.simulation = simulation;
+  JobFiles files;
+  return run_program_simulation(job, program, options, files);
+}
+
 }  // namespace freeturn

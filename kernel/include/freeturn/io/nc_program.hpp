@@ -25,6 +25,12 @@ struct NcBlock {
 // word, or a letter without a value.
 std::vector<NcBlock> parse_nc(const std::string& text, const std::string& file);
 
+// A program file and the child files it calls (M98(name), beside it), as one sequence of
+// blocks in the order the controller runs them. Each block keeps its own file's line.
+// Throws InputError for a file that cannot be read or parsed, or a call nested deeper than
+// the child files a post writes (one level).
+std::vector<NcBlock> read_nc_program(const std::string& path);
+
 struct NcDiffOptions {
   double axis_tolerance = 1e-9;    // mm or degrees, for X Y Z A B C U V W I J K
   double other_tolerance = 1e-9;   // relative, for F, S, P and other numeric words

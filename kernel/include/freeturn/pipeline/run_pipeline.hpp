@@ -87,6 +87,16 @@ struct PlannedPath {
   std::vector<CutterLocation> locations;
   std::vector<AxisRecord> records;
 };
+// Cuts, in simulation, an NC program written for the job's machine, by freeturn or by
+// another CAM (`freeturn simulate JOB --program FILE`): its blocks (and the child files it
+// calls) read back through the machine's axis layout (sign, offset, C wrapped), the nose
+// the job's tool, its programmed point what the job's compensation says it is. The grid is
+// options.simulation's (defaults as for the job's own), the whole lower arc of the nose
+// swept. Writes the residual and the report through `files`, as `simulate` does; nothing
+// is planned and no program is written. Throws InputError at the program's file:line.
+RunResult run_program_simulation(const Job& job, const std::string& program,
+                                 const RunOptions& options, RunFiles& files);
+
 PlannedPath plan_job(const Job& job, const RunOptions& options = {});
 
 }  // namespace freeturn

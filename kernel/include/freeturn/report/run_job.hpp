@@ -15,4 +15,9 @@ RunResult run_job(const Job& job, const RunOptions& options = {}, RunObserver* o
 RunResult simulate_job(const Job& job, const SimulationOptions& simulation, RunOptions options = {},
                        RunObserver* observer = nullptr);
 
+// An NC program, not the job's own, cut in simulation (run_program_simulation) with the
+// job's residual and report files written into options.output_dir.
+RunResult simulate_program(const Job& job, const std::string& program,
+                           const SimulationOptions& simulation, RunOptions options = {});
+
 }  // namespace freeturn
