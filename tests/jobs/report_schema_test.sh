@@ -38,7 +38,7 @@ cat > "$tmp/plate.yaml" <<'YAML'
 name: plate
 aperture: {outer_radius: 2.0}
 surface: {type: sphere, radius: 50.0}
-compensation: {measured: part1.xyz, height_unit: nm, gain: 0.8, register: [piston, tilt], fit: {zernike: 15}}
+compensation: {measured: part1.xyz, height_unit: nm, gain: 0.8, register: [piston, tilt], fit: {zernike: 15, bspline: {control_points: 8}}}
 tool: {nose_radius: 0.5}
 strategy: {mode: spiral, spiral: planar, pitch: 0.05, points: {chord: {tolerance: 0.001, max_angle_deg: 5}}}
 cutting: {spindle_rpm: 20}
@@ -76,6 +76,7 @@ assert len(c) == 1, c
 c = c[0]
 assert abs(c["fit"]["zernike_nm"][5] - 200) < 0.01, c["fit"]
 assert abs(c["registration"]["piston_mm"] + 2e-3) < 1e-8, c["registration"]
+assert c["fit"]["bspline"]["control_points"] == 8 and c["fit"]["bspline"]["rms_nm"] < 0.01, c["fit"]
 assert abs(c["correction_rms_nm"] - 160) < 0.01 and abs(c["predicted_after_rms_nm"] - 40) < 0.01, c
 PY
 # A Latin-1 byte in a comment: refused at its line and column, exit 2, nothing written.

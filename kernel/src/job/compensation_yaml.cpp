@@ -1,11 +1,13 @@
 #include "compensation_yaml.hpp"
 
+#include <cmath>
 #include <filesystem>
 #include <set>
 
 #include "freeturn/core/number_text.hpp"
 #include "freeturn/io/measurement_file.hpp"
 #include "freeturn/surface/corrected_surface.hpp"
+#include "freeturn/surface/nurbs_height_field.hpp"
 #include "freeturn/surface/polynomial_height.hpp"
 
 namespace freeturn::detail {
@@ -78,6 +80,17 @@ MeasuredPart read_part(const YAML::Node& node, const std::string& job_file, cons
     if (fit.has("zernike") && o.zernike_terms != fit.number("zernike"))
       fit.fail("zernike", "compensation.fit.zernike is a whole number of terms");
     o.outlier_sigmas = fit.in_range("outlier_sigmas", 5, 2, 100, false, "");
+    if (fit.has("bspline")) {
+      MapReader b(fit.child("bspline"), job_file, "compensation.fit.bspline");
+      const double control = b.in_range("control_points", 4, 100, false, " per side");
+      if (control != std::floor(control))
+        b.fail("control_points", "compensation.fit.bspline.control_points is a whole number");
+      o.bspline_control = static_cast<int>(control);
+      // A round aperture leaves the square's corners without data: a little smoothing
+      // fills them (and no more) unless the job asks for more.
+      o.bspline_smoothing = b.non_negative("smoothing", 1e-7);
+      b.finish();
+    }
     fit.finish();
   }
   o.normalization_radius = aperture.outer_radius;
@@ -118,6 +131,7 @@ std::unique_ptr<Surface> read_compensation(const YAML::Node& node, const std::st
     corrections.push_back({std::make_unique<PolynomialHeight>(
                                PolynomialHeight::from_zernike(r.normalization_radius, r.zernike)),
                            parts.back().gain});
+    if (r.bspline) corrections.push_back({std::make_unique<NurbsHeightField>(*r.bspline), parts.back().gain});
   }
   return std::make_unique<CorrectedSurface>(std::move(design), std::move(corrections));
 }

@@ -10,6 +10,7 @@
 
 #include "freeturn/core/error.hpp"
 #include "freeturn/core/number_text.hpp"
+#include "freeturn/nurbs/least_squares.hpp"
 #include "freeturn/surface/zernike.hpp"
 
 namespace freeturn {
@@ -121,6 +122,41 @@ Registration register_measurement(const Surface& design, const Measurement& m,
     return cost;
   };
 
+  // The B-spline part (RegistrationOptions::bspline_control): what the Zernike terms leave,
+  // fitted over [−R_n, R_n]² at the points used, where they lie on the design.
+  const double rn = model.rn;
+  const auto bspline_at = [rn](const nurbs::NurbsSurface& b, const Eigen::Vector3d& q) {
+    return b.point(std::clamp((q.x() + rn) / (2 * rn), 0.0, 1.0),
+                   std::clamp((q.y() + rn) / (2 * rn), 0.0, 1.0)).z();
+  };
+  const auto fit_bspline = [&]() -> std::optional<nurbs::NurbsSurface> {
+    if (o.bspline_control <= 0) return std::nullopt;
+    std::vector<Eigen::Vector3d> points;
+    std::vector<double> u, v;
+    for (std::size_t i = 0; i < n; ++i) {
+      if (!inside[i]) continue;
+      const Eigen::Vector3d q = model.to_design(m.points[i]);
+      points.emplace_back(q.x(), q.y(), residual[i]);
+      u.push_back(std::clamp((q.x() + rn) / (2 * rn), 0.0, 1.0));
+      v.push_back(std::clamp((q.y() + rn) / (2 * rn), 0.0, 1.0));
+    }
+    const int c = o.bspline_control;
+    nurbs::SurfaceFitOptions fo;
+    fo.count_u = fo.count_v = c;
+    for (int k = 0; k <= 3; ++k) fo.knots_u.push_back(0.0);
+    for (int k = 1; k < c - 3; ++k) fo.knots_u.push_back(static_cast<double>(k) / (c - 3));
+    for (int k = 0; k <= 3; ++k) fo.knots_u.push_back(1.0);
+    fo.knots_v = fo.knots_u;
+    fo.smoothing = o.bspline_smoothing;
+    try {
+      return nurbs::fit_surface_scattered(points, u, v, fo).surface;
+    } catch (const InputError& e) {
+      throw InputError(where, "the B-spline fit of the error: " + e.problem() +
+                                  " (fewer control points, or smoothing)");
+    }
+  };
+  std::optional<nurbs::NurbsSurface> bspline;
+
   Registration out;
   long used = 0;
   int iterations = 0;
@@ -169,11 +205,16 @@ Registration register_measurement(const Surface& design, const Measurement& m,
                                     " mm, tilt " + significant_text(std::hypot(model.x[1], model.x[2]), 3) +
                                     " rad): is the measurement of this part, in these units?");
     }
-    // Outliers against this fit, by a robust σ of the points it used; every point is judged
-    // anew (a point the first, spike-pulled fit dropped comes back once the fit settles).
+    // Outliers against this fit (the B-spline's too, so that a bump it holds is not taken
+    // for outliers), by a robust σ of the points it used; every point is judged anew (a
+    // point the first, spike-pulled fit dropped comes back once the fit settles).
+    bspline = fit_bspline();
+    const auto left = [&](std::size_t i) {
+      return bspline ? residual[i] - bspline_at(*bspline, model.to_design(m.points[i])) : residual[i];
+    };
     std::vector<double> sorted;
     for (std::size_t i = 0; i < n; ++i)
-      if (inside[i]) sorted.push_back(residual[i]);
+      if (inside[i]) sorted.push_back(left(i));
     std::nth_element(sorted.begin(), sorted.begin() + static_cast<std::ptrdiff_t>(sorted.size() / 2), sorted.end());
     const double median = sorted[sorted.size() / 2];
     for (double& v : sorted) v = std::abs(v - median);
@@ -183,7 +224,7 @@ Registration register_measurement(const Surface& design, const Measurement& m,
     long dropped = 0;
     evaluate(model, false, used);  // every point's residual, none excluded
     for (std::size_t i = 0; i < n; ++i)
-      if (inside[i] && sigma > 0 && std::abs(residual[i] - median) > o.outlier_sigmas * sigma) {
+      if (inside[i] && sigma > 0 && std::abs(left(i) - median) > o.outlier_sigmas * sigma) {
         excluded[i] = 1;
         ++dropped;
       }
@@ -192,6 +233,7 @@ Registration register_measurement(const Surface& design, const Measurement& m,
     if (dropped == 0 || settled) break;
   }
   evaluate(model, false, used);
+  bspline = fit_bspline();
   out.piston = model.x[0];
   out.tilt_x = model.x[1];
   out.tilt_y = model.x[2];
@@ -219,6 +261,19 @@ Registration register_measurement(const Surface& design, const Measurement& m,
     e_max = std::max(e_max, e), e_min = std::min(e_min, e);
   }
   out.outside = outside;
+  if (bspline) {
+    double b_sq = 0;
+    fit_sq = 0;
+    for (std::size_t i = 0; i < n; ++i) {
+      if (!inside[i]) continue;
+      const Eigen::Vector3d q = model.to_design(m.points[i]);
+      const double b = bspline_at(*bspline, q);
+      b_sq += b * b;
+      fit_sq += (residual[i] - b) * (residual[i] - b);
+    }
+    out.bspline_rms = std::sqrt(b_sq / static_cast<double>(std::max(used, 1L)));
+    out.bspline = std::move(bspline);
+  }
   out.fit_rms = std::sqrt(fit_sq / static_cast<double>(std::max(used, 1L)));
   out.measured_rms = std::sqrt(e_sq / static_cast<double>(std::max(used, 1L)));
   out.measured_pv = used > 0 ? e_max - e_min : 0.0;

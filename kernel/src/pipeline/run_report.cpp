@@ -206,8 +206,12 @@ double zernike_rms(const std::vector<double>& a) {
   return std::sqrt(sq);
 }
 
+double fitted_error_rms(const MeasuredPart& part) {
+  return std::hypot(zernike_rms(part.registration.zernike), part.registration.bspline_rms);
+}
+
 double compensated_rms(const MeasuredPart& part) {
-  const double kept = (1 - part.gain) * zernike_rms(part.registration.zernike);
+  const double kept = (1 - part.gain) * fitted_error_rms(part);
   return std::hypot(kept, part.registration.fit_rms);
 }
 

@@ -466,7 +466,7 @@ std::string report_html(const RunReport& r, const Surface& design) {
            readable(g.clocking * kDegrees, 4) + "°, " + readable(g.piston * 1e3, 3) + " µm</td><td class=\"n\">RMS " +
            nm(g.measured_rms) + ", PV " + nm(g.measured_pv) + "</td><td class=\"n\">" + nm(g.fit_rms) +
            " RMS</td><td class=\"n\">" + readable(m.gain, 2) + "</td><td class=\"n\">" +
-           nm(m.gain * zernike_rms(g.zernike)) + " RMS</td><td class=\"n\">" + nm(compensated_rms(m)) +
+           nm(m.gain * fitted_error_rms(m)) + " RMS</td><td class=\"n\">" + nm(compensated_rms(m)) +
            " RMS</td></tr>\n";
     }
     h += "</table><div class=\"grid2\">\n";
@@ -484,14 +484,20 @@ std::string report_html(const RunReport& r, const Surface& design) {
           const double y = outer - (py + 0.5) * 2 * outer / kMapPixels;
           const double rad = std::hypot(x, y);
           if (rad > outer || rad < p.inner_radius) continue;
-          const double e = m.gain * error.sag(x, y);
+          const double rn = m.registration.normalization_radius;
+          const double b = m.registration.bspline
+                               ? m.registration.bspline->point(std::clamp((x + rn) / (2 * rn), 0.0, 1.0),
+                                                               std::clamp((y + rn) / (2 * rn), 0.0, 1.0)).z()
+                               : 0.0;
+          const double e = m.gain * (error.sag(x, y) + b);
           map.mean[static_cast<std::size_t>(py) * kMapPixels + static_cast<std::size_t>(px)] = e;
           limit = std::max(limit, std::abs(e));
         }
       h += map_figure("fig-correction-" + std::to_string(k + 1),
                       "The correction cut for " + m.file + ": gain × the fitted error (" +
-                          std::to_string(m.registration.zernike.size()) +
-                          " Zernike terms), subtracted from the design",
+                          std::to_string(m.registration.zernike.size()) + " Zernike terms" +
+                          (m.registration.bspline ? " and a B-spline" : "") +
+                          "), subtracted from the design",
                       diverging_image(map, limit), kMapPixels, outer, "", diverging, true,
                       -limit * 1e6, limit * 1e6, "nm", 1);
     }

@@ -140,9 +140,12 @@ Json compensation_json(const MeasuredPart& m) {
   j["fit"] = {{"zernike_terms", static_cast<long>(g.zernike.size())},
               {"normalization_radius_mm", g.normalization_radius},
               {"zernike_nm", std::move(zernike)},
+              {"bspline", g.bspline ? Json{{"control_points", g.bspline->count_u()},
+                                           {"rms_nm", g.bspline_rms * 1e6}}
+                                    : Json(nullptr)},
               {"residual_rms_nm", g.fit_rms * 1e6}};
   j["measured_error_nm"] = {{"rms", g.measured_rms * 1e6}, {"pv", g.measured_pv * 1e6}};
-  j["correction_rms_nm"] = m.gain * zernike_rms(g.zernike) * 1e6;
+  j["correction_rms_nm"] = m.gain * fitted_error_rms(m) * 1e6;
   j["predicted_after_rms_nm"] = compensated_rms(m) * 1e6;
   return j;
 }

@@ -18,10 +18,12 @@
 // σ; k = outlier_sigmas) are dropped and the fit repeated, until none is dropped (at most
 // three times).
 
+#include <optional>
 #include <string>
 #include <vector>
 
 #include "freeturn/io/measurement_file.hpp"
+#include "freeturn/nurbs/surface.hpp"
 #include "freeturn/surface/surface.hpp"
 
 namespace freeturn {
@@ -36,6 +38,12 @@ struct RegistrationOptions {
   double inner_radius = 0, outer_radius = 0;  // mm: points registered outside are not used
   double outlier_sigmas = 5;
   int max_iterations = 50;
+  // What the Zernike terms leave, fitted after them as a bicubic B-spline height over
+  // [−R_n, R_n]² with bspline_control × bspline_control control points and thin-plate
+  // smoothing (nurbs/least_squares.hpp): a local error (a bump, a zone) no low-order
+  // polynomial holds. 0: no B-spline.
+  int bspline_control = 0;
+  double bspline_smoothing = 0;
 };
 
 struct Registration {
@@ -43,8 +51,11 @@ struct Registration {
   double decentre_x = 0, decentre_y = 0, clocking = 0;  // mm, mm, rad
   double normalization_radius = 0;
   std::vector<double> zernike;  // a_j for j = 1 … N (mm); 0 for terms left out
+  // The B-spline part of the error (x, y, z in mm; x affine in u, y in v), when asked for.
+  std::optional<nurbs::NurbsSurface> bspline;
+  double bspline_rms = 0;  // its RMS over the points used (mm)
   double measured_rms = 0, measured_pv = 0;  // the error E + r over the points used (mm)
-  double fit_rms = 0;     // r over the points used: what E does not explain (mm)
+  double fit_rms = 0;     // what E (Zernike and B-spline) does not explain, over the points used (mm)
   long used = 0, outliers = 0, outside = 0;  // points used, dropped as outliers, outside the aperture
   int iterations = 0;
 };

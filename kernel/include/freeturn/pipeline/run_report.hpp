@@ -173,6 +173,9 @@ struct RunReport {
 // The RMS of a fitted error over its normalisation disk, piston left out: Noll's terms are
 // orthonormal there (the mean of Z_j² over the unit disk is 1), so it is √(Σ_{j≥2} a_j²).
 double zernike_rms(const std::vector<double>& a);
+// The RMS of a part's fitted error E: the Zernike terms' and, when fitted, the B-spline's
+// (fitted to what the terms left, so nearly orthogonal to them), added in quadrature.
+double fitted_error_rms(const MeasuredPart& part);
 // What a part cut with this correction is predicted to keep of the measured error (mm RMS):
 // the share the gain leaves, (1 − gain)·RMS(E), and what the fit did not explain, added in
 // quadrature.
