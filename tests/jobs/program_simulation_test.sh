@@ -2,8 +2,9 @@
 # freeturn simulate JOB --program FILE: an NC program read back through the machine's axis
 # layout and cut in simulation.
 # - freeturn's own program gives the job's own simulated PV within 1 % (the off-axis
-#   parabola on the ISO lathe; the Alvarez plate on the Moore B machine, whose program
-#   calls a child point file and swings the tool on B about its pivot);
+#   parabola on the ISO lathe and on the Precitech, whose controller interpolates PVT
+#   cubics and whose X runs negative; the Alvarez plate on the Moore B machine, whose
+#   program calls a child point file and swings the tool on B about its pivot);
 # - the same program with one block moved 1 µm into the part: the worst place is that
 #   block's (its X as r within 0.1 mm, its C as θ within 1°), a gouge of about 1 µm;
 # - a program that is not NC is an error at its file:line, exit 2, nothing written.
@@ -14,10 +15,13 @@ tmp=$(mktemp -d)
 trap 'rm -rf "$tmp"' EXIT
 fail=0
 pv() { sed -n 's/.*form error PV \([0-9.]*\) nm.*/\1/p' "$1"; }
-for job in oap_segment alvarez_4axis; do
-  (cd "$src/configs/jobs" && "$freeturn" simulate "$job.yaml" -o "$tmp/$job" --quiet) > "$tmp/own.txt" || { echo "FAIL: $job simulate"; fail=1; continue; }
-  program=$(ls "$tmp/$job"/"$job".*.nc | head -1)
-  (cd "$src/configs/jobs" && "$freeturn" simulate "$job.yaml" -o "$tmp/$job.program" --quiet --program "$program") > "$tmp/program.txt" ||
+sed 's/^machine: .*/machine: precitech-nanoform-250/' "$src/configs/jobs/oap_segment.yaml" > "$tmp/oap_pvt.yaml"
+for job in oap_segment alvarez_4axis oap_pvt; do
+  file="$src/configs/jobs/$job.yaml"
+  [[ $job == oap_pvt ]] && file="$tmp/oap_pvt.yaml"
+  (cd "$src/configs/jobs" && "$freeturn" simulate "$file" -o "$tmp/$job" --quiet) > "$tmp/own.txt" || { echo "FAIL: $job simulate"; fail=1; continue; }
+  program=$(ls "$tmp/$job"/*.nc | head -1)
+  (cd "$src/configs/jobs" && "$freeturn" simulate "$file" -o "$tmp/$job.program" --quiet --program "$program") > "$tmp/program.txt" ||
     { echo "FAIL: $job simulate --program"; fail=1; continue; }
   a=$(pv "$tmp/own.txt") b=$(pv "$tmp/program.txt")
   if awk -v a="$a" -v b="$b" 'BEGIN { exit !(a > 0 && (b - a) / a < 0.01 && (a - b) / a < 0.01) }'; then
@@ -25,7 +29,7 @@ for job in oap_segment alvarez_4axis; do
   else
     echo "FAIL: $job: own simulation PV $a nm, its program read back $b nm (not within 1 %)"; fail=1
   fi
-  [[ -s "$tmp/$job.program/$job.report.json" && -s "$tmp/$job.program/$job.residual.csv" ]] || { echo "FAIL: $job: no report or residual"; fail=1; }
+  ls "$tmp/$job.program"/*.report.json "$tmp/$job.program"/*.residual.csv > /dev/null 2>&1 || { echo "FAIL: $job: no report or residual"; fail=1; }
 done
 # One block of the parabola's program 1 µm lower: the block nearest r = 2.5 mm.
 python3 - "$tmp/oap_segment/oap_segment.iso-lathe-xzc.nc" "$tmp/moved.nc" > "$tmp/block.txt" <<'PY'
