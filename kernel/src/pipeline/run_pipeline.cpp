@@ -65,7 +65,7 @@ class PassStage final : public CutterSink, public AxisSink {
         std::string why = "the job passes ";
         why += std::to_string(limits_.max_points);
         why += " points at r = ";
-        why += std::to_string(cls_.back().contact.r);
+        why += significant_text(cls_.back().contact.r, 6);
         why +=
             " mm and is not done: more than limits.max_points allows (a pitch or tolerance typo?); "
             "nothing was written";
@@ -75,9 +75,7 @@ class PassStage final : public CutterSink, public AxisSink {
     post_.write(records);
     if (files_) files_->finishing_chunk(cls_, records);
     if (observer_) observer_->cutter_locations(figures_.name, cls_, records);
-    for (std::size_t k = 0; k < records.size(); ++k)
-      figures_.add(cls_[k], records[k], k > 0 ? records[k - 1] : previous_);
-    if (!records.empty()) previous_ = records.back();
+    for (std::size_t k = 0; k < records.size(); ++k) figures_.add(cls_[k]);
     if (observer_ && !cls_.empty())
       observer_->progress(figures_.name, cls_.back().contact.theta, cls_.back().contact.r,
                           figures_.points);
@@ -91,9 +89,26 @@ class PassStage final : public CutterSink, public AxisSink {
   PassFigures& figures_;
   RunObserver* observer_;
   std::span<const CutterLocation> cls_;
-  AxisRecord previous_;  // the last block of the previous chunk
   Limits limits_;
   long long* points_so_far_ = nullptr;
+};
+
+// The blocks on their way to the post, as the program writes them (after the scheduler when
+// there is one): the report's velocity and acceleration charts are made of these.
+class BlockTap final : public AxisSink {
+ public:
+  BlockTap(AxisSink& next, PassFigures& figures, const MachineDescription& machine)
+      : next_(next), figures_(figures), x_(machine.spec(Axis::kX)), c_wrapped_(machine.c_wrapped) {}
+  void write(std::span<const AxisRecord> records) override {
+    for (const AxisRecord& r : records) figures_.add_block(r, x_, c_wrapped_);
+    next_.write(records);
+  }
+
+ private:
+  AxisSink& next_;
+  PassFigures& figures_;
+  AxisSpec x_;
+  bool c_wrapped_;
 };
 
 // Where the blocks go when nothing is written (check, and the constant-rpm probe): nowhere,
@@ -424,6 +439,8 @@ RunResult execute_job(const Job& job, const PreparedJob& prepared, const std::st
       post = programs.back().get();
     }
     if (write && finishing) files->begin_finishing_pass(job, out_dir, outputs);
+    BlockTap tap(*post, figures, machine);
+    post = &tap;
     if (scheduled) {
       scheduler = std::make_unique<BlockScheduler>(machine, *post);
       post = scheduler.get();
@@ -432,7 +449,7 @@ RunResult execute_job(const Job& job, const PreparedJob& prepared, const std::st
     stage.set_limits(plan.limits, &points_so_far);
     std::unique_ptr<CutSimulator> simulator;
     // Every report shows the form error: without a simulation asked for, the finishing pass
-    // is cut on the report's coarse grid (report_grid).
+    // is cut on the report's own grid (report_grid).
     const SimulationOptions preview = report_grid(job);
     const SimulationOptions* cut =
         simulation ? simulation : write && plan.outputs.report && spiral ? &preview : nullptr;
@@ -628,7 +645,6 @@ RunResult run_program_simulation(const Job& job, const std::string& program,
   double value[4] = {std::nan(""), std::nan(""), std::nan(""), has_b ? std::nan("") : 0.0};
   double theta = std::nan(""), last_c = std::nan("");
   std::vector<CutterLocation> chunk;
-  AxisRecord previous;
   long blocks = 0;
   const auto axis_of = [](char letter) {
     return letter == 'X' ? 0 : letter == 'Z' ? 1 : letter == 'C' ? 2 : letter == 'B' ? 3 : -1;
@@ -673,9 +689,7 @@ RunResult run_program_simulation(const Job& job, const std::string& program,
     cl.contact.r = std::abs(radial);
     cl.contact.point = Eigen::Vector3d(radial * std::cos(theta), radial * std::sin(theta),
                                        std::isfinite(z) ? z : centre.y());
-    AxisRecord record{value[0], value[1], value[2], value[3], 0.0};
-    figures.add(cl, record, blocks == 0 ? record : previous);
-    previous = record;
+    figures.add(cl);
     ++blocks;
     chunk.push_back(cl);
     if (chunk.size() >= 4096) {

@@ -58,16 +58,12 @@ void TurnSamples::add(double theta, double x, double y) {
   turns.back().emplace_back(static_cast<float>(x), static_cast<float>(y));
 }
 
-void PassFigures::add(const CutterLocation& cl, const AxisRecord& record,
-                      const AxisRecord& previous) {
+void PassFigures::add(const CutterLocation& cl) {
   ++points;
   const std::size_t revolution =
       static_cast<std::size_t>(std::max(0.0, cl.contact.theta / (2 * std::numbers::pi)));
   if (points_per_revolution.size() <= revolution) points_per_revolution.resize(revolution + 1, 0);
   ++points_per_revolution[revolution];
-  const double rate = record.time > 0 ? 1 / record.time : 0;
-  // C velocity from the unwrapped step (a wrapped C jumps by 360° once a turn).
-  const double dc = std::remainder(record.c - previous.c, 360.0);
   if (cl.contact.chord_below) chord_below_max = std::max(chord_below_max, cl.contact.chord_error);
   if (cl.contact.uncut_residual > 0) {
     ++held_points;
@@ -84,11 +80,6 @@ void PassFigures::add(const CutterLocation& cl, const AxisRecord& record,
       }
     }
   }
-  const double vx = (record.x - previous.x) * rate, vz = (record.z - previous.z) * rate,
-               vc = dc * rate;
-  const double ax = (vx - last_v_[0]) * rate, az = (vz - last_v_[1]) * rate,
-               ac = (vc - last_v_[2]) * rate;
-  last_v_[0] = vx, last_v_[1] = vz, last_v_[2] = vc;
   turns.add(cl.contact.theta, cl.contact.point.x(), cl.contact.point.y());
   const double e = cl.contact.chord_error, s = cl.contact.scallop;
   chord_max = std::max(chord_max, e);
@@ -97,13 +88,40 @@ void PassFigures::add(const CutterLocation& cl, const AxisRecord& record,
   scallop_sq_ += s * s;
   if ((points - 1) % stride == 0) {
     samples.push_back({cl.contact.point.x(), cl.contact.point.y(), cl.contact.point.z(),
-                       cl.contact.r, cl.contact.theta, e, s, vx, vz, vc, ax, az, ac});
+                       cl.contact.r, cl.contact.theta, e, s});
     if (samples.size() >= kMaxSamples) {
       // Keep every other sample and halve the rate: memory stays bounded.
       std::size_t j = 0;
       for (std::size_t i = 0; i < samples.size(); i += 2) samples[j++] = samples[i];
       samples.resize(j);
       stride *= 2;
+    }
+  }
+}
+
+void PassFigures::add_block(const AxisRecord& record, const AxisSpec& x_spec, bool c_wrapped) {
+  const long k = written_++;
+  const AxisRecord before = last_block_;
+  const double t_before = before.time;
+  last_block_ = record;
+  if (k == 0 || !(record.time > 0)) return;  // the first block, or a block with no time
+  const double dq[3] = {record.x - before.x, record.z - before.z,
+                        c_wrapped ? std::remainder(record.c - before.c, 360.0) : record.c - before.c};
+  BlockPoint b;
+  b.r = std::abs((record.x - x_spec.offset) / x_spec.sign);
+  const double shorter = k > 1 && t_before > 0 ? std::min(record.time, t_before) : record.time;
+  for (int a = 0; a < 3; ++a) {
+    b.v[a] = dq[a] / record.time;
+    b.a[a] = k > 1 ? (b.v[a] - last_v_[a]) / shorter : 0.0;
+    last_v_[a] = b.v[a];
+  }
+  if ((k - 1) % block_stride == 0) {
+    blocks.push_back(b);
+    if (blocks.size() >= kMaxSamples) {
+      std::size_t j = 0;
+      for (std::size_t i = 0; i < blocks.size(); i += 2) blocks[j++] = blocks[i];
+      blocks.resize(j);
+      block_stride *= 2;
     }
   }
 }

@@ -343,7 +343,7 @@ std::string report_html(const RunReport& r, const Surface& design) {
     h += map_figure("fig-form-error",
                     std::string("Predicted figure: the residual's mean over one pitch of radius, ") +
                         "piston (" + nm(e.piston) + ") removed; red above the design, blue below" +
-                        (r.simulated ? "" : " (the report's coarse grid; simulate for a finer one)") +
+                        (r.simulated ? "" : " (cut on the report's grid; simulate writes the residual itself)") +
                         (e.resolved ? "" : "; the grid is coarser than a third of the pitch"),
                     diverging_image(*r.figure_map, limit), r.figure_map->size, r.figure_map->half_width,
                     "", diverging, true, -limit * 1e6, limit * 1e6, "nm", 1);
@@ -406,19 +406,15 @@ std::string report_html(const RunReport& r, const Surface& design) {
     Chart c;
     c.id = std::string(acceleration ? "fig-acceleration-" : "fig-velocity-") + kAxes[axis];
     c.title = std::string(kAxes[axis]) + (acceleration ? " acceleration" : " velocity") +
-              " along the radius, with the machine's limits (peak " +
+              " of the blocks as written, every " + std::to_string(f.block_stride) +
+              (f.block_stride == 1 ? "st" : "th") + ", with the machine's limits (peak " +
               readable(acceleration ? f.dynamics.peak_acceleration[axis] : f.dynamics.peak_velocity[axis], 2) +
               " " + unit + ")";
-    c.x_title = "r (mm)";
+    c.x_title = "programmed radius |X| (mm)";
     c.y_title = std::string(kAxes[axis]) + (acceleration ? " acceleration (" : " velocity (") + unit + ")";
     c.y_from_zero = true;
     ChartSeries s{"", "#1f5fa8", {}, true};
-    for (const PlotPoint& q : f.samples) {
-      const double v = axis == 0 ? (acceleration ? q.ax : q.vx)
-                     : axis == 1 ? (acceleration ? q.az : q.vz)
-                                 : (acceleration ? q.ac : q.vc);
-      s.points.emplace_back(q.r, v);
-    }
+    for (const BlockPoint& q : f.blocks) s.points.emplace_back(q.r, acceleration ? q.a[axis] : q.v[axis]);
     c.series.push_back(std::move(s));
     const double limit = acceleration ? r.max_acceleration[axis] : r.max_velocity[axis];
     if (std::isfinite(limit) && limit > 0) {
@@ -517,7 +513,7 @@ std::string report_html(const RunReport& r, const Surface& design) {
     const SimulationResult& s = *r.simulation;
     const double ratio = s.pv > 0 ? s.predicted.pv() / s.pv : 0;
     h += "<h2>Simulated cut</h2>\n<p id=\"simulation\">" +
-         std::string(r.simulated ? "The finishing pass cut in simulation" : "The finishing pass cut on the report's coarse grid") +
+         std::string(r.simulated ? "The finishing pass cut in simulation" : "The finishing pass cut on the report's grid") +
          " (" + std::to_string(s.rings) + " radii × " + std::to_string(s.columns) +
          " angles): residual PV " + nm(s.pv) + ", RMS " + nm(s.rms) + ". The planner predicted PV " +
          nm(s.predicted.pv()) + ", " + readable(ratio, 3) + "× the simulation: " +

@@ -44,8 +44,15 @@ const char* to_string(ReportWarning::Severity severity);
 
 struct PlotPoint {
   double x, y, z, r, theta, chord, scallop;  // mm, rad, mm, mm
-  double vx, vz, vc;  // axis velocities of the block ending here (mm/s, mm/s, °/s)
-  double ax, az, ac;  // their change from the block before over its time (mm/s², °/s²)
+};
+
+// One block as the program writes it (after the scheduler, when there is one): where
+// (the programmed radius, |X| back through the machine's layout) and its axes' velocity
+// and acceleration by the scheduler's own measure (block_schedule.cpp): v = Δq / t,
+// a = Δv / min(t, t_before).
+struct BlockPoint {
+  double r;           // mm
+  double v[3], a[3];  // X, Z (mm/s, mm/s²), C (°/s, °/s²)
 };
 
 // The path from above for drawing: at most kTurnPoints points a turn (one per angle step)
@@ -89,16 +96,21 @@ struct PassFigures {
   std::vector<PlotPoint> samples;  // every `stride`-th point
   long stride = 1;
   TurnSamples turns;
+  std::vector<BlockPoint> blocks;  // every `block_stride`-th block as written
+  long block_stride = 1;
   std::vector<long> points_per_revolution;  // by revolution index ⌊θ/2π⌋
 
-  // `record` and `previous` are the machine blocks of this point and the one before.
-  void add(const CutterLocation& cl, const AxisRecord& record, const AxisRecord& previous);
+  void add(const CutterLocation& cl);
+  // A block as written, in order; x_spec converts its X back to a radius.
+  void add_block(const AxisRecord& record, const AxisSpec& x_spec, bool c_wrapped);
   void finish(const PathSummary& s, const DynamicsReport& d, const ToolCheckReport& c);
   // The schedule the program was written with: its cycle time and axis peaks.
   void take_schedule(const ScheduleReport& s);
 
  private:
   double chord_sq_ = 0, scallop_sq_ = 0;
+  long written_ = 0;               // blocks seen by add_block
+  AxisRecord last_block_;
   double last_v_[3] = {0, 0, 0};  // the last block's X, Z, C velocities
 };
 
@@ -148,7 +160,7 @@ struct RunReport {
   double spindle_rpm = 0;       // as programmed (constant-rpm programs: the highest feasible)
   double requested_rpm = 0;     // as the job asked
   // The finishing pass cut in simulation: at the user's grid when `simulated` (simulate,
-  // --simulate), else at the report's coarse grid (the form error map every report has).
+  // --simulate), else on the report's own grid (the form error map every report has).
   bool simulated = false;
   std::shared_ptr<SimulationResult> simulation;
   std::shared_ptr<FormErrorSplit> form_error;    // its figure and finish
