@@ -109,28 +109,8 @@ py::dict result_dict(const RunReport& r, const std::vector<std::string>& files) 
   d["verdict"] = r.safe() ? "PASS" : "UNSAFE";
   d["unsafe"] = r.unsafe_reasons();
   d["warnings"] = r.messages();
-  // The same warnings as records, keyed as in report.json (docs/report.schema.json).
-  py::list records;
-  for (const ReportWarning& w : r.warnings) {
-    py::dict x;
-    const auto number = [](double v) -> py::object {
-      return std::isfinite(v) ? py::object(py::float_(v)) : py::object(py::none());
-    };
-    x["kind"] = w.kind;
-    x["severity"] = to_string(w.severity);
-    x["pass"] = w.pass.empty() ? py::object(py::none()) : py::object(py::str(w.pass));
-    x["message"] = w.message;
-    x["count"] = w.count;
-    x["theta_deg"] = number(w.theta_deg);
-    x["r_mm"] = number(w.r_mm);
-    x["x_mm"] = number(w.x_mm);
-    x["y_mm"] = number(w.y_mm);
-    x["value"] = number(w.value);
-    x["limit"] = number(w.limit);
-    x["unit"] = w.unit.empty() ? py::object(py::none()) : py::object(py::str(w.unit));
-    records.append(x);
-  }
-  d["warning_records"] = records;
+  // The same warnings as records, from report.json's own writer (docs/report.schema.json).
+  d["warning_records"] = py::module_::import("json").attr("loads")(warnings_json(r.warnings));
   d["job"] = r.job;
   d["machine"] = r.machine;
   d["spindle_rpm"] = r.spindle_rpm;

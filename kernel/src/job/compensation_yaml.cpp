@@ -13,12 +13,13 @@
 namespace freeturn::detail {
 namespace {
 
-std::string unit_of(MapReader& map, const std::string& key, const std::string& fallback,
-                    double& scale) {
+// The scale to mm of the unit under `key` (or `fallback`).
+double unit_scale(MapReader& map, const std::string& key, const std::string& fallback) {
   const std::string unit = map.has(key) ? map.text(key) : fallback;
+  double scale = 1;
   if (!length_unit_scale(unit, scale))
     map.fail(key, "compensation." + key + " must be mm, um, nm or m, not '" + unit + "'");
-  return unit;
+  return scale;
 }
 
 MeasuredPart read_part(const YAML::Node& node, const std::string& job_file, const Surface& design,
@@ -38,8 +39,8 @@ MeasuredPart read_part(const YAML::Node& node, const std::string& job_file, cons
   else
     map.fail("format", "compensation.format must be zygo_xyz, xyz, csv, grid or profile, not '" +
                            part.format + "'");
-  unit_of(map, "lateral_unit", "mm", read.lateral_scale);
-  unit_of(map, "height_unit", part.format == "zygo_xyz" ? "um" : "mm", read.height_scale);
+  read.lateral_scale = unit_scale(map, "lateral_unit", "mm");
+  read.height_scale = unit_scale(map, "height_unit", part.format == "zygo_xyz" ? "um" : "mm");
   part.gain = map.in_range("gain", 1.0, 0.0, 1.5, true, "");
   // Where the design's axis is in the measurement's own x, y (mm, after lateral_unit): an
   // instrument counts pixels from a corner. The registration starts from there.

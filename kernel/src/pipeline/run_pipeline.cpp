@@ -322,6 +322,42 @@ PreparedJob prepare_job(const Job& job, std::uintmax_t max_yaml_bytes) {
   return p;
 }
 
+// A report's head: the job (its file's name, not its path: a report is read on another
+// machine and says nothing of this one's folders; and its text), freeturn's version, the
+// job's parameters and measured parts, the machine, its post and its axes' limits.
+RunReport report_of(const Job& job, const PreparedJob& prepared) {
+  RunReport report;
+  report.job = job.name;
+  report.job_file = std::filesystem::path(job.file).filename().string();
+  report.version = kVersion;
+  report.parameters = job_parameters(job);
+  report.compensation = job.compensation;
+  {
+    std::ifstream in(job.file, std::ios::binary);
+    std::ostringstream text;
+    text << in.rdbuf();
+    report.job_text = text.str();
+  }
+  const MachineDescription& machine = prepared.machine;
+  report.machine = machine.name;
+  report.plugin = std::filesystem::path(prepared.plugin->path()).filename().string();
+  for (const Axis a : {Axis::kX, Axis::kZ, Axis::kC, Axis::kB}) {
+    const int i = static_cast<int>(a);
+    report.has_axis[i] = machine.has(a);
+    if (!report.has_axis[i]) continue;
+    report.max_velocity[i] = machine.spec(a).max_velocity;
+    report.max_acceleration[i] = machine.spec(a).max_acceleration;
+  }
+  return report;
+}
+
+// The base surface a spiral is planned on, into the report.
+void report_base(RunReport& report, const BasePlanOptions& options, const BasePlan& base) {
+  report.alpha_max_deg = base.quasi_revolution.max_angle * 180 / std::numbers::pi;
+  report.axis_moved = base.design_about_axis != nullptr;
+  report.base = base_figures(options, base);
+}
+
 // simulation: when set, the finishing pass is also cut in simulation and its residual
 // written (grid CSV, coloured PLY) with its figures in the report.
 // files: null when nothing is written (check, and the constant-rpm probe).
@@ -333,7 +369,6 @@ RunResult execute_job(const Job& job, const PreparedJob& prepared, const std::st
   const JobPlan& plan = *job.plan;
   const MachineDescription& machine = prepared.machine;
   const auto& plugin = prepared.plugin;
-  const std::string& job_path = job.file;
   if (write) {
     std::error_code ec;
     std::filesystem::create_directories(out_dir, ec);
@@ -343,29 +378,7 @@ RunResult execute_job(const Job& job, const PreparedJob& prepared, const std::st
     return (std::filesystem::path(out_dir) / name).string();
   };
 
-  RunReport report;
-  report.job = job.name;
-  // Names, not paths: a report is read on another machine (and says nothing of this one's
-  // folders).
-  report.job_file = std::filesystem::path(job_path).filename().string();
-  report.version = kVersion;
-  report.parameters = job_parameters(job);
-  report.compensation = job.compensation;
-  {
-    std::ifstream in(job_path, std::ios::binary);
-    std::ostringstream text;
-    text << in.rdbuf();
-    report.job_text = text.str();
-  }
-  report.machine = machine.name;
-  report.plugin = std::filesystem::path(plugin->path()).filename().string();
-  for (const Axis a : {Axis::kX, Axis::kZ, Axis::kC, Axis::kB}) {
-    const int i = static_cast<int>(a);
-    report.has_axis[i] = machine.has(a);
-    if (!report.has_axis[i]) continue;
-    report.max_velocity[i] = machine.spec(a).max_velocity;
-    report.max_acceleration[i] = machine.spec(a).max_acceleration;
-  }
+  RunReport report = report_of(job, prepared);
 
   // The base surface and the frame the part is cut in.
   const bool spiral = plan.strategy.mode == Strategy::Mode::kSpiral;
@@ -373,9 +386,7 @@ RunResult execute_job(const Job& job, const PreparedJob& prepared, const std::st
   if (spiral) {
     base = plan_base_surface(*job.surface, job.aperture.inner_radius, job.aperture.outer_radius,
                              plan.strategy.base);
-    report.alpha_max_deg = base.quasi_revolution.max_angle * 180 / std::numbers::pi;
-    report.axis_moved = base.design_about_axis != nullptr;
-    report.base = base_figures(plan.strategy.base, base);
+    report_base(report, plan.strategy.base, base);
     for (const std::string& text : base.warnings) {
       ReportWarning w;
       w.kind = "quasi_revolution";
@@ -621,17 +632,8 @@ RunResult run_program_simulation(const Job& job, const std::string& program,
   const Surface& design = base.design_to_cut(*job.surface);
   CutSimulator simulator(design, plan.tool.tool.nose_radius, so);
 
-  RunReport report;
-  report.job = job.name;
-  report.job_file = std::filesystem::path(job.file).filename().string();
-  report.version = kVersion;
-  report.parameters = job_parameters(job);
-  report.compensation = job.compensation;
-  report.machine = machine.name;
-  report.plugin = std::filesystem::path(prepared.plugin->path()).filename().string();
-  report.alpha_max_deg = base.quasi_revolution.max_angle * 180 / std::numbers::pi;
-  report.axis_moved = base.design_about_axis != nullptr;
-  report.base = base_figures(plan.strategy.base, base);
+  RunReport report = report_of(job, prepared);
+  report_base(report, plan.strategy.base, base);
   report.requested_rpm = plan.cutting.spindle_rpm;
   PassFigures& figures = report.add_pass(
       "program " + std::filesystem::path(program).filename().string(), 0.0);

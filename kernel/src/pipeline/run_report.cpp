@@ -18,9 +18,6 @@ std::string place_text(double theta, double r) {
   return "r = " + fixed_text(r, 4) + " mm, θ = " + fixed_text(part_degrees(theta), 3) + "° (turn " +
          std::to_string(static_cast<long>(std::floor(theta / (2 * std::numbers::pi))) + 1) + ")";
 }
-// ReportWarning::kind of each ToolCheck, in its order.
-constexpr const char* kCheckKinds[kToolCheckCount] = {"contact_angle", "clearance",  "local_gouge",
-                                                      "global_gouge",  "centre",     "b_limits"};
 
 }  // namespace
 
@@ -142,7 +139,7 @@ void PassFigures::finish(const PathSummary& s, const DynamicsReport& d, const To
     if (f.count == 0) continue;
     const ToolCheck check = static_cast<ToolCheck>(i);
     ReportWarning w;
-    w.kind = kCheckKinds[i];
+    w.kind = tool_check_kind(check);
     w.severity = ReportWarning::Severity::kUnsafe;
     w.pass = name;
     w.message = c.line(check) + " (the check is downgraded to a warning in the job)";
@@ -231,6 +228,12 @@ double fitted_error_rms(const MeasuredPart& part) {
 double compensated_rms(const MeasuredPart& part) {
   const double kept = (1 - part.gain) * fitted_error_rms(part);
   return std::hypot(kept, part.registration.fit_rms);
+}
+
+const char* tool_check_kind(ToolCheck check) {
+  static constexpr const char* kKinds[kToolCheckCount] = {
+      "contact_angle", "clearance", "local_gouge", "global_gouge", "centre", "b_limits"};
+  return kKinds[static_cast<int>(check)];
 }
 
 double part_degrees(double theta) {

@@ -73,11 +73,9 @@ Json pass_json(const RunReport& r, const PassFigures& f) {
   j["peak_acceleration_per_s2"] = per_axis(r, f.dynamics.peak_acceleration);
   j["peak_block_rate_per_s"] = f.dynamics.peak_block_rate;
   Json checks = Json::object();
-  static constexpr const char* kKinds[kToolCheckCount] = {
-      "contact_angle", "clearance", "local_gouge", "global_gouge", "centre", "b_limits"};
   for (int c = 0; c < kToolCheckCount; ++c) {
     const CheckFinding& k = f.checks.findings[static_cast<std::size_t>(c)];
-    checks[kKinds[c]] = {{"violations", k.count}};
+    checks[tool_check_kind(static_cast<ToolCheck>(c))] = {{"violations", k.count}};
   }
   j["checks"] = std::move(checks);
   return j;
@@ -152,6 +150,12 @@ Json compensation_json(const MeasuredPart& m) {
 
 }  // namespace
 
+std::string warnings_json(const std::vector<ReportWarning>& warnings) {
+  Json list = Json::array();
+  for (const ReportWarning& w : warnings) list.push_back(warning_json(w));
+  return list.dump(-1, ' ', false, Json::error_handler_t::replace);
+}
+
 std::string report_json(const RunReport& r) {
   Json j;
   j["schema_version"] = kSchemaVersion;
@@ -202,7 +206,7 @@ std::string report_json(const RunReport& r) {
                  {"enforce_dynamics", r.enforce_dynamics}};
   Json warnings = Json::array();
   for (const ReportWarning& w : r.warnings) warnings.push_back(warning_json(w));
-  j["warnings"] = std::move(warnings);
+  j["warnings"] = std::move(warnings);  // as warnings_json writes them
   Json passes = Json::array();
   for (const PassFigures& f : r.passes) passes.push_back(pass_json(r, f));
   j["passes"] = std::move(passes);

@@ -41,6 +41,8 @@ struct ReportWarning {
   std::string unit;                     // "deg", "mm", "nm", "rpm"
 };
 const char* to_string(ReportWarning::Severity severity);
+// A tool check's ReportWarning::kind and its key in report.json ("local_gouge").
+const char* tool_check_kind(ToolCheck check);
 
 struct PlotPoint {
   double x, y, z, r, theta, chord, scallop;  // mm, rad, mm, mm
