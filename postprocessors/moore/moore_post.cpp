@@ -121,7 +121,7 @@ class MoorePost {
   }
 
  private:
-  double time_scale() const { return std::pow(10.0, time_decimals_); }
+  double time_scale() const { return freeturn::post::decimal_scale(time_decimals_); }
 
   // The axis words of a block, C first as NanoCAM writes them, then X, Z, B.
   void words(const ft_block& b) {

@@ -5,7 +5,9 @@
 
 #include <doctest/doctest.h>
 
+#include <charconv>
 #include <cmath>
+#include <cstdint>
 #include <cstdlib>
 #include <cstring>
 #include <limits>
@@ -54,6 +56,38 @@ TEST_SUITE("plugins") {
       }
     CHECK(written > 100);
     CHECK(refused > 100);
+  }
+
+  TEST_CASE("the NC number formatter writes what std::to_chars writes, ties included") {
+    // The formatter's fast path (an integer and an FMA) against to_chars, the exact
+    // reference: random values of every size a word takes, and values at and next to
+    // decimal ties (k + 0.5 units of the last place, and the doubles either side).
+    std::uint64_t state = 20261202;
+    const auto next = [&] {  // SplitMix64
+      state += 0x9E3779B97F4A7C15ull;
+      std::uint64_t z = state;
+      z = (z ^ (z >> 30)) * 0xBF58476D1CE4E5B9ull;
+      z = (z ^ (z >> 27)) * 0x94D049BB133111EBull;
+      return z ^ (z >> 31);
+    };
+    long compared = 0;
+    for (int n = 0; n < 300000; ++n) {
+      const int decimals = static_cast<int>(next() % (kMaxDecimals + 1));
+      const double unit = std::pow(10.0, -decimals);
+      const double magnitude = std::pow(10.0, static_cast<double>(next() % 18) - 6.0);
+      double v = (static_cast<double>(next() >> 11) / 9007199254740992.0 - 0.5) * magnitude;
+      if (n % 3 == 1) v = (std::round(v / unit) + 0.5) * unit;  // a tie, as near as a double gets
+      if (n % 3 == 2) v = std::nextafter((std::round(v / unit) + 0.5) * unit, n % 2 ? 1e300 : -1e300);
+      char fast[kNumberCapacity], slow[kNumberCapacity];
+      const int got = format_fixed(v, decimals, fast);
+      const auto [end, error] = std::to_chars(slow, slow + kNumberCapacity - 1, v, std::chars_format::fixed, decimals);
+      REQUIRE(error == std::errc());
+      std::string expected(slow, end);
+      if (expected.find_first_not_of("-0.") == std::string::npos && expected.front() == '-') expected.erase(0, 1);
+      REQUIRE_MESSAGE(std::string(fast, static_cast<std::size_t>(got)) == expected, v, " at ", decimals);
+      ++compared;
+    }
+    CHECK(compared == 300000);
   }
 
   TEST_CASE("a word that cannot be written throws instead of writing half of it") {

@@ -18,12 +18,47 @@ constexpr int kNumberCapacity = 48;
 // The decimals a word may carry.
 constexpr int kMaxDecimals = 15;
 
+// 10^decimals, exact, for decimals in [0, kMaxDecimals] (a table: std::pow costs more than
+// the rest of a word's formatting).
+inline double decimal_scale(int decimals) {
+  static constexpr double kScale[kMaxDecimals + 1] = {1e0, 1e1, 1e2,  1e3,  1e4,  1e5,  1e6,  1e7,
+                                                      1e8, 1e9, 1e10, 1e11, 1e12, 1e13, 1e14, 1e15};
+  return kScale[decimals];
+}
+
 // Writes `value` with `decimals` digits after the point into `out` (kNumberCapacity
 // bytes) and returns the length; 0 for NaN or infinity, for decimals outside
 // [0, kMaxDecimals], and for a value too long to fit (1e300 in fixed notation). Never
 // writes past out + kNumberCapacity − 1, and never leaves a byte it did not mean.
 inline int format_fixed(double value, int decimals, char* out) {
   if (!std::isfinite(value) || decimals < 0 || decimals > kMaxDecimals) return 0;
+  // Fast path, the same text as std::to_chars: X = value·10^decimals as p + r exactly (the
+  // scale is an exact double, and an FMA gives the product's rounding error r exactly);
+  // n, the integer nearest p, is the correctly rounded X unless X lies within 1e-6 of a
+  // half, where a tie or a rounding of p could decide it: that goes to to_chars.
+  const double scale = decimal_scale(decimals);
+  const double p = value * scale;
+  if (std::abs(p) < 4e15) {
+    const double r = std::fma(value, scale, -p);
+    const double n = std::nearbyint(p);
+    const double fraction = (p - n) + r;  // p − n is exact below 2^52
+    if (std::abs(fraction) < 0.5 - 1e-6) {
+      unsigned long long digits = static_cast<unsigned long long>(std::abs(n));
+      char reversed[24];
+      int count = 0;
+      do {
+        reversed[count++] = static_cast<char>('0' + digits % 10);
+        digits /= 10;
+      } while (digits != 0 || count <= decimals);  // a digit before the point at least
+      int length = 0;
+      if (n != 0 && value < 0) out[length++] = '-';  // never "-0"
+      for (int k = count - 1; k >= 0; --k) {
+        out[length++] = reversed[k];
+        if (k == decimals && decimals > 0) out[length++] = '.';
+      }
+      return length;
+    }
+  }
   const auto [end, error] =
       std::to_chars(out, out + kNumberCapacity - 1, value, std::chars_format::fixed, decimals);
   if (error != std::errc()) return 0;
@@ -44,7 +79,7 @@ inline int format_fixed(double value, int decimals, char* out) {
 // C in [0, 360) at `decimals`: a value that rounds to 360 is written as 0.
 inline int format_wrapped_degrees(double value, int decimals, char* out) {
   if (!std::isfinite(value) || decimals < 0 || decimals > kMaxDecimals) return 0;
-  const double scale = std::pow(10.0, decimals);
+  const double scale = decimal_scale(decimals);
   double rounded = std::nearbyint(value * scale) / scale;
   if (rounded >= 360.0) rounded -= 360.0;
   return format_fixed(rounded, decimals, out);

@@ -28,6 +28,53 @@ inline bool parse_number(std::string_view text, double& value) {
   return error == std::errc() && end == text.data() + text.size();
 }
 
+// A number as NC words and tables write it: an optional '-', digits and at most one '.'
+// (no sign '+', exponent, "nan" or "inf"); false for anything else. The value is what
+// std::from_chars reads, to the bit. Most such numbers have at most 15 significant digits
+// and 22 decimals: then the digits m and 10^e are exact doubles and m / 10^e, one
+// correctly rounded division, is the correctly rounded value (Clinger's fast path, "How
+// to read floating point numbers accurately", 1990), several times faster than
+// from_chars, which reads the rest.
+//
+// exact_decimal is that fast path alone: ±mantissa / 10^decimals for a mantissa < 10^15
+// and decimals ≤ 22.
+inline double exact_decimal(unsigned long long mantissa, int decimals, bool negative) {
+  static constexpr double kPowers[] = {1e0,  1e1,  1e2,  1e3,  1e4,  1e5,  1e6,  1e7,
+                                       1e8,  1e9,  1e10, 1e11, 1e12, 1e13, 1e14, 1e15,
+                                       1e16, 1e17, 1e18, 1e19, 1e20, 1e21, 1e22};
+  const double magnitude = static_cast<double>(mantissa) / kPowers[decimals];
+  return negative ? -magnitude : magnitude;
+}
+
+inline bool parse_plain_decimal(std::string_view text, double& value) {
+  std::size_t i = 0;
+  const bool negative = !text.empty() && text[0] == '-';
+  if (negative) ++i;
+  unsigned long long mantissa = 0;
+  int significant = 0, decimals = 0, digits = 0;
+  bool point = false;
+  for (; i < text.size(); ++i) {
+    const char ch = text[i];
+    if (ch == '.') {
+      if (point) return false;
+      point = true;
+      continue;
+    }
+    if (ch < '0' || ch > '9') return false;
+    ++digits;
+    decimals += point;
+    if (mantissa == 0 && ch == '0') continue;  // leading zeros are not significant
+    if (++significant <= 15) mantissa = mantissa * 10 + static_cast<unsigned long long>(ch - '0');
+  }
+  if (digits == 0) return false;
+  if (significant <= 15 && decimals <= 22) {
+    value = exact_decimal(mantissa, decimals, negative);
+    return true;
+  }
+  const auto [end, error] = std::from_chars(text.data(), text.data() + text.size(), value);
+  return error == std::errc() && end == text.data() + text.size() && std::isfinite(value);
+}
+
 inline bool parse_int(std::string_view text, int& value) {
   if (!text.empty() && text.front() == '+') text.remove_prefix(1);
   if (text.empty()) return false;
