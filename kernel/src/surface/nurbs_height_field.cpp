@@ -2,9 +2,13 @@
 
 #include <Eigen/LU>
 #include <algorithm>
+#include <atomic>
 #include <cmath>
 #include <limits>
+#include <optional>
 #include <string>
+
+#include "freeturn/nurbs/surface_span_cache.hpp"
 
 #include "freeturn/core/error.hpp"
 
@@ -15,10 +19,19 @@ constexpr double kNaN = std::numeric_limits<double>::quiet_NaN();
 
 // The last answer of this thread, per surface: consecutive queries of a path are close.
 struct WarmStart {
-  const void* owner = nullptr;
+  std::uint64_t owner = 0;  // the surface's instance id; 0: none
   double u = 0, v = 0;
 };
 thread_local WarmStart warm_start;
+
+// This thread's span cache, for the surface with instance id `owner` (0: none yet).
+struct ThreadSpanCache {
+  std::uint64_t owner = 0;
+  std::optional<nurbs::SurfaceSpanCache> cache;
+};
+thread_local ThreadSpanCache span_cache;
+
+std::atomic<std::uint64_t> next_instance_id{1};
 
 // Greville abscissa of control point i: the knot average that reproduces linear functions.
 double greville(const nurbs::KnotVector& k, int i) {
@@ -37,6 +50,17 @@ double segment_distance(const Eigen::Vector2d& a, const Eigen::Vector2d& b) {
 }  // namespace
 
 void forget_thread_warm_starts() { warm_start = {}; }
+
+NurbsHeightField::InstanceId::InstanceId()
+    : value(next_instance_id.fetch_add(1, std::memory_order_relaxed)) {}
+
+nurbs::SurfaceDerivatives NurbsHeightField::evaluate_cached(double u, double v, int order) const {
+  if (span_cache.owner != id_.value) {
+    span_cache.cache.emplace(locator_.surface());
+    span_cache.owner = id_.value;
+  }
+  return span_cache.cache->evaluate(u, v, order);
+}
 
 NurbsHeightField::NurbsHeightField(nurbs::NurbsSurface surface) : locator_(std::move(surface)) {
   const nurbs::NurbsSurface& s = locator_.surface();
@@ -249,7 +273,7 @@ bool NurbsHeightField::newton(double x, double y, double& u, double& v) const {
   const double tolerance = 1e-13 * scale_;
   double previous = std::numeric_limits<double>::infinity();
   for (int it = 0; it < 30; ++it) {
-    const nurbs::SurfaceDerivatives d = s.evaluate(u, v, 1);
+    const nurbs::SurfaceDerivatives d = evaluate_cached(u, v, 1);
     const Eigen::Vector2d r(d.point.x() - x, d.point.y() - y);
     const double residual = r.norm();
     if (residual <= tolerance) return true;
@@ -295,11 +319,11 @@ bool NurbsHeightField::parameters_at(double x, double y, double& u, double& v) c
     v = std::clamp(v, s.front_v(), s.back_v());
     return true;
   }
-  if (warm_start.owner == this) {
+  if (warm_start.owner == id_.value) {
     u = warm_start.u;
     v = warm_start.v;
     if (newton(x, y, u, v)) {
-      warm_start = {this, u, v};
+      warm_start = {id_.value, u, v};
       return true;
     }
   }
@@ -309,14 +333,14 @@ bool NurbsHeightField::parameters_at(double x, double y, double& u, double& v) c
   u = hit.u;
   v = hit.v;
   if (!newton(x, y, u, v)) return false;
-  warm_start = {this, u, v};
+  warm_start = {id_.value, u, v};
   return true;
 }
 
 HeightDerivatives NurbsHeightField::derivatives_at(double x, double y, double u, double v,
                                                    int order) const {
   const nurbs::NurbsSurface& s = locator_.surface();
-  const nurbs::SurfaceDerivatives d = s.evaluate(u, v, order);
+  const nurbs::SurfaceDerivatives d = evaluate_cached(u, v, order);
   HeightDerivatives h;
   h.z = d.point.z();
   Eigen::Matrix2d j;

@@ -6,10 +6,18 @@
 // x-y parameters (height_grid, point_cloud) have x affine in u and y in v; they skip the
 // inversion altogether.
 //
+// S and its partials come from a span cache (nurbs/surface_span_cache.hpp), one per thread,
+// which a path's consecutive queries reuse while they stay in one knot span. Its answer is
+// a function of (u, v) alone, so the bits do not depend on the thread or on the queries
+// before. The thread's cache and warm start are tied to this surface by an instance id
+// drawn afresh by every construction, copy and move: never by address, which a later
+// surface could reuse.
+//
 // Derivatives of the graph from those of S (implicit function theorem): with J the 2×2
 // Jacobian of (S_x, S_y) in (u, v) and g = (∂S_z/∂u, ∂S_z/∂v),
 //   ∇z = J⁻ᵀ g,    ∇²z = J⁻ᵀ (∇²S_z − z_x ∇²S_x − z_y ∇²S_y) J⁻¹.
 
+#include <cstdint>
 #include <span>
 #include <vector>
 
@@ -52,12 +60,27 @@ class NurbsHeightField final : public Surface {
 
  private:
   bool newton(double x, double y, double& u, double& v) const;
+  // S and its partials to `order` through this thread's span cache.
+  nurbs::SurfaceDerivatives evaluate_cached(double u, double v, int order) const;
   // Derivatives at (u, v) over the point (x, y); at a pole (J singular) the gradient comes
   // from the limit normal and the Hessian from central differences of the gradient.
   HeightDerivatives derivatives_at(double x, double y, double u, double v, int order) const;
   double boundary_distance() const;
   void find_creases();
 
+  // A number no other surface of this process has had: fresh on construction, copy and
+  // move (the thread caches' key).
+  struct InstanceId {
+    std::uint64_t value;
+    InstanceId();
+    InstanceId(const InstanceId&) : InstanceId() {}
+    InstanceId& operator=(const InstanceId&) {
+      *this = InstanceId();
+      return *this;
+    }
+  };
+
+  InstanceId id_;
   nurbs::SurfaceLocator locator_;
   bool affine_ = false;
   double x0_ = 0, sx_ = 1, y0_ = 0, sy_ = 1;
