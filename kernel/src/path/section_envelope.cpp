@@ -136,16 +136,18 @@ NoseTouch nose_touch(const Surface& design, double theta, double nose_radius, do
     const double l = std::sqrt(1 + slope_a * slope_a);
     centre_x = a - R * slope_a / l;
     centre_z = g_a + R / l;
-    double g, s, distance = 1e300;
+    // The distance is that of the last foot evaluated, taken once after the iterations
+    // (std::hypot costs as much as the rest of an iteration).
+    double g, s, dx = 1e300, dz = 0;
     for (int it = 0; it < 12; ++it) {
       if (!section.at(foot, g, s)) return -R;
-      const double dx = foot - centre_x, dz = g - centre_z;
-      distance = std::hypot(dx, dz);
+      dx = foot - centre_x;
+      dz = g - centre_z;
       const double next = std::clamp(foot - (dx + s * dz) / (1 + s * s), far_lo, far_hi);
       if (std::abs(next - foot) <= 1e-15 * (1 + std::abs(foot))) break;
       foot = next;
     }
-    return R - distance;
+    return R - std::hypot(dx, dz);
   };
   const double own = std::clamp(rho_p, near_lo, near_hi);
   double a_in = own, f_in = F(a_in);

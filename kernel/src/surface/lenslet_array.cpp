@@ -99,6 +99,16 @@ LensletArray::LensletArray(const LensletArrayOptions& options) : o_(options) {
       for (int b = cell_of(c.y() - half); b <= cell_of(c.y() + half); ++b)
         cells[static_cast<std::size_t>(b) * cells_per_side_ + a].push_back(i);
   }
+  // What section_creases needs of each lenslet on a sphere, computed once.
+  if (cb != 0) {
+    inverse_curvature_ = 1 / cb;
+    const double rb = 1 / std::abs(cb);
+    rim_cosine_ = std::sqrt(std::max(0.0, rb * rb - 0.25 * d * d));
+    for (const Lenslet& l : lenslets_) {
+      const Eigen::Vector3d& c = l.base_point;
+      rim_height_.push_back(std::sqrt(std::max(0.0, rb * rb - (c.x() * c.x() + c.y() * c.y()))));
+    }
+  }
   cell_start_.push_back(0);
   for (const auto& list : cells) {
     cell_items_.insert(cell_items_.end(), list.begin(), list.end());
@@ -141,9 +151,12 @@ int LensletArray::lenslet_at(double x, double y) const {
   const int k = b * cells_per_side_ + a;
   const int first = cell_start_[k], last = cell_start_[k + 1];
   if (first == last) return -1;
-  // x² + y² < extent² here: no overflow for std::hypot to guard against, and it costs
-  // more than the rest of the lookup (the planner calls this for every sample).
-  const double z = sphere_sag(o_.base_curvature, std::sqrt(x * x + y * y));
+  // The point on the base, for the test below only: its height from x² + y² with one
+  // square root and no division, 1 − √(1 − c²s) over c (the cancellation costs about
+  // 1e-15 mm, which moves a rim by as much; the planner calls this for every sample, and
+  // the two roots and a division of the exact sag were most of its cost).
+  const double s = x * x + y * y, c = o_.base_curvature;
+  const double z = c == 0 ? 0.0 : (1 - std::sqrt(std::max(0.0, 1 - c * c * s))) * inverse_curvature_;
   const double half_sq = 0.25 * o_.lens_diameter * o_.lens_diameter;
   for (int idx = first; idx < last; ++idx) {
     const LookupEntry& l = lookup_[static_cast<std::size_t>(idx)];
@@ -213,16 +226,17 @@ int LensletArray::section_creases(double theta, double rho_lo, double rho_hi,
         // between the point and c is α, sin α = (D/2)/R_b: with ρ = R_b sin φ,
         //   along·sin φ + √(R_b² − |c_xy|²)·cos φ = R_b cos α.
         const double rb = 1 / std::abs(cb);
-        const double lateral_sq = c.x() * c.x() + c.y() * c.y();
-        const double bc = std::sqrt(std::max(0.0, rb * rb - lateral_sq));
+        const double bc = rim_height_[static_cast<std::size_t>(cell_items_[idx])];
         const double m = std::hypot(along, bc);
-        const double q = std::sqrt(std::max(0.0, rb * rb - half * half)) / m;
+        const double q = rim_cosine_ / m;
         if (!(q <= 1)) continue;
-        const double beta = std::atan2(bc, along);
-        for (const double phi_plus_beta : {std::asin(q), std::numbers::pi - std::asin(q)}) {
-          const double phi = phi_plus_beta - beta;
-          if (std::abs(phi) <= 0.5 * std::numbers::pi) add(rb * std::sin(phi));
-        }
+        // φ + β = asin q or π − asin q, with cos β = along/m, sin β = bc/m, kept where
+        // |φ| ≤ π/2 (cos φ ≥ 0): sin φ and cos φ by the angle-sum rules, no inverse
+        // trigonometric function (three of them per lenslet were a tenth of the planner).
+        const double cos_beta = along / m, sin_beta = bc / m;
+        const double root = std::sqrt(std::max(0.0, 1 - q * q));  // cos(asin q)
+        if (root * cos_beta + q * sin_beta >= 0) add(rb * (q * cos_beta - root * sin_beta));
+        if (q * sin_beta - root * cos_beta >= 0) add(rb * (q * cos_beta + root * sin_beta));
       }
     }
   std::sort(out.begin(), out.begin() + count);

@@ -76,6 +76,11 @@ class LensletArray final : public Surface {
     int lenslet;
   };
   std::vector<LookupEntry> lookup_;
+  // On a sphere of radius R_b: √(R_b² − |c_xy|²) per lenslet (its base point's height over
+  // the sphere's centre) and R_b cos α = √(R_b² − (D/2)²), for section_creases.
+  std::vector<double> rim_height_;
+  double rim_cosine_ = 0;
+  double inverse_curvature_ = 0;  // 1/c of the base sphere (0 on a plane)
 };
 
 }  // namespace freeturn
