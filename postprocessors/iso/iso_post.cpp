@@ -34,13 +34,14 @@ class IsoPost {
              ", written by freeturn)\nG21 G18 G8 G90 G40 G94\n");
   }
 
+  // The chunk's lines are handed to the host at once: one write per chunk, not per line.
   void blocks(const ft_block* b, std::size_t count) {
+    line_.clear();
     for (std::size_t k = 0; k < count; ++k) {
-      line_.clear();
       if (first_) {
         // Approach: up, over, then down at a slow feed, then inverse-time feed.
         first_ = false;
-        line_ = "G0 ";
+        line_ += "G0 ";
         append_word(line_, 'Z', clear_z_, z_decimals_);
         line_ += "\nG0";
         for (int i = 0; i < info_.layout.count; ++i)
@@ -58,7 +59,7 @@ class IsoPost {
         }
       } else {
         if (!(b[k].time > 0)) throw PostError("a block has no duration");
-        line_ = "G1";
+        line_ += "G1";
         for (int i = 0; i < info_.layout.count; ++i) word(b[k], i);
         if (!info_.feed_per_minute) {
           // LinuxCNC's G93: F = 1 / (block time in minutes), on every G1 line.
@@ -67,8 +68,8 @@ class IsoPost {
         }
         line_ += '\n';
       }
-      out_.put(line_);
     }
+    out_.put(line_);
   }
 
   void end() {
@@ -91,7 +92,7 @@ class IsoPost {
   double clear_z_ = 0;
   int z_decimals_ = 6;
   bool first_ = true;
-  std::string line_;  // reused: no allocation per block
+  std::string line_;  // a chunk's lines, reused: no allocation per block
 };
 
 }  // namespace

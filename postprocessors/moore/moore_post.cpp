@@ -57,16 +57,18 @@ class MoorePost {
     out_.put(head + "\n");
   }
 
+  // The chunk's lines are handed to the host at once (one write per chunk, not per line),
+  // and before the program switches files.
   void blocks(const ft_block* b, std::size_t count) {
+    line_.clear();
     for (std::size_t k = 0; k < count; ++k) {
-      line_.clear();
       if (first_) {
         // Approach in feed per minute: to the clearance height, over the first point at
         // it, then down to the point.
         first_ = false;
         ft_block above = b[k];
         above.z = clear_z_;
-        line_ = "G94 G01 ";
+        line_ += "G94 G01 ";
         append_word(line_, 'Z', clear_z_, z_decimals_);
         line_ += " F";
         append_number(line_, approach_feed_, 3);
@@ -74,13 +76,15 @@ class MoorePost {
         words(above);
         line_ += "\n";
         words(b[k]);
-        out_.put(line_ + "\n");
+        line_ += '\n';
         continue;
       }
       if (child_blocks_ > 0 && in_child_ == 0) {
         // A new child point file, called from the main program.
         char name[512];
         std::snprintf(name, sizeof name, "%s_%03d.nc", info_.program_name, ++children_);
+        out_.put(line_);
+        line_.clear();
         out_.select_main();
         out_.put(std::string("M98(") + name + ")\n");
         out_.open_file(name);
@@ -97,7 +101,9 @@ class MoorePost {
           throw PostError(message + " s reads F0 at " + std::to_string(time_decimals_) +
                           " decimals: raise time_decimals");
         }
-        line_ = "G93 F" + feed_ + "\n";
+        line_ += "G93 F";
+        line_ += feed_;
+        line_ += '\n';
         last_feed_ = feed_;
       }
       words(b[k]);
@@ -106,8 +112,8 @@ class MoorePost {
         line_ += "M99\n";
         in_child_ = 0;
       }
-      out_.put(line_);
     }
+    out_.put(line_);
   }
 
   void end() {

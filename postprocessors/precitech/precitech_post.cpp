@@ -53,12 +53,12 @@ class PrecitechPost {
 
   void blocks(const ft_block* b, std::size_t count) {
     const ft_axis_layout& l = info_.layout;
+    line_.clear();  // the chunk's lines, handed to the host at once
     for (std::size_t k = 0; k < count; ++k) {
-      line_.clear();
       if (!first_ && time_word_.empty() && !profile_) {
         if (block_time_ < 0) {
           block_time_ = b[k].time;
-          line_ = "; block time ";
+          line_ += "; block time ";
           append_number(line_, b[k].time, 9);
           line_ += " s\n";
         } else if (std::abs(b[k].time - block_time_) > 1e-9 * block_time_) {
@@ -79,8 +79,8 @@ class PrecitechPost {
       if (!first_ && !time_word_.empty()) append_word(line_, time_word_[0], b[k].time, 9);
       first_ = false;
       line_ += '\n';
-      out_.put(line_);
     }
+    out_.put(line_);
   }
 
   void end() { out_.put(footer_ + "\n"); }

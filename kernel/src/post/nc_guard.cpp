@@ -38,6 +38,13 @@ NcGuard::NcGuard(const MachineDescription& machine) {
 
 std::string NcGuard::check_record(const AxisRecord& record, long long block) const {
   const std::pair<char, double> values[] = {{'X', record.x}, {'Z', record.z}, {'C', record.c}, {'B', record.b}};
+  // The usual answer first, without building a message (this runs for every block).
+  bool fine = std::isfinite(record.time) && record.time >= 0;
+  for (const auto& [letter, v] : values) {
+    const Range& r = ranges_[letter - 'A'];
+    fine = fine && std::isfinite(v) && !(letter != 'C' && r.checked && (v < r.min || v > r.max));
+  }
+  if (fine) return {};
   std::string why = "block ";
   why += std::to_string(block);
   why += ": ";
@@ -192,14 +199,19 @@ void NcGuard::check_line(std::string_view line) {
     }
     if (!number.empty() && number.front() == '+') number.remove_prefix(1);
     double v = 0;
-    // Most words: at most 15 significant digits, one point, and a digit among them; then
-    // the value is exact_decimal's (parse_plain_decimal's fast path, inlined here).
+    const Range& r = ranges_[letter - 'A'];
+    // Most words: at most 15 significant digits, one point, and a digit among them. Such a
+    // word is a finite number; its value, exact_decimal's (parse_plain_decimal's fast
+    // path), is needed only where a range is checked.
     if (points <= 1 && significant <= 15 && decimals <= 22 && j - digits > static_cast<std::size_t>(points)) {
+      if (!r.checked) {
+        i = j - 1;
+        continue;
+      }
       v = exact_decimal(mantissa, decimals, negative);
     } else if (!parse_plain_decimal(number, v)) {
       return refuse(std::string(1, letter) + std::string(number) + " is not a number");
     }
-    const Range& r = ranges_[letter - 'A'];
     if (outside_letter == 0 && r.checked && (v < r.min || v > r.max)) {
       outside_letter = letter;
       outside_number = number;

@@ -43,18 +43,31 @@ inline int format_fixed(double value, int decimals, char* out) {
     const double n = std::nearbyint(p);
     const double fraction = (p - n) + r;  // p − n is exact below 2^52
     if (std::abs(fraction) < 0.5 - 1e-6) {
+      // The digits from the right, two at a time, then the point moved into place.
+      static constexpr char kPairs[] =
+          "00010203040506070809101112131415161718192021222324252627282930313233343536373839"
+          "40414243444546474849505152535455565758596061626364656667686970717273747576777879"
+          "8081828384858687888990919293949596979899";
       unsigned long long digits = static_cast<unsigned long long>(std::abs(n));
       char reversed[24];
       int count = 0;
+      while (digits >= 100) {
+        const unsigned pair = static_cast<unsigned>(digits % 100);
+        digits /= 100;
+        reversed[count++] = kPairs[2 * pair + 1];
+        reversed[count++] = kPairs[2 * pair];
+      }
       do {
         reversed[count++] = static_cast<char>('0' + digits % 10);
         digits /= 10;
-      } while (digits != 0 || count <= decimals);  // a digit before the point at least
+      } while (digits != 0);
+      while (count <= decimals) reversed[count++] = '0';  // a digit before the point at least
       int length = 0;
       if (n != 0 && value < 0) out[length++] = '-';  // never "-0"
-      for (int k = count - 1; k >= 0; --k) {
-        out[length++] = reversed[k];
-        if (k == decimals && decimals > 0) out[length++] = '.';
+      for (int k = count - 1; k >= decimals; --k) out[length++] = reversed[k];
+      if (decimals > 0) {
+        out[length++] = '.';
+        for (int k = decimals - 1; k >= 0; --k) out[length++] = reversed[k];
       }
       return length;
     }
