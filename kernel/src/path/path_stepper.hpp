@@ -110,6 +110,34 @@ class SegmentMotion {
 // Samples of a segment where the design has creases (8 elsewhere).
 constexpr int kCreasedIntervals = 32;
 
+// A peak bracketed by samples e[best − 1] ≤ e[best] ≥ e[best + 1] of a function concave
+// about it (the samples' slopes s₁ ≥ s₂ ≥ s₃ ≥ s₄ from e[best − 2] to e[best + 2] fall) lies
+// under the secant lines either side: on [best − 1, best] under the line through e[best − 2]
+// and e[best − 1] and the one through e[best] and e[best + 1], on [best, best + 1] likewise.
+// The higher of the two places where such lines meet bounds the peak above: a tent at a
+// crease (linear flanks) reaches it exactly, a smooth peak comes within a few tenths of a
+// percent of it at 32 intervals. If the largest deviation found (`found`, the deviation at
+// that place included) comes within 0.5 % of the bound, the peak is known to that, 0.5 %
+// of the 3 % margin the step search keeps, in one evaluation instead of the golden-section
+// search's twenty; else (a non-concave peak) false, and the search takes over. The
+// search assumes one peak in the bracket as well: the bound asks nothing more of it.
+// Only samples inside the segment are used (e[0] and e[intervals] are the blocks' zeros).
+// A deviation above the bound shows the function is not concave there: false.
+template <class DeviationAt>
+bool peak_within_secant_bound(const double* e, int best, int intervals, double found,
+                              DeviationAt&& deviation_at) {
+  if (best < 3 || best + 3 > intervals) return false;
+  const double s1 = e[best - 1] - e[best - 2], s2 = e[best] - e[best - 1];
+  const double s3 = e[best + 1] - e[best], s4 = e[best + 2] - e[best + 1];
+  if (!(s1 >= s2 && s2 >= s3 && s3 >= s4 && s1 > s3 && s2 > s4)) return false;
+  const double u_left = (s2 - s1) / (s1 - s3), u_right = (s3 - s4) / (s2 - s4);  // from best
+  const double bound_left = e[best] + s3 * u_left, bound_right = e[best] + s2 * u_right;
+  const double u = bound_left >= bound_right ? u_left : u_right;
+  const double bound = std::max(bound_left, bound_right);
+  const double largest = std::max(deviation_at((best + u) / intervals), found);
+  return largest >= (1 - 5e-3) * bound && largest <= (1 + 1e-9) * bound;
+}
+
 template <class Path, class Deviation>
 double largest_deviation(const Path& path, Deviation&& deviation, bool always_search = false) {
   constexpr int kMaxIntervals = kCreasedIntervals;
@@ -134,6 +162,8 @@ double largest_deviation(const Path& path, Deviation&& deviation, bool always_se
   const double at_vertex = deviation_at((best + shift) / intervals);
   if (!(path.creased() && always_search) &&
       std::abs(at_vertex - predicted) <= (path.creased() ? 1e-3 : 1e-2) * predicted)
+    return signed_worst;
+  if (peak_within_secant_bound(e, best, intervals, std::abs(signed_worst), deviation_at))
     return signed_worst;
   // Golden-section search for the maximum on [t_{best−1}, t_{best+1}].
   constexpr double kGolden = 0.6180339887498949;
