@@ -109,6 +109,26 @@ LensletArray::LensletArray(const LensletArrayOptions& options) : o_(options) {
       rim_height_.push_back(std::sqrt(std::max(0.0, rb * rb - (c.x() * c.x() + c.y() * c.y()))));
     }
   }
+  for (int i = 0; i < lenslet_count(); ++i) {
+    const Lenslet& l = lenslets_[static_cast<std::size_t>(i)];
+    by_lenslet_.push_back({l.base_point.x(), l.base_point.y(), l.base_point.z(), l.axis.x(),
+                           l.axis.y(), l.axis.z(), i});
+  }
+  // Footprints overlap only if two lenslets listed in one cell do (a point in both lies
+  // in a cell both are listed in). On a sphere the footprint is the cap within α of the
+  // lenslet's axis (R_b sin α = D/2), and two caps are apart when their axes are at least
+  // 2α apart; on a plane, discs whose centres are at least D apart. A margin of 1e-9
+  // keeps a point within rounding of both rims out of both.
+  disjoint_ = true;
+  const double alpha = cb != 0 ? std::asin(0.5 * d * std::abs(cb)) : 0.0;
+  for (const auto& list : cells)
+    for (std::size_t p = 0; p < list.size() && disjoint_; ++p)
+      for (std::size_t q = p + 1; q < list.size() && disjoint_; ++q) {
+        const Lenslet& i = lenslets_[static_cast<std::size_t>(list[p])];
+        const Lenslet& j = lenslets_[static_cast<std::size_t>(list[q])];
+        disjoint_ = cb != 0 ? 2 * std::asin(0.5 * (i.axis - j.axis).norm()) >= 2 * alpha * (1 + 1e-9)
+                            : (i.base_point - j.base_point).norm() >= d * (1 + 1e-9);
+      }
   cell_start_.push_back(0);
   for (const auto& list : cells) {
     cell_items_.insert(cell_items_.end(), list.begin(), list.end());
@@ -144,13 +164,6 @@ double LensletArray::defined_radius() const {
 int LensletArray::lenslet_at(double x, double y) const {
   // Written so that NaN coordinates (a point off a transformed surface) find no lenslet.
   if (!(std::abs(x) <= o_.extent + cell_) || !(std::abs(y) <= o_.extent + cell_)) return -1;
-  const int a =
-      std::clamp(static_cast<int>(std::floor((x + o_.extent) / cell_)), 0, cells_per_side_ - 1);
-  const int b =
-      std::clamp(static_cast<int>(std::floor((y + o_.extent) / cell_)), 0, cells_per_side_ - 1);
-  const int k = b * cells_per_side_ + a;
-  const int first = cell_start_[k], last = cell_start_[k + 1];
-  if (first == last) return -1;
   // The point on the base, for the test below only: its height from x² + y² with one
   // square root and no division, 1 − √(1 − c²s) over c (the cancellation costs about
   // 1e-15 mm, which moves a rim by as much; the planner calls this for every sample, and
@@ -158,12 +171,28 @@ int LensletArray::lenslet_at(double x, double y) const {
   const double s = x * x + y * y, c = o_.base_curvature;
   const double z = c == 0 ? 0.0 : (1 - std::sqrt(std::max(0.0, 1 - c * c * s))) * inverse_curvature_;
   const double half_sq = 0.25 * o_.lens_diameter * o_.lens_diameter;
-  for (int idx = first; idx < last; ++idx) {
-    const LookupEntry& l = lookup_[static_cast<std::size_t>(idx)];
+  const auto holds = [&](const LookupEntry& l) {
     const double wx = x - l.px, wy = y - l.py, wz = z - l.pz;
     const double along = wx * l.ax + wy * l.ay + wz * l.az;
     // |w − (w·a)a|² = |w|² − (w·a)²: the squared distance from the lenslet's axis.
-    if (wx * wx + wy * wy + wz * wz - along * along < half_sq) return l.lenslet;
+    return wx * wx + wy * wy + wz * wz - along * along < half_sq;
+  };
+  // The lenslet this thread found last: a path's consecutive queries mostly stay in one.
+  // Where no two footprints overlap (disjoint_), the lenslet that holds the point is the
+  // only one, so trying it first changes no answer; any array's index is only a guess,
+  // checked against this one's own data.
+  thread_local int last_found = -1;
+  if (disjoint_ && last_found >= 0 && last_found < lenslet_count() &&
+      holds(by_lenslet_[static_cast<std::size_t>(last_found)]))
+    return last_found;
+  const int a =
+      std::clamp(static_cast<int>(std::floor((x + o_.extent) / cell_)), 0, cells_per_side_ - 1);
+  const int b =
+      std::clamp(static_cast<int>(std::floor((y + o_.extent) / cell_)), 0, cells_per_side_ - 1);
+  const int k = b * cells_per_side_ + a;
+  for (int idx = cell_start_[k]; idx < cell_start_[k + 1]; ++idx) {
+    const LookupEntry& l = lookup_[static_cast<std::size_t>(idx)];
+    if (holds(l)) return last_found = l.lenslet;
   }
   return -1;
 }

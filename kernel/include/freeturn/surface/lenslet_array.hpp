@@ -76,6 +76,8 @@ class LensletArray final : public Surface {
     int lenslet;
   };
   std::vector<LookupEntry> lookup_;
+  std::vector<LookupEntry> by_lenslet_;  // the same, one per lenslet, in lenslet order
+  bool disjoint_ = false;                // no two footprints overlap (lenslet_at's hint)
   // On a sphere of radius R_b: √(R_b² − |c_xy|²) per lenslet (its base point's height over
   // the sphere's centre) and R_b cos α = √(R_b² − (D/2)²), for section_creases.
   std::vector<double> rim_height_;
