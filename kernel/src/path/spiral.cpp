@@ -205,6 +205,48 @@ PathSummary plan_spiral(const Surface& design, const BaseSurface& base,
     std::vector<ContactPoint> points;
     std::vector<char> jumps;
   };
+  // A point of the path as the sink takes it, with its section and scallop predicted.
+  const auto contact_point = [&](const SpiralPath& piece, const detail::AxisState& s, double error,
+                                 bool jump) {
+    ContactPoint p;
+    p.theta = s.c;
+    p.r = s.contact_r;
+    p.point = s.point;
+    detail::set_chord(p, s, error, jump, piece.stand_off());
+    const double zr = detail::fill_section(design, p);
+    // Adjacent turns are p apart along the base's generating curve; on the design
+    // they are p / cos β apart, β the angle between the two sections' tangents.
+    const BasePoint bp = piece.base_point(s.c);
+    const double cos_beta = (1 + bp.slope * zr) /
+                            (std::sqrt(1 + bp.slope * bp.slope) * std::sqrt(1 + zr * zr));
+    p.pass_spacing = o.pitch / cos_beta;
+    p.scallop = detail::scallop_height(p.pass_spacing, p.section_curvature, o.tool.nose_radius);
+    return p;
+  };
+  ContactChunker out(sink);
+  PathSummary summary;
+  const auto consume = [&](const ContactPoint& p, bool jump) {
+    summary.add(p.theta, p.r, p.chord_error, jump);
+    summary.theta_end = p.theta;
+    summary.max_scallop = std::max(summary.max_scallop, p.scallop);
+    summary.max_pass_spacing = std::max(summary.max_pass_spacing, p.pass_spacing);
+    out.push(p);
+  };
+  if (bands == 1) {
+    // One band (PVT, equal steps, or a path of a turn or so): there is nothing to put in
+    // order, so its points go straight to the sink and memory stays flat however long
+    // the path is.
+    forget_thread_warm_starts();  // as a band would: the path's set-up used them
+    SpiralPath piece = path;
+    detail::distribute(
+        piece, o.points,
+        [&](const detail::AxisState& s, double error, bool jump) {
+          consume(contact_point(piece, s, error, jump), jump);
+        },
+        bounds[0], bounds[1], true);
+    out.flush();
+    return summary;
+  }
   const auto plan_band = [&](long k, Band& band) {
     band.points.clear();
     band.jumps.clear();
@@ -213,36 +255,14 @@ PathSummary plan_spiral(const Surface& design, const BaseSurface& base,
     detail::distribute(
         piece, o.points,
         [&](const detail::AxisState& s, double error, bool jump) {
-          ContactPoint p;
-          p.theta = s.c;
-          p.r = s.contact_r;
-          p.point = s.point;
-          detail::set_chord(p, s, error, jump, piece.stand_off());
-          const double zr = detail::fill_section(design, p);
-          // Adjacent turns are p apart along the base's generating curve; on the design
-          // they are p / cos β apart, β the angle between the two sections' tangents.
-          const BasePoint bp = piece.base_point(s.c);
-          const double cos_beta = (1 + bp.slope * zr) /
-                                  (std::sqrt(1 + bp.slope * bp.slope) * std::sqrt(1 + zr * zr));
-          p.pass_spacing = o.pitch / cos_beta;
-          p.scallop = detail::scallop_height(p.pass_spacing, p.section_curvature, o.tool.nose_radius);
-          band.points.push_back(p);
+          band.points.push_back(contact_point(piece, s, error, jump));
           band.jumps.push_back(jump ? 1 : 0);
         },
         bounds[static_cast<std::size_t>(k)], bounds[static_cast<std::size_t>(k) + 1], k == 0);
   };
-  ContactChunker out(sink);
-  PathSummary summary;
   const int threads = std::min<long>(thread_count(o.threads), bands);
   ordered_parallel<Band>(threads, bands, 2 * threads, plan_band, [&](long, Band& band) {
-    for (std::size_t i = 0; i < band.points.size(); ++i) {
-      const ContactPoint& p = band.points[i];
-      summary.add(p.theta, p.r, p.chord_error, band.jumps[i] != 0);
-      summary.theta_end = p.theta;
-      summary.max_scallop = std::max(summary.max_scallop, p.scallop);
-      summary.max_pass_spacing = std::max(summary.max_pass_spacing, p.pass_spacing);
-      out.push(p);
-    }
+    for (std::size_t i = 0; i < band.points.size(); ++i) consume(band.points[i], band.jumps[i] != 0);
   });
   out.flush();
   return summary;

@@ -34,6 +34,13 @@ NcGuard::NcGuard(const MachineDescription& machine) {
       r = {true, s.min - half_unit, s.max + half_unit};
     }
   }
+  // The most integer digits a number may have and still be inside on either side: 10ⁿ ≤
+  // max (and the range holds 0) for positive numbers, −10ⁿ ≥ min for negative ones.
+  for (Range& r : ranges_) {
+    if (!r.checked || !(r.min <= 0 && r.max >= 0)) continue;
+    for (int n = 0; n <= 15 && std::pow(10.0, n) <= r.max; ++n) r.digits_above = n;
+    for (int n = 0; n <= 15 && -std::pow(10.0, n) >= r.min; ++n) r.digits_below = n;
+  }
 }
 
 std::string NcGuard::check_record(const AxisRecord& record, long long block) const {
@@ -162,20 +169,20 @@ void NcGuard::check_line(std::string_view line) {
       if ((lower == 'n' && b == 'a' && d == 'n') || (lower == 'i' && b == 'n' && d == 'f'))
         return refuse("a number that is not finite: " + std::string(line));
     }
-    // The word's number, read as it is scanned: an optional sign, digits, one '.'.
+    // The word's number: an optional sign, digits, one '.'. The scan counts the digits
+    // before the point that are significant (a number with n of them is below 10ⁿ in
+    // size); its value is computed only where that cannot settle the range.
     std::size_t j = i + 1;
     const bool negative = j < length && c[j] == '-';
     if (j < length && (c[j] == '-' || c[j] == '+')) ++j;
     const std::size_t digits = j;
-    unsigned long long mantissa = 0;
-    int significant = 0, decimals = 0, points = 0;
+    int integer_digits = 0, points = 0, digit_count = 0;
     for (; j < length; ++j) {
-      const unsigned digit = static_cast<unsigned char>(c[j]) - '0';
-      if (digit <= 9) {
-        decimals += points;
-        significant += (mantissa | digit) != 0;
-        if (significant <= 15) mantissa = mantissa * 10 + digit;
-      } else if (c[j] == '.') {
+      const char ch = c[j];
+      if (ascii_digit(ch)) {
+        ++digit_count;
+        integer_digits += (points == 0) & ((integer_digits != 0) | (ch != '0'));
+      } else if (ch == '.') {
         ++points;
       } else {
         break;
@@ -198,20 +205,21 @@ void NcGuard::check_line(std::string_view line) {
       if (g == "53" || g == "28" || g == "30" || g == "92") work_frame = false;
     }
     if (!number.empty() && number.front() == '+') number.remove_prefix(1);
-    double v = 0;
-    const Range& r = ranges_[letter - 'A'];
-    // Most words: at most 15 significant digits, one point, and a digit among them. Such a
-    // word is a finite number; its value, exact_decimal's (parse_plain_decimal's fast
-    // path), is needed only where a range is checked.
-    if (points <= 1 && significant <= 15 && decimals <= 22 && j - digits > static_cast<std::size_t>(points)) {
-      if (!r.checked) {
-        i = j - 1;
-        continue;
-      }
-      v = exact_decimal(mantissa, decimals, negative);
-    } else if (!parse_plain_decimal(number, v)) {
+    if (points > 1 || digit_count == 0)
       return refuse(std::string(1, letter) + std::string(number) + " is not a number");
+    // Digits and at most one point, fewer than 309 before it: a finite number.
+    const Range& r = ranges_[letter - 'A'];
+    if (!r.checked && integer_digits < 300) {
+      i = j - 1;
+      continue;
     }
+    if (r.checked && integer_digits <= (negative ? r.digits_below : r.digits_above)) {
+      i = j - 1;  // inside: |v| < 10ⁿ, within the range on its sign's side
+      continue;
+    }
+    double v = 0;
+    if (!parse_plain_decimal(number, v))
+      return refuse(std::string(1, letter) + std::string(number) + " is not a number");
     if (outside_letter == 0 && r.checked && (v < r.min || v > r.max)) {
       outside_letter = letter;
       outside_number = number;

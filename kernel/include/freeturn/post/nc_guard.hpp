@@ -51,6 +51,9 @@ class NcGuard {
   struct Range {
     bool checked = false;
     double min = 0, max = 0;
+    // A number with at most this many significant integer digits is inside on the side of
+    // its sign (−1: none is known to be).
+    int digits_above = -1, digits_below = -1;
   };
   struct File {
     std::string name, line;  // the line being written
