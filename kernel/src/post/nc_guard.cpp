@@ -91,11 +91,15 @@ void NcGuard::feed(std::string_view bytes) {
       f.line.append(bytes);
       return;
     }
-    f.line.append(bytes.substr(0, newline));
-    bytes.remove_prefix(newline + 1);
     ++f.lines;
-    check_line(f.line);
-    f.line.clear();
+    if (f.line.empty()) {
+      check_line(bytes.substr(0, newline));  // a whole line in this piece: read in place
+    } else {
+      f.line.append(bytes.substr(0, newline));
+      check_line(f.line);
+      f.line.clear();
+    }
+    bytes.remove_prefix(newline + 1);
   }
 }
 
