@@ -345,4 +345,36 @@ TEST_SUITE("path") {
     CHECK(seams >= 47);
     CHECK(test::densest_chord_error(surface, runs[0]) <= 2e-4);
   }
+
+  TEST_CASE("equal angles in bands of whole turns: the same points on 1 and 2 threads, equal steps") {
+    const NurbsHeightField surface = test::wavy_nurbs(12, 0.2);
+    const BaseSurface base = fit_base_least_squares(sample_aperture(surface, 0, 4.0));
+    SpiralOptions o;
+    o.outer_radius = 4.0;
+    o.pitch = 0.02;  // about 200 turns: bands of 4 whole turns
+    o.points.rule = CutterPointRule::kEqualAngle;
+    o.points.points_per_revolution = 90;
+    std::vector<std::vector<ContactPoint>> runs;
+    for (int threads : {1, 2}) {
+      o.threads = threads;
+      ContactCollector out;
+      plan_spiral(surface, base, o, out);
+      runs.push_back(out.points);
+    }
+    REQUIRE(runs[0].size() == runs[1].size());
+    bool same = true;
+    for (std::size_t k = 0; k < runs[0].size(); ++k)
+      same = same && runs[1][k].theta == runs[0][k].theta && runs[1][k].point == runs[0][k].point &&
+             runs[1][k].chord_error == runs[0][k].chord_error;
+    CHECK(same);
+    // Every step is 2π/90 (the last one ends the path), across the seams too: the k-th point
+    // at k·2π/90 to rounding.
+    const double step = 2 * std::numbers::pi / 90;
+    double worst = 0;
+    for (std::size_t k = 1; k + 1 < runs[0].size(); ++k)
+      worst = std::max(worst, std::abs(runs[0][k].theta - runs[0][k - 1].theta - step));
+    CHECK(worst <= 1e-12);
+    CHECK(std::abs(runs[0][360].theta - 360 * step) <= 1e-12);
+    CHECK(runs[0].size() > 200 * 90);
+  }
 }

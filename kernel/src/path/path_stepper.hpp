@@ -362,6 +362,10 @@ void distribute(Path& path, const CutterPointOptions& o, Emit&& emit, double beg
     return std::max(worst, std::abs(previous_error));
   };
   bool pending_jump = false;  // PVT: the jump flag of the segment that ends at `current`
+  // Equal angles: the step, and the index of the path's point at `begin`.
+  const double angle_step = 2 * std::numbers::pi / std::max(1, o.points_per_revolution);
+  const long long first_step = std::llround(begin / angle_step);
+  long long steps_taken = 0;
   while (current.tau < end) {
     const double remaining = end - current.tau;
     // The end is reached exactly, never by a sum that rounds short of it.
@@ -370,8 +374,12 @@ void distribute(Path& path, const CutterPointOptions& o, Emit&& emit, double beg
     double error = 0;
     bool jump = false;
     if (o.rule == CutterPointRule::kEqualAngle) {
-      step = std::min(2 * std::numbers::pi / o.points_per_revolution, remaining);
-      path.at(advance(step), trial);
+      // The path's j-th point at j·(2π/n), a product and not a running sum: the steps stay
+      // equal to rounding however long the path, and across the seams of bands, which begin
+      // on such a point (spiral.cpp, band_bounds).
+      const double next = static_cast<double>(first_step + ++steps_taken) * angle_step;
+      path.at(next >= end ? end : next, trial);
+      step = trial.tau - current.tau;
       measure(trial, kFull);
     } else if (o.rule == CutterPointRule::kEqualArcLength) {
       step = std::min(step, limit);

@@ -168,17 +168,27 @@ class SpiralPath {
 // path, each one to four turns and a radian: a band is held whole until its turn to be
 // consumed, so its length, not the path's, bounds the memory. PVT programs are one band:
 // a cubic's velocities depend on the blocks either side, which a seam would leave unjudged.
-// So are equal-angle and equal-arc-length paths: cheap to plan, and a seam would break the
-// equal steps (a dialect without block times relies on them).
+// Equal angles are banded by whole turns, seams on the steps' own angles; equal arc
+// lengths are one band (a seam would leave a short step, and a dialect without block
+// times relies on equal ones). A path of one band streams to the sink.
 std::vector<double> band_bounds(double end, const CutterPointOptions& points) {
   constexpr double kTurn = 2 * std::numbers::pi;
   std::vector<double> bounds{0.0};
+  const double turns = std::clamp(std::ceil(end / kTurn / 64), 1.0, 4.0);
   if (points.interpolation != Interpolation::kCubic && points.rule == CutterPointRule::kChordError &&
       end > kTurn) {
     // n turns and one radian: a seam's block never falls on a round angle (θ = 2πk, where
     // a sampler that brackets C by whole turns can miss the block by rounding).
-    const double width = kTurn * std::clamp(std::ceil(end / kTurn / 64), 1.0, 4.0) + 1.0;
+    const double width = kTurn * turns + 1.0;
     for (int k = 1; k * width < end - 1e-9 * width; ++k) bounds.push_back(k * width);
+  } else if (points.interpolation != Interpolation::kCubic &&
+             points.rule == CutterPointRule::kEqualAngle && end > kTurn) {
+    // Equal angles: bands of whole turns, each seam the j-th step's angle j·(2π/n), so the
+    // steps stay equal across it (to rounding, as they are along one band).
+    const double step = kTurn / points.points_per_revolution;
+    const long per_band = static_cast<long>(turns) * points.points_per_revolution;
+    for (long k = 1; static_cast<double>(k * per_band) * step < end - 1e-9 * step; ++k)
+      bounds.push_back(static_cast<double>(k * per_band) * step);
   }
   bounds.push_back(end);
   return bounds;
