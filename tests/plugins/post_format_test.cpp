@@ -90,6 +90,36 @@ TEST_SUITE("plugins") {
     CHECK(compared == 300000);
   }
 
+  TEST_CASE("C wrapped to [0, 360): the rounded angle's text, 360 written as 0") {
+    // The reference is the definition: round to the decimals in binary, wrap, print.
+    std::uint64_t state = 7;
+    const auto next = [&] {
+      state += 0x9E3779B97F4A7C15ull;
+      std::uint64_t z = state;
+      z = (z ^ (z >> 30)) * 0xBF58476D1CE4E5B9ull;
+      z = (z ^ (z >> 27)) * 0x94D049BB133111EBull;
+      return z ^ (z >> 31);
+    };
+    for (int k = 0; k < 200000; ++k) {
+      const int decimals = static_cast<int>(next() % (kMaxDecimals + 1));
+      const double scale = std::pow(10.0, decimals);
+      double v = static_cast<double>(next() >> 11) / 9007199254740992.0 * 370.0 - 5.0;
+      if (k % 4 == 1) v = 360.0 - static_cast<double>(next() % 3) / scale * 0.5;  // at the wrap
+      if (k % 4 == 2) v = -static_cast<double>(next() % 3) / scale * 0.5;         // at zero
+      char got[kNumberCapacity], expected[kNumberCapacity];
+      const int n = format_wrapped_degrees(v, decimals, got);
+      double rounded = std::nearbyint(v * scale) / scale;
+      if (rounded >= 360.0) rounded -= 360.0;
+      const int m = format_fixed(rounded, decimals, expected);
+      REQUIRE_MESSAGE(std::string(got, static_cast<std::size_t>(n)) ==
+                          std::string(expected, static_cast<std::size_t>(m)),
+                      v, " at ", decimals);
+    }
+    char text[kNumberCapacity];
+    CHECK(std::string(text, static_cast<std::size_t>(format_wrapped_degrees(359.99996, 4, text))) == "0.0000");
+    CHECK(std::string(text, static_cast<std::size_t>(format_wrapped_degrees(-0.00004, 4, text))) == "0.0000");
+  }
+
   TEST_CASE("a word that cannot be written throws instead of writing half of it") {
     std::string line = "G93 ";
     CHECK_THROWS_AS(append_word(line, 'F', 1e300, 6), std::range_error);

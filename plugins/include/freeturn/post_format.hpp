@@ -26,6 +26,38 @@ inline double decimal_scale(int decimals) {
   return kScale[decimals];
 }
 
+// Writes the integer n (|n| < 4e15) as n / 10^decimals with `decimals` digits after the
+// point, never "-0": the digits from the right, two at a time, then the point moved into
+// place.
+inline int format_scaled_integer(double n, int decimals, char* out) {
+  static constexpr char kPairs[] =
+      "00010203040506070809101112131415161718192021222324252627282930313233343536373839"
+      "40414243444546474849505152535455565758596061626364656667686970717273747576777879"
+      "8081828384858687888990919293949596979899";
+  unsigned long long digits = static_cast<unsigned long long>(std::abs(n));
+  char reversed[24];
+  int count = 0;
+  while (digits >= 100) {
+    const unsigned pair = static_cast<unsigned>(digits % 100);
+    digits /= 100;
+    reversed[count++] = kPairs[2 * pair + 1];
+    reversed[count++] = kPairs[2 * pair];
+  }
+  do {
+    reversed[count++] = static_cast<char>('0' + digits % 10);
+    digits /= 10;
+  } while (digits != 0);
+  while (count <= decimals) reversed[count++] = '0';  // a digit before the point at least
+  int length = 0;
+  if (n < 0) out[length++] = '-';
+  for (int k = count - 1; k >= decimals; --k) out[length++] = reversed[k];
+  if (decimals > 0) {
+    out[length++] = '.';
+    for (int k = decimals - 1; k >= 0; --k) out[length++] = reversed[k];
+  }
+  return length;
+}
+
 // Writes `value` with `decimals` digits after the point into `out` (kNumberCapacity
 // bytes) and returns the length; 0 for NaN or infinity, for decimals outside
 // [0, kMaxDecimals], and for a value too long to fit (1e300 in fixed notation). Never
@@ -43,33 +75,7 @@ inline int format_fixed(double value, int decimals, char* out) {
     const double n = std::nearbyint(p);
     const double fraction = (p - n) + r;  // p − n is exact below 2^52
     if (std::abs(fraction) < 0.5 - 1e-6) {
-      // The digits from the right, two at a time, then the point moved into place.
-      static constexpr char kPairs[] =
-          "00010203040506070809101112131415161718192021222324252627282930313233343536373839"
-          "40414243444546474849505152535455565758596061626364656667686970717273747576777879"
-          "8081828384858687888990919293949596979899";
-      unsigned long long digits = static_cast<unsigned long long>(std::abs(n));
-      char reversed[24];
-      int count = 0;
-      while (digits >= 100) {
-        const unsigned pair = static_cast<unsigned>(digits % 100);
-        digits /= 100;
-        reversed[count++] = kPairs[2 * pair + 1];
-        reversed[count++] = kPairs[2 * pair];
-      }
-      do {
-        reversed[count++] = static_cast<char>('0' + digits % 10);
-        digits /= 10;
-      } while (digits != 0);
-      while (count <= decimals) reversed[count++] = '0';  // a digit before the point at least
-      int length = 0;
-      if (n != 0 && value < 0) out[length++] = '-';  // never "-0"
-      for (int k = count - 1; k >= decimals; --k) out[length++] = reversed[k];
-      if (decimals > 0) {
-        out[length++] = '.';
-        for (int k = decimals - 1; k >= 0; --k) out[length++] = reversed[k];
-      }
-      return length;
+      return format_scaled_integer(value < 0 ? -std::abs(n) : std::abs(n), decimals, out);
     }
   }
   const auto [end, error] =
@@ -93,7 +99,13 @@ inline int format_fixed(double value, int decimals, char* out) {
 inline int format_wrapped_degrees(double value, int decimals, char* out) {
   if (!std::isfinite(value) || decimals < 0 || decimals > kMaxDecimals) return 0;
   const double scale = decimal_scale(decimals);
-  double rounded = std::nearbyint(value * scale) / scale;
+  const double n = std::nearbyint(value * scale);
+  // The text of the rounded angle, wrapped below, is n's own (or n − 360·10^d's) digits:
+  // printing n / 10^d at d decimals gives back n. Up to 12 decimals n / 10^d ≥ 360
+  // exactly when n ≥ 360·10^d (a unit of the last place is far above 360's rounding).
+  if (decimals <= 12 && std::abs(n) < 4e15)
+    return format_scaled_integer(n >= 360 * scale ? n - 360 * scale : n, decimals, out);
+  double rounded = n / scale;
   if (rounded >= 360.0) rounded -= 360.0;
   return format_fixed(rounded, decimals, out);
 }
