@@ -90,7 +90,7 @@ TEST_SUITE("plugins") {
     CHECK(compared == 300000);
   }
 
-  TEST_CASE("C wrapped to [0, 360): the rounded angle's text, 360 written as 0") {
+  TEST_CASE("C wrapped below 360: the rounded angle's text, 360 written as 0") {
     // The reference is the definition: round to the decimals in binary, wrap, print.
     std::uint64_t state = 7;
     const auto next = [&] {
