@@ -132,11 +132,7 @@ LensletArray::LensletArray(const LensletArrayOptions& options) : o_(options) {
   cell_start_.push_back(0);
   for (const auto& list : cells) {
     cell_items_.insert(cell_items_.end(), list.begin(), list.end());
-    for (int i : list) {
-      const Lenslet& l = lenslets_[static_cast<std::size_t>(i)];
-      lookup_.push_back({l.base_point.x(), l.base_point.y(), l.base_point.z(), l.axis.x(),
-                         l.axis.y(), l.axis.z(), i});
-    }
+    for (int i : list) lookup_.push_back(by_lenslet_[static_cast<std::size_t>(i)]);
     cell_start_.push_back(static_cast<int>(cell_items_.size()));
   }
 }
