@@ -36,8 +36,8 @@ class TwoDomes final : public Surface {
   }
   const char* type() const override { return "two_domes"; }
   bool has_creases() const override { return true; }
-  int section_creases(double theta, double lo, double hi, std::span<double> out) const override {
-    const double c = std::cos(theta);
+  int section_creases(const RadialLine& line, double lo, double hi, std::span<double> out) const override {
+    const double c = line.cos;
     if (std::abs(c) < 1e-12) return 0;
     const double rho = kCrease / c;
     if (!(rho >= lo && rho <= hi) || out.empty()) return 0;
@@ -196,6 +196,20 @@ TEST_SUITE("path") {
       // Touching both flanks, below neither.
       CHECK(brute_overlap(s, t.centre_x, t.centre_z, R) <= 1e-9);
       CHECK(brute_overlap(s, t.centre_x, t.centre_z, R) >= -1e-9);
+    }
+    // The two ways to the held nose agree: Newton on the two offsets (a contact off the
+    // crease) and the bracketing regula falsi (a contact within rounding of the crease,
+    // whose flank is chosen by nose_touch and not by where the contact lies) meet at K,
+    // each to 1e-12 mm of the closed form. A contact 5e-11 mm short of the crease carries
+    // the near flank's slope: it was once left unheld, its nose over the far flank.
+    for (const double rho : {xk - 5e-11, xk + 5e-11, xk - 0.004, xk + 0.003}) {
+      CAPTURE(rho);
+      const NoseTouch t = touch_at(s, rho, R);
+      REQUIRE(t.held);
+      CHECK(std::abs(t.centre_x - K.x()) < 1e-12);
+      CHECK(std::abs(t.centre_z - K.y()) < 1e-12);
+      CHECK((std::abs(t.rho - touch_a.x()) < 1e-11 || std::abs(t.rho - touch_b.x()) < 1e-11));
+      CHECK(brute_overlap(s, t.centre_x, t.centre_z, R) <= 1e-9);
     }
     // Away from the crease the ordinary offset p + R·n̂ is safe and kept.
     for (const double rho : {xk - 0.05, xk - 0.02, xk + 0.02, xk + 0.3}) {

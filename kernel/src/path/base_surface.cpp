@@ -96,25 +96,25 @@ void BaseSurface::build_inverse_table() {
   }
 }
 
-BasePoint BaseSurface::from_parameter(double u) const {
+BasePoint BaseSurface::from_parameter(double u, int derivatives) const {
   if (plane_) return {u, 0.0, 0.0, 0.0};
   // x(u) = u, so dH/dρ = y'(u) and d²H/dρ² = y''(u).
-  const nurbs::CurveDerivatives d = table_.curve().evaluate(u, 2);
-  return {u, d.point.y(), d.d1.y(), d.d2.y()};
+  const nurbs::CurveDerivatives d = table_.curve().evaluate(u, derivatives >= 2 ? 2 : 1);
+  return {u, d.point.y(), d.d1.y(), derivatives >= 2 ? d.d2.y() : 0.0};
 }
 
 BasePoint BaseSurface::at_radius(double rho) const {
   return from_parameter(std::clamp(rho, 0.0, rho_max_));
 }
 
-BasePoint BaseSurface::at_arc_length(double s) const {
+BasePoint BaseSurface::at_arc_length(double s, int derivatives) const {
   if (plane_) return {std::clamp(s, 0.0, rho_max_), 0.0, 0.0, 0.0};
   const int n = static_cast<int>(inverse_rho_.size()) - 1;
-  if (s <= 0) return from_parameter(0.0);
+  if (s <= 0) return from_parameter(0.0, derivatives);
   if (s >= ds_ * n) {
     // Past its edge the generating curve goes on along its tangent: the spiral's first
     // contact may need a few µm more of base than the aperture (path/spiral.cpp).
-    BasePoint p = from_parameter(rho_max_);
+    BasePoint p = from_parameter(rho_max_, derivatives);
     const double beyond = s - ds_ * n, c = 1 / std::sqrt(1 + p.slope * p.slope);
     p.rho += beyond * c;
     p.h += beyond * c * p.slope;
@@ -132,7 +132,7 @@ BasePoint BaseSurface::at_arc_length(double s) const {
   const double rho = h0 * inverse_rho_[a] + h1 * h * inverse_d1_[a] +
                      h2 * h * h * inverse_d2_[a] + h3 * h * h * inverse_d2_[b] +
                      h4 * h * inverse_d1_[b] + h5 * inverse_rho_[b];
-  return from_parameter(rho);
+  return from_parameter(rho, derivatives);
 }
 
 double BaseSurface::arc_length(double rho) const {
@@ -140,13 +140,13 @@ double BaseSurface::arc_length(double rho) const {
   return table_.length_to(std::clamp(rho, 0.0, rho_max_));
 }
 
-Eigen::Vector3d BaseSurface::point(const BasePoint& b, double theta) {
-  return {b.rho * std::cos(theta), b.rho * std::sin(theta), b.h};
+Eigen::Vector3d BaseSurface::point(const BasePoint& b, const RadialLine& line) {
+  return {b.rho * line.cos, b.rho * line.sin, b.h};
 }
 
-Eigen::Vector3d BaseSurface::normal(const BasePoint& b, double theta) {
+Eigen::Vector3d BaseSurface::normal(const BasePoint& b, const RadialLine& line) {
   const double k = 1.0 / std::sqrt(1.0 + b.slope * b.slope);
-  return {-b.slope * std::cos(theta) * k, -b.slope * std::sin(theta) * k, k};
+  return {-b.slope * line.cos * k, -b.slope * line.sin * k, k};
 }
 
 }  // namespace freeturn

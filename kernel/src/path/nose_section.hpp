@@ -59,7 +59,7 @@ class NoseSection {
   // c: the contact itself, or, where the nose would overhang a crease, the touch on the
   // contact's flank of the nose held at that crease (path/section_envelope.hpp). With B
   // following the normal the nose is not held (its edge point is fixed, not its centre).
-  NoseTouch touch(double c, double contact_r, double z, double f_r) const {
+  NoseTouch touch(const RadialLine& c, double contact_r, double z, double f_r) const {
     if (R_ == 0 || b_follows_) {
       NoseTouch t;
       t.rho = contact_r;
@@ -74,13 +74,13 @@ class NoseSection {
   // the axes (x_axis, c, z_axis), signed: > 0 where the tool passes above the design
   // (material left), < 0 where it cuts into it. hint_r: the contact's radius nearby (the interpolated
   // one), where the gap is smallest.
-  double deviation(double x_axis, double c, double z_axis, double b, double hint_r) const {
+  double deviation(double x_axis, const RadialLine& c, double z_axis, double b,
+                   double hint_r) const {
     x_axis -= offset_ * std::sin(b);
     z_axis -= offset_ * std::cos(b);
-    const double ct = std::cos(c), st = std::sin(c);
-    double f, fx, fy;
     if (R_ == 0) {
-      design_.sag_gradient(x_axis * ct, x_axis * st, f, fx, fy);
+      double f, fx, fy;
+      design_.sag_gradient(x_axis * c.cos, x_axis * c.sin, f, fx, fy);
       return (z_axis - f) / std::sqrt(1 + fx * fx + fy * fy);
     }
     // The largest height of the design's section above the nose's lower arc, from a

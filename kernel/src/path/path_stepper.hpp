@@ -408,6 +408,13 @@ void distribute(Path& path, const CutterPointOptions& o, Emit&& emit, double beg
       // with the step while the chord still spans the crease, so the local order is
       // measured and a step that barely helps is halved instead.
       double failed_step = 0, failed_error = 0;
+      // The search keeps its bracket: the largest accepted step and the smallest rejected
+      // one. A step the model predicts outside the bracket's inner 80 % is bisected
+      // instead: near a rim the error is not a power of the step, and the model alone
+      // could swing between two steps a few percent apart for all its iterations.
+      double rejected = std::numeric_limits<double>::infinity();
+      // The last accepted trial, for the local order of the error as the step grows.
+      double grown_step = 0, grown_error = 0;
       bool exhausted = false;
       for (int it = 0; it < 80; ++it) {
         path.at(advance(step), trial);
@@ -428,10 +435,26 @@ void distribute(Path& path, const CutterPointOptions& o, Emit&& emit, double beg
             best_previous = previous_error;
           }
           if (step >= limit || error >= 0.9 * target) break;
-          next = error > 0 ? step * std::min(2.0, std::pow(target / error, 1 / order) * 0.995)
-                           : 2 * step;
+          if (error > 0) {
+            // The error's order as measured over the last growth: where it grows slower
+            // than the step's power (a segment whose error is mostly a hold's), the model's
+            // order would creep toward the target by a few percent a trial.
+            double local_order = order;
+            if (grown_step > 0 && grown_step < step && grown_error > 0)
+              local_order = std::log(error / grown_error) / std::log(step / grown_step);
+            next = local_order < 0.5
+                       ? 4 * step
+                       : step * std::min(4.0, std::pow(target / error,
+                                                       1 / std::min(local_order, order)) *
+                                                  0.995);
+          } else {
+            next = limit;  // no measurable error: the cap, or the bracket's middle
+          }
+          grown_step = step;
+          grown_error = error;
           next = std::min(next, limit);
         } else {
+          rejected = std::min(rejected, step);
           double local_order = order;
           if (failed_step > 0 && failed_step != step && failed_error > 0)
             local_order = std::log(failed_error / error) / std::log(failed_step / step);
@@ -456,6 +479,12 @@ void distribute(Path& path, const CutterPointOptions& o, Emit&& emit, double beg
             break;
           }
           if (accepted > 0 && next <= accepted) break;  // nothing between them is better
+        }
+        if (accepted > 0 && rejected < std::numeric_limits<double>::infinity()) {
+          const double width = rejected - accepted;
+          if (width <= 0.03 * accepted) break;  // the accepted step is within 3 % of the best
+          if (!(next >= accepted + 0.1 * width && next <= rejected - 0.1 * width))
+            next = accepted + 0.5 * width;
         }
         if (next < min_step) {
           exhausted = true;

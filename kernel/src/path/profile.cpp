@@ -30,7 +30,7 @@ class ProfilePath {
   double stand_off() const { return nose_.stand_off(); }
 
   double deviation(double x_axis, double, double z, double b, double hint_r) const {
-    return nose_.deviation(x_axis, 0.0, z, b, hint_r);
+    return nose_.deviation(x_axis, RadialLine{}, z, b, hint_r);
   }
   // A single pass: only its own touch counts.
   bool crosses_crease(const detail::AxisState& a, const detail::AxisState& b) const {
@@ -55,7 +55,7 @@ class ProfilePath {
   void place(double r, detail::AxisState& s) const {
     double z, zx, zy;
     design_.sag_gradient(r, 0.0, z, zx, zy);
-    const NoseTouch touch = nose_.touch(0.0, r, z, zx);
+    const NoseTouch touch = nose_.touch(RadialLine{}, r, z, zx);
     s.contact_r = touch.rho;
     s.point = {touch.rho, 0.0, touch.z};
     s.slope = touch.slope;

@@ -12,7 +12,7 @@ constexpr double kOffCrease = 1e-10;  // mm
 struct Section {
   const Surface& design;
   double ct, st;
-  Section(const Surface& s, double theta) : design(s), ct(std::cos(theta)), st(std::sin(theta)) {}
+  Section(const Surface& s, const RadialLine& line) : design(s), ct(line.cos), st(line.sin) {}
   // g(ρ) and dg/dρ; false where the design is undefined.
   bool at(double rho, double& g, double& slope) const {
     double fx, fy;
@@ -20,7 +20,56 @@ struct Section {
     slope = fx * ct + fy * st;
     return std::isfinite(g) && std::isfinite(slope);
   }
+  // And the curvature term d²g/dρ².
+  bool at(double rho, double& g, double& slope, double& bend) const {
+    const HeightDerivatives h = design.height_derivatives(rho * ct, rho * st);
+    g = h.z;
+    slope = h.zx * ct + h.zy * st;
+    bend = (h.zxx * ct + 2 * h.zxy * st) * ct + h.zyy * st * st;
+    return std::isfinite(g) && std::isfinite(slope) && std::isfinite(bend);
+  }
 };
+
+// The point where the offsets (radius R) of two flanks meet: own-flank abscissa a in
+// [a_lo, a_hi], far-flank abscissa b in [b_lo, b_hi], from (a, b) as given. The offset of
+// the section at x is O(x) = (x, g) + R(−g', 1)/L with L = √(1 + g'²), and
+// dO/dx = (1 − R g''/L³)(1, g'), so Newton's 2×2 system O(a) = O(b) has the Jacobian
+// [k_a (1, g'_a), −k_b (1, g'_b)], of determinant k_a k_b (g'_a − g'_b): regular wherever
+// the flanks meet at an angle and neither offset has a cusp (k > 0). Converges in a few
+// steps from the overhang found (the flanks are nearly straight over a nose); false if an
+// iterate leaves a flank or it does not converge, and the caller solves it another way.
+// On success: the own flank's value and slope at a, and the centre O(a).
+bool offsets_meet(const Section& section, double R, double a_lo, double a_hi, double b_lo,
+                  double b_hi, double& a, double& b, double& g_a, double& slope_a,
+                  double& centre_x, double& centre_z) {
+  double last_step = 1e300;
+  for (int it = 0; it < 16; ++it) {
+    double g_b, slope_b, bend_a, bend_b;
+    if (!(a >= a_lo && a <= a_hi && b >= b_lo && b <= b_hi)) return false;
+    if (!section.at(a, g_a, slope_a, bend_a) || !section.at(b, g_b, slope_b, bend_b)) return false;
+    const double l_a = std::sqrt(1 + slope_a * slope_a), l_b = std::sqrt(1 + slope_b * slope_b);
+    centre_x = a - R * slope_a / l_a;
+    centre_z = g_a + R / l_a;
+    const double rx = centre_x - (b - R * slope_b / l_b), rz = centre_z - (g_b + R / l_b);
+    // Met to rounding, or the last step was at rounding's scale (quadratic convergence:
+    // this residual is rounding too).
+    if ((std::abs(rx) <= 4e-15 * (1 + std::abs(centre_x)) &&
+         std::abs(rz) <= 4e-15 * (1 + std::abs(centre_z))) ||
+        last_step <= 1e-14 * (1 + std::abs(a)))
+      return true;
+    const double k_a = 1 - R * bend_a / (l_a * l_a * l_a);
+    const double k_b = 1 - R * bend_b / (l_b * l_b * l_b);
+    const double det = k_a * k_b * (slope_a - slope_b);
+    if (!(k_a > 0 && k_b > 0) || !(std::abs(det) > 1e-12)) return false;
+    // [k_a, −k_b; k_a g'_a, −k_b g'_b] (da, db) = −(rx, rz), by Cramer's rule.
+    const double da = (-rx * -k_b * slope_b - -k_b * -rz) / det;
+    const double db = (k_a * -rz - k_a * slope_a * -rx) / det;
+    a += da;
+    b += db;
+    last_step = std::max(std::abs(da), std::abs(db));
+  }
+  return false;
+}
 
 // Newton steps on h(ρ) = g(ρ) − z_c + √(R² − (ρ − x_c)²) within [lo, hi], keeping the
 // largest h met in `best`.
@@ -55,13 +104,13 @@ void piece_bounds(const SectionCreases& c, int k, int side, double lo, double hi
 
 }  // namespace
 
-NoseOverlap nose_overlap(const Surface& design, double theta, double x_c, double z_c, double R,
+NoseOverlap nose_overlap(const Surface& design, const RadialLine& line, double x_c, double z_c, double R,
                          double hint_rho) {
-  const Section section(design, theta);
+  const Section section(design, line);
   const double reach = 0.999 * R, lo = x_c - reach, hi = x_c + reach;
   NoseOverlap best;
   SectionCreases creases;
-  creases.find(design, theta, lo, hi);
+  creases.find(design, line, lo, hi);
   // The hint's own piece.
   double a = lo, b = hi;
   for (int k = 0; k < creases.count; ++k) {
@@ -80,7 +129,7 @@ NoseOverlap nose_overlap(const Surface& design, double theta, double x_c, double
   return best;
 }
 
-NoseTouch nose_touch(const Surface& design, double theta, double nose_radius, double rho_p,
+NoseTouch nose_touch(const Surface& design, const RadialLine& line, double nose_radius, double rho_p,
                      double z_p, double slope_p, double stand_off, double tolerance) {
   const double R = nose_radius + stand_off;  // the envelope's radius
   NoseTouch t;
@@ -91,12 +140,12 @@ NoseTouch nose_touch(const Surface& design, double theta, double nose_radius, do
   t.centre_x = rho_p - R * slope_p / length;
   t.centre_z = z_p + R / length;
   if (!(R > 0) || !design.has_creases()) return t;
-  const Section section(design, theta);
+  const Section section(design, line);
   const double reach = 0.999 * R;
   SectionCreases creases;
   // Every crease within 2R: those under the nose may be overhung, and the ones beyond bound
   // the flanks the held nose is solved on (a flank ends at the next crease).
-  creases.find(design, theta, std::min(rho_p, t.centre_x) - 2 * R,
+  creases.find(design, line, std::min(rho_p, t.centre_x) - 2 * R,
                std::max(rho_p, t.centre_x) + 2 * R);
   // The crease whose other flank the nose overhangs most.
   int held_at = -1, far = 0;
@@ -106,15 +155,23 @@ NoseTouch nose_touch(const Surface& design, double theta, double nose_radius, do
     if (!(std::abs(creases.rho[k] - t.centre_x) < reach) &&
         !(std::abs(creases.rho[k] - rho_p) <= kOffCrease))
       continue;
-    const int side = creases.rho[k] > rho_p + kOffCrease ? 1 : -1;
-    double a, b;
-    piece_bounds(creases, k, side, t.centre_x - reach, t.centre_x + reach, a, b);
-    NoseOverlap o;
-    search(section, t.centre_x, t.centre_z, R, creases.rho[k] + side * kOffCrease, a, b, 4, o);
-    if (o.height > worst.height) {
-      worst = o;
-      held_at = k;
-      far = side;
+    // The far flank is the one across the crease from the contact. A contact within
+    // kOffCrease of the crease may carry either flank's slope (which one the design
+    // evaluated there is a matter of rounding), so both are searched: the one it does
+    // not carry is overhung. Taking the far side from the contact's position alone left
+    // such a nose unheld, over the other flank.
+    const bool at_crease = std::abs(creases.rho[k] - rho_p) <= kOffCrease;
+    for (const int side : {-1, 1}) {
+      if (!at_crease && side != (creases.rho[k] > rho_p ? 1 : -1)) continue;
+      double a, b;
+      piece_bounds(creases, k, side, t.centre_x - reach, t.centre_x + reach, a, b);
+      NoseOverlap o;
+      search(section, t.centre_x, t.centre_z, R, creases.rho[k] + side * kOffCrease, a, b, 4, o);
+      if (o.height > worst.height) {
+        worst = o;
+        held_at = k;
+        far = side;
+      }
     }
   }
   if (held_at < 0) return t;
@@ -149,7 +206,34 @@ NoseTouch nose_touch(const Surface& design, double theta, double nose_radius, do
     }
     return R - std::hypot(dx, dz);
   };
+  // The held nose, its centre and own-flank values those last computed at a.
+  const auto held_touch = [&](double a, double far_foot) {
+    t.rho = a;
+    t.z = g_a;
+    t.slope = slope_a;
+    t.centre_x = centre_x;
+    t.centre_z = centre_z;
+    t.held = true;
+    t.crease_rho = crease;
+    t.far_rho = far_foot;
+    double g_crease, s_crease;
+    section.at(crease, g_crease, s_crease);
+    const double d = crease - centre_x;
+    t.uncut = centre_z - std::sqrt(std::max(nose_radius * nose_radius - d * d, 0.0)) - g_crease;
+    return t;
+  };
   const double own = std::clamp(rho_p, near_lo, near_hi);
+  // The nose at the contact itself overhangs the far flank by more than `tolerance`
+  // (worst.height, a point of that flank inside its circle): F(own) > 0, and F falls away
+  // from the crease, so the root lies that way from `own`. Newton on the two offsets from
+  // (own, the overhang's point) when it lands there; else (and for a clamped contact,
+  // whose nose was not the one measured) the bracketing search below.
+  if (own == rho_p) {
+    double a_newton = own, b_newton = worst.rho;
+    if (offsets_meet(section, R, far > 0 ? near_lo : own, far > 0 ? own : near_hi, far_lo,
+                     far_hi, a_newton, b_newton, g_a, slope_a, centre_x, centre_z))
+      return held_touch(a_newton, b_newton);
+  }
   double a_in = own, f_in = F(a_in);
   if (!(f_in > 0)) return t;  // the overhang is not this flank's to resolve
   // Step away from the crease along the own flank until the offset clears the other one.
@@ -180,19 +264,7 @@ NoseTouch nose_touch(const Surface& design, double theta, double nose_radius, do
     }
   }
   F(a);  // leaves the centre and the flank's values at a
-  t.rho = a;
-  t.z = g_a;
-  t.slope = slope_a;
-  t.centre_x = centre_x;
-  t.centre_z = centre_z;
-  t.held = true;
-  t.crease_rho = crease;
-  t.far_rho = foot;
-  double g_crease, s_crease;
-  section.at(crease, g_crease, s_crease);
-  const double d = crease - centre_x;
-  t.uncut = centre_z - std::sqrt(std::max(nose_radius * nose_radius - d * d, 0.0)) - g_crease;
-  return t;
+  return held_touch(a, foot);
 }
 
 }  // namespace freeturn

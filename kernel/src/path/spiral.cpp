@@ -74,7 +74,7 @@ class SpiralPath {
       if (theta <= 0) return base_.at_radius(o_.centre_to_edge ? o_.inner_radius : o_.outer_radius);
       if (theta >= end_) return base_.at_radius(o_.centre_to_edge ? o_.outer_radius : o_.inner_radius);
     }
-    return base_.at_arc_length(std::clamp(s, s_inner_, s_outer_));
+    return base_.at_arc_length(std::clamp(s, s_inner_, s_outer_), 1);
   }
 
  private:
@@ -87,7 +87,7 @@ class SpiralPath {
     const auto miss = [&](double arc) {
       const double theta =
           outer == o_.centre_to_edge ? (outer ? arc - s_inner_ : s_outer_ - arc) / b_ : 0.0;
-      const BasePoint bp = base_.at_arc_length(arc);
+      const BasePoint bp = base_.at_arc_length(arc, 1);
       const HeightFieldHit hit = intersect_ray(design_, BaseSurface::point(bp, theta),
                                                BaseSurface::normal(bp, theta), 0.0);
       if (hit.status != Status::kOk || !hit.point.allFinite())
@@ -112,7 +112,8 @@ class SpiralPath {
     const BasePoint bp = base_point(theta);
     s.tau = theta;
     s.c = theta;
-    const double c = std::cos(theta), sn = std::sin(theta);
+    const RadialLine line(theta);
+    const double c = line.cos, sn = line.sin;
     double contact_r, z, zx, zy;
     if (base_.is_plane()) {
       contact_r = bp.rho;
@@ -121,8 +122,8 @@ class SpiralPath {
         throw InputError(where(theta, bp.rho), "the design surface is undefined here",
                          "aperture.outer_radius");
     } else {
-      const Eigen::Vector3d origin = BaseSurface::point(bp, theta);
-      const Eigen::Vector3d direction = BaseSurface::normal(bp, theta);
+      const Eigen::Vector3d origin = BaseSurface::point(bp, line);
+      const Eigen::Vector3d direction = BaseSurface::normal(bp, line);
       const HeightFieldHit hit = intersect_ray(design_, origin, direction, lambda_);
       if (hit.status != Status::kOk || !hit.point.allFinite())
         throw InputError(where(theta, bp.rho),
@@ -145,7 +146,7 @@ class SpiralPath {
       design_.sag_gradient(hit.point.x(), hit.point.y(), sag, zx, zy);
     }
     // Where a crease is under the nose, the nose may be held touching both its flanks.
-    const NoseTouch touch = nose_.touch(theta, contact_r, z, zx * c + zy * sn);
+    const NoseTouch touch = nose_.touch(line, contact_r, z, zx * c + zy * sn);
     s.contact_r = touch.rho;
     s.point = {touch.rho * c, touch.rho * sn, touch.z};
     s.slope = touch.slope;

@@ -86,6 +86,7 @@ LensletArray::LensletArray(const LensletArrayOptions& options) : o_(options) {
 
   // Lookup grid: each lenslet is listed in every cell its footprint's bounding square meets.
   cell_ = o_.pitch;
+  inverse_cell_ = 1 / cell_;
   cells_per_side_ = static_cast<int>(std::ceil(2 * o_.extent / cell_)) + 1;
   std::vector<std::vector<int>> cells(static_cast<std::size_t>(cells_per_side_) * cells_per_side_);
   const auto cell_of = [&](double v) {
@@ -99,9 +100,14 @@ LensletArray::LensletArray(const LensletArrayOptions& options) : o_(options) {
       for (int b = cell_of(c.y() - half); b <= cell_of(c.y() + half); ++b)
         cells[static_cast<std::size_t>(b) * cells_per_side_ + a].push_back(i);
   }
+  // On a sphere the rim is a circle of radius D/2 about the axis, centred R_b cos α along
+  // it from the sphere's centre: in (x, y) an ellipse of semi-axes at most D/2 about
+  // cos α · c_xy, which lies |c_xy|(1 − cos α) from the base point's c_xy.
+  crease_reach_ = 0.5 * d + (cb != 0 ? o_.extent * (1 - std::sqrt(std::max(0.0, 1 - 0.25 * d * d * cb * cb)))
+                                     : 0.0);
+  crease_reach_ += 1e-9 * (1 + o_.extent);
   // What section_creases needs of each lenslet on a sphere, computed once.
   if (cb != 0) {
-    inverse_curvature_ = 1 / cb;
     const double rb = 1 / std::abs(cb);
     rim_cosine_ = std::sqrt(std::max(0.0, rb * rb - 0.25 * d * d));
     for (const Lenslet& l : lenslets_) {
@@ -109,10 +115,13 @@ LensletArray::LensletArray(const LensletArrayOptions& options) : o_(options) {
       rim_height_.push_back(std::sqrt(std::max(0.0, rb * rb - (c.x() * c.x() + c.y() * c.y()))));
     }
   }
+  // The footprint test's constants (lenslet_at).
+  const double sign = cb > 0 ? 1.0 : -1.0;
+  if (cb != 0) rb_squared_ = 1 / (cb * cb);
   for (int i = 0; i < lenslet_count(); ++i) {
     const Lenslet& l = lenslets_[static_cast<std::size_t>(i)];
-    by_lenslet_.push_back({l.base_point.x(), l.base_point.y(), l.base_point.z(), l.axis.x(),
-                           l.axis.y(), l.axis.z(), i});
+    by_lenslet_.push_back({l.base_point.x(), l.base_point.y(), sign * l.axis.x(),
+                           sign * l.axis.y(), l.axis.z() * l.axis.z(), i});
   }
   // Footprints overlap only if two lenslets listed in one cell do (a point in both lies
   // in a cell both are listed in). On a sphere the footprint is the cap within α of the
@@ -160,18 +169,23 @@ double LensletArray::defined_radius() const {
 int LensletArray::lenslet_at(double x, double y) const {
   // Written so that NaN coordinates (a point off a transformed surface) find no lenslet.
   if (!(std::abs(x) <= o_.extent + cell_) || !(std::abs(y) <= o_.extent + cell_)) return -1;
-  // The point on the base, for the test below only: its height from x² + y² with one
-  // square root and no division, 1 − √(1 − c²s) over c (the cancellation costs about
-  // 1e-15 mm, which moves a rim by as much; the planner calls this for every sample, and
-  // the two roots and a division of the exact sag were most of its cost).
-  const double s = x * x + y * y, c = o_.base_curvature;
-  const double z = c == 0 ? 0.0 : (1 - std::sqrt(std::max(0.0, 1 - c * c * s))) * inverse_curvature_;
+  const double s = x * x + y * y;
+  // On a sphere of radius R_b about O the point p of the base (over (x, y)) lies in
+  // lenslet i's footprint when the angle at O between p and the base point c_i is below α
+  // (R_b sin α = D/2). With p − O = (x, y, −sgn(c)·S), S = √(R_b² − s), and
+  // c_i − O = −sgn(c)·R_b·a_i, that is a_z·S > R_b cos α + sgn(c)(a_x x + a_y y) = M,
+  // tested squared as a_z²(R_b² − s) > M² where M > 0: no square root (the planner asks
+  // this for every evaluation of the design, and the root's latency was most of it).
+  const double off_sphere = rb_squared_ - s;
+  if (o_.base_curvature != 0 && !(off_sphere >= 0)) return -1;
   const double half_sq = 0.25 * o_.lens_diameter * o_.lens_diameter;
   const auto holds = [&](const LookupEntry& l) {
-    const double wx = x - l.px, wy = y - l.py, wz = z - l.pz;
-    const double along = wx * l.ax + wy * l.ay + wz * l.az;
-    // |w − (w·a)a|² = |w|² − (w·a)²: the squared distance from the lenslet's axis.
-    return wx * wx + wy * wy + wz * wz - along * along < half_sq;
+    if (o_.base_curvature == 0) {
+      const double wx = x - l.px, wy = y - l.py;
+      return wx * wx + wy * wy < half_sq;
+    }
+    const double m = rim_cosine_ + l.ux * x + l.uy * y;
+    return m <= 0 || l.w2 * off_sphere > m * m;
   };
   // The lenslet this thread found last: a path's consecutive queries mostly stay in one.
   // Where no two footprints overlap (disjoint_), the lenslet that holds the point is the
@@ -181,10 +195,9 @@ int LensletArray::lenslet_at(double x, double y) const {
   if (disjoint_ && last_found >= 0 && last_found < lenslet_count() &&
       holds(by_lenslet_[static_cast<std::size_t>(last_found)]))
     return last_found;
-  const int a =
-      std::clamp(static_cast<int>(std::floor((x + o_.extent) / cell_)), 0, cells_per_side_ - 1);
-  const int b =
-      std::clamp(static_cast<int>(std::floor((y + o_.extent) / cell_)), 0, cells_per_side_ - 1);
+  // x + extent ≥ −cell here: truncation and floor differ only on (−1, 0), clamped to 0.
+  const int a = std::clamp(static_cast<int>((x + o_.extent) * inverse_cell_), 0, cells_per_side_ - 1);
+  const int b = std::clamp(static_cast<int>((y + o_.extent) * inverse_cell_), 0, cells_per_side_ - 1);
   const int k = b * cells_per_side_ + a;
   for (int idx = cell_start_[k]; idx < cell_start_[k + 1]; ++idx) {
     const LookupEntry& l = lookup_[static_cast<std::size_t>(idx)];
@@ -213,10 +226,10 @@ HeightDerivatives LensletArray::evaluate(double x, double y) const {
   return {z.v, z.dx, z.dy, z.dxx, z.dxy, z.dyy};
 }
 
-int LensletArray::section_creases(double theta, double rho_lo, double rho_hi,
+int LensletArray::section_creases(const RadialLine& line, double rho_lo, double rho_hi,
                                   std::span<double> out) const {
   if (!(rho_lo <= rho_hi) || !std::isfinite(rho_lo) || !std::isfinite(rho_hi)) return 0;
-  const double ct = std::cos(theta), st = std::sin(theta);
+  const double ct = line.cos, st = line.sin;
   const double half = 0.5 * o_.lens_diameter, cb = o_.base_curvature;
   // The cells the segment's bounding box meets list every lenslet whose rim it can cross.
   const auto cell_of = [&](double v) {
@@ -237,11 +250,18 @@ int LensletArray::section_creases(double theta, double rho_lo, double rho_hi,
     for (int a = a_lo; a <= a_hi; ++a) {
       const int k = b * cells_per_side_ + a;
       for (int idx = cell_start_[k]; idx < cell_start_[k + 1]; ++idx) {
-        const Eigen::Vector3d& c = lenslets_[cell_items_[idx]].base_point;
-        const double along = c.x() * ct + c.y() * st;  // the centre's projection on the line
+        const LookupEntry& l = lookup_[static_cast<std::size_t>(idx)];
+        const double along = l.px * ct + l.py * st;  // the centre's projection on the line
+        // A footprint lies within crease_reach_ of its centre in (x, y): a lenslet farther
+        // from the line, or beside the stretch, has no rim on it there. Most candidates
+        // of the cells end here, before the roots below.
+        if (!(std::abs(l.py * ct - l.px * st) <= crease_reach_ && along >= rho_lo - crease_reach_ &&
+              along <= rho_hi + crease_reach_))
+          continue;
+        const double cx = l.px, cy = l.py;
         if (cb == 0) {
           // |ρ e_r − c|² = (D/2)²: ρ² − 2ρ·along + |c|² − (D/2)² = 0.
-          const double disc = along * along - (c.x() * c.x() + c.y() * c.y()) + half * half;
+          const double disc = along * along - (cx * cx + cy * cy) + half * half;
           if (disc < 0) continue;
           add(along - std::sqrt(disc));
           add(along + std::sqrt(disc));
@@ -251,8 +271,8 @@ int LensletArray::section_creases(double theta, double rho_lo, double rho_hi,
         // between the point and c is α, sin α = (D/2)/R_b: with ρ = R_b sin φ,
         //   along·sin φ + √(R_b² − |c_xy|²)·cos φ = R_b cos α.
         const double rb = 1 / std::abs(cb);
-        const double bc = rim_height_[static_cast<std::size_t>(cell_items_[idx])];
-        const double m = std::hypot(along, bc);
+        const double bc = rim_height_[static_cast<std::size_t>(l.lenslet)];
+        const double m = std::sqrt(along * along + bc * bc);  // mm-sized: no overflow
         const double q = rim_cosine_ / m;
         if (!(q <= 1)) continue;
         // φ + β = asin q or π − asin q, with cos β = along/m, sin β = bc/m, kept where

@@ -146,11 +146,11 @@ void NurbsHeightField::find_creases() {
   scan(s.knots_v(), false, crease_v_);
 }
 
-int NurbsHeightField::section_creases(double theta, double rho_lo, double rho_hi,
+int NurbsHeightField::section_creases(const RadialLine& line, double rho_lo, double rho_hi,
                                       std::span<double> out) const {
   if (!has_creases() || !(rho_lo <= rho_hi) || !std::isfinite(rho_lo) || !std::isfinite(rho_hi))
     return 0;
-  const double ct = std::cos(theta), st = std::sin(theta);
+  const double ct = line.cos, st = line.sin;
   int count = 0;
   const auto add = [&](double rho) {
     double u, v;

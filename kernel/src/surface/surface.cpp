@@ -18,7 +18,7 @@ Eigen::Vector3d Surface::normal(double x, double y) const {
   return Eigen::Vector3d(-zx, -zy, 1.0).normalized();
 }
 
-int Surface::section_creases(double, double rho_lo, double rho_hi, std::span<double> out) const {
+int Surface::section_creases(const RadialLine&, double rho_lo, double rho_hi, std::span<double> out) const {
   if (!has_creases() || out.empty() || !(rho_lo <= 0 && 0 <= rho_hi)) return 0;
   out[0] = 0;
   return 1;

@@ -15,6 +15,7 @@
 #include <vector>
 
 #include "freeturn/nurbs/arc_length.hpp"
+#include "freeturn/surface/surface.hpp"
 
 namespace freeturn {
 
@@ -43,18 +44,20 @@ class BaseSurface {
   BasePoint at_radius(double rho) const;
   // The point at arc length s from the axis along the generating curve.
   // Past the edge (s > total_arc_length) the curve continues along its edge tangent.
-  BasePoint at_arc_length(double s) const;
+  // derivatives: 2, or 1 to leave curvature 0 (the spiral's hot loop reads H and H' only,
+  // and the second derivative was a third of the evaluation).
+  BasePoint at_arc_length(double s, int derivatives = 2) const;
   // Arc length from the axis to ρ.
   double arc_length(double rho) const;
   double total_arc_length() const { return table_.total(); }
 
   // On the surface at (ρ, θ): the point (ρ cos θ, ρ sin θ, H) and the unit normal
   // (−H' cos θ, −H' sin θ, 1)/√(1 + H'²).
-  static Eigen::Vector3d point(const BasePoint& b, double theta);
-  static Eigen::Vector3d normal(const BasePoint& b, double theta);
+  static Eigen::Vector3d point(const BasePoint& b, const RadialLine& line);
+  static Eigen::Vector3d normal(const BasePoint& b, const RadialLine& line);
 
  private:
-  BasePoint from_parameter(double u) const;
+  BasePoint from_parameter(double u, int derivatives = 2) const;
   void build_inverse_table();
 
   int degree_ = 1;

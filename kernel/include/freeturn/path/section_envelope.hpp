@@ -27,8 +27,8 @@ struct SectionCreases {
   std::array<double, kCapacity> rho{};
   int count = 0;
   // Those in [lo, hi] on the radial line at θ.
-  void find(const Surface& design, double theta, double lo, double hi) {
-    count = design.section_creases(theta, lo, hi, rho);
+  void find(const Surface& design, const RadialLine& line, double lo, double hi) {
+    count = design.section_creases(line, lo, hi, rho);
   }
 };
 
@@ -45,7 +45,7 @@ struct NoseOverlap {
 // search takes Newton steps on h(ρ) = g(ρ) − z_c + √(R² − (ρ − x_c)²) with the arc's
 // −R²/s³ standing in for h'', keeps the largest value it meets (a value of h, so never
 // more than the true maximum), and stays on its side of the crease. No allocation.
-NoseOverlap nose_overlap(const Surface& design, double theta, double x_c, double z_c, double R,
+NoseOverlap nose_overlap(const Surface& design, const RadialLine& line, double x_c, double z_c, double R,
                          double hint_rho);
 
 // Where the nose touches the section for the contact at signed radius rho_p.
@@ -69,7 +69,7 @@ struct NoseTouch {
 // radius R + h (its centre p + (R + h)·n̂_p, held where that larger nose would overhang),
 // so every point of it stays at least h above the design; `uncut` is still measured
 // under the real nose.
-NoseTouch nose_touch(const Surface& design, double theta, double R, double rho_p, double z_p,
+NoseTouch nose_touch(const Surface& design, const RadialLine& line, double R, double rho_p, double z_p,
                      double slope_p, double stand_off = 0, double tolerance = 1e-10);
 
 }  // namespace freeturn

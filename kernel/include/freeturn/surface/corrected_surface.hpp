@@ -51,8 +51,8 @@ class CorrectedSurface final : public Surface {
   double defined_radius() const override { return design_->defined_radius(); }
   // The corrections are smooth (Zernike polynomials): the creases are the design's.
   bool has_creases() const override { return design_->has_creases(); }
-  int section_creases(double theta, double lo, double hi, std::span<double> out) const override {
-    return design_->section_creases(theta, lo, hi, out);
+  int section_creases(const RadialLine& line, double lo, double hi, std::span<double> out) const override {
+    return design_->section_creases(line, lo, hi, out);
   }
 
  private:

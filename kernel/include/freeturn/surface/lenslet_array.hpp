@@ -41,7 +41,7 @@ class LensletArray final : public Surface {
   bool has_creases() const override { return true; }
   // Where the radial line crosses the lenslets' rims, in closed form (a circle on a plane
   // base; on a sphere, a cone about the lenslet's axis through the sphere's centre).
-  int section_creases(double theta, double rho_lo, double rho_hi,
+  int section_creases(const RadialLine& line, double rho_lo, double rho_hi,
                       std::span<double> out) const override;
 
   int lenslet_count() const { return static_cast<int>(lenslets_.size()); }
@@ -67,22 +67,26 @@ class LensletArray final : public Surface {
   std::vector<Lenslet> lenslets_;
   // Lookup grid: cells of size cell_ over [−extent, extent]²; cell k lists lenslets
   // cell_items_[cell_start_[k] … cell_start_[k + 1]).
-  double cell_ = 0;
+  double cell_ = 0, inverse_cell_ = 0;
   int cells_per_side_ = 0;
   std::vector<int> cell_start_, cell_items_;
-  // What lenslet_at reads of cell_items_[j]'s lenslet, in cell order: one cache line each.
+  // What lenslet_at reads of cell_items_[j]'s lenslet, in cell order.
   struct LookupEntry {
-    double px, py, pz, ax, ay, az;  // the base point and the axis
+    double px, py;      // the base point's (x, y)
+    double ux, uy, w2;  // on a sphere: sgn(c)·a_x, sgn(c)·a_y and a_z² of the axis a
     int lenslet;
   };
   std::vector<LookupEntry> lookup_;
   std::vector<LookupEntry> by_lenslet_;  // the same, one per lenslet, in lenslet order
   bool disjoint_ = false;                // no two footprints overlap (lenslet_at's hint)
   // On a sphere of radius R_b: √(R_b² − |c_xy|²) per lenslet (its base point's height over
-  // the sphere's centre) and R_b cos α = √(R_b² − (D/2)²), for section_creases.
+  // the sphere's centre) and R_b cos α = √(R_b² − (D/2)²), for section_creases and
+  // lenslet_at.
   std::vector<double> rim_height_;
   double rim_cosine_ = 0;
-  double inverse_curvature_ = 0;  // 1/c of the base sphere (0 on a plane)
+  // How far from its base point's (x, y) a footprint reaches in (x, y) (section_creases).
+  double crease_reach_ = 0;
+  double rb_squared_ = 0;  // R_b² on a sphere (lenslet_at)
 };
 
 }  // namespace freeturn

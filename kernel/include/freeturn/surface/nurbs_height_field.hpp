@@ -45,7 +45,7 @@ class NurbsHeightField final : public Surface {
   bool has_creases() const override { return !crease_u_.empty() || !crease_v_.empty(); }
   // Where the radial section crosses those knot lines: in closed form on affine
   // parameters, else by sign changes of u − u* (v − v*) along the section and bisection.
-  int section_creases(double theta, double rho_lo, double rho_hi,
+  int section_creases(const RadialLine& line, double rho_lo, double rho_hi,
                       std::span<double> out) const override;
   std::span<const double> crease_knots_u() const { return crease_u_; }
   std::span<const double> crease_knots_v() const { return crease_v_; }

@@ -23,8 +23,8 @@ class RaisedSurface final : public Surface {
   }
   double defined_radius() const override { return s_.defined_radius(); }
   bool has_creases() const override { return s_.has_creases(); }
-  int section_creases(double theta, double lo, double hi, std::span<double> out) const override {
-    return s_.section_creases(theta, lo, hi, out);
+  int section_creases(const RadialLine& line, double lo, double hi, std::span<double> out) const override {
+    return s_.section_creases(line, lo, hi, out);
   }
 
  private:

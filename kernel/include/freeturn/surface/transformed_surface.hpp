@@ -37,7 +37,7 @@ class TransformedSurface final : public Surface {
   // The parent's creases are not mapped into the new frame's radial sections (a tilted
   // lenslet rim is no longer the closed form the parent knows): none is reported, so the
   // planner does not envelope them and the global gouge check judges those places.
-  int section_creases(double, double, double, std::span<double>) const override { return 0; }
+  int section_creases(const RadialLine&, double, double, std::span<double>) const override { return 0; }
 
   const Surface& parent() const { return *parent_; }
   // The parent-frame point of world point w.
