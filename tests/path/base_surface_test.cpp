@@ -5,6 +5,7 @@
 #include <numbers>
 #include <random>
 
+#include "freeturn/nurbs/curve.hpp"
 #include "freeturn/path/base_surface_fit.hpp"
 #include "freeturn/path/minimax_base_fit.hpp"
 #include "freeturn/surface/even_asphere.hpp"
@@ -41,6 +42,44 @@ TEST_SUITE("path") {
     s *= 3.0 / 2000 / 3;
     CHECK(cubic.arc_length(3.0) == doctest::Approx(s).epsilon(1e-12));
     CHECK(cubic.at_arc_length(s).rho == doctest::Approx(3.0).epsilon(1e-12));
+  }
+
+  TEST_CASE("base surface: H, H' and H'' agree with the rational curve through the same net") {
+    // The base evaluates its scalar spline directly (A2.2 and the derivative splines); the
+    // NURBS kernel's curve (A3.2, A2.3, the quotient rule) through the Greville abscissae
+    // and the same coefficients is the second method. Degrees 1 to 5, a double knot inside
+    // (single for degree 1).
+    std::mt19937 rng(5);
+    std::uniform_real_distribution<double> coefficient(-0.3, 0.3);
+    for (int p = 1; p <= 5; ++p) {
+      CAPTURE(p);
+      std::vector<double> knots(static_cast<std::size_t>(p) + 1, 0.0);
+      for (const double k : {0.7, 1.9, 1.9, 2.6, 3.1})
+        if (!(p == 1 && k == 1.9 && knots.back() == 1.9)) knots.push_back(k);  // C⁰ at most
+      knots.insert(knots.end(), static_cast<std::size_t>(p) + 1, 4.0);
+      const std::size_t n = knots.size() - static_cast<std::size_t>(p) - 1;
+      std::vector<double> c(n);
+      for (double& v : c) v = coefficient(rng);
+      std::vector<nurbs::Vector3d> net;
+      for (std::size_t i = 0; i < n; ++i) {
+        double g = 0;
+        for (int j = 1; j <= p; ++j) g += knots[i + static_cast<std::size_t>(j)];
+        net.emplace_back(g / p, c[i], 0.0);
+      }
+      const nurbs::NurbsCurve curve(p, knots, net);
+      const BaseSurface base(p, knots, c);
+      for (int i = 0; i <= 400; ++i) {
+        const double rho = 4.0 * i / 400;
+        CAPTURE(rho);
+        const BasePoint b = base.at_radius(rho);
+        const nurbs::CurveDerivatives d = curve.evaluate(rho, 2);
+        CHECK(std::abs(d.point.x() - rho) <= 1e-14);  // the Greville net reproduces ρ
+        CHECK(std::abs(b.h - d.point.y()) <= 1e-14);
+        CHECK(std::abs(b.slope - d.d1.y()) <= 1e-13);
+        if (p >= 2 && rho != 1.9) CHECK(std::abs(b.curvature - d.d2.y()) <= 1e-12);
+        if (p < 2) CHECK(b.curvature == 0);
+      }
+    }
   }
 
   TEST_CASE("least-squares base: exact for a profile in the spline space, with H'(0) = 0") {

@@ -65,6 +65,9 @@ class BaseSurface {
   double rho_max_ = 0;
   bool plane_ = false;
   nurbs::ArcLengthTable table_;
+  // The knot spans' starts t_k (non-empty spans, ascending) and, p + 1 per span, the
+  // Taylor coefficients of H about t_k (from_parameter).
+  std::vector<double> span_start_, span_taylor_;
   // ρ, dρ/ds, d²ρ/ds² at s_k = k·ds_ (k = 0 … n).
   double ds_ = 0;
   std::vector<double> inverse_rho_, inverse_d1_, inverse_d2_;
