@@ -62,8 +62,8 @@ bool offsets_meet(const Section& section, double R, double a_lo, double a_hi, do
     const double det = k_a * k_b * (slope_a - slope_b);
     if (!(k_a > 0 && k_b > 0) || !(std::abs(det) > 1e-12)) return false;
     // [k_a, −k_b; k_a g'_a, −k_b g'_b] (da, db) = −(rx, rz), by Cramer's rule.
-    const double da = (-rx * -k_b * slope_b - -k_b * -rz) / det;
-    const double db = (k_a * -rz - k_a * slope_a * -rx) / det;
+    const double da = (rx * k_b * slope_b - k_b * rz) / det;
+    const double db = (k_a * slope_a * rx - k_a * rz) / det;
     a += da;
     b += db;
     last_step = std::max(std::abs(da), std::abs(db));

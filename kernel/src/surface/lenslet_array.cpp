@@ -176,8 +176,9 @@ int LensletArray::lenslet_at(double x, double y) const {
   // c_i − O = −sgn(c)·R_b·a_i, that is a_z·S > R_b cos α + sgn(c)(a_x x + a_y y) = M,
   // tested squared as a_z²(R_b² − s) > M² where M > 0: no square root (the planner asks
   // this for every evaluation of the design, and the root's latency was most of it).
-  const double off_sphere = rb_squared_ - s;
-  if (o_.base_curvature != 0 && !(off_sphere >= 0)) return -1;
+  // Past the sphere's rim (S² < 0) no footprint reaches.
+  const double depth_squared = rb_squared_ - s;  // S²
+  if (o_.base_curvature != 0 && !(depth_squared >= 0)) return -1;
   const double half_sq = 0.25 * o_.lens_diameter * o_.lens_diameter;
   const auto holds = [&](const LookupEntry& l) {
     if (o_.base_curvature == 0) {
@@ -185,7 +186,7 @@ int LensletArray::lenslet_at(double x, double y) const {
       return wx * wx + wy * wy < half_sq;
     }
     const double m = rim_cosine_ + l.ux * x + l.uy * y;
-    return m <= 0 || l.w2 * off_sphere > m * m;
+    return m <= 0 || l.w2 * depth_squared > m * m;
   };
   // The lenslet this thread found last: a path's consecutive queries mostly stay in one.
   // Where no two footprints overlap (disjoint_), the lenslet that holds the point is the
