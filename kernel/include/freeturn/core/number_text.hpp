@@ -35,17 +35,6 @@ inline bool parse_number(std::string_view text, double& value) {
 // correctly rounded division, is the correctly rounded value (Clinger's fast path, "How
 // to read floating point numbers accurately", 1990), several times faster than
 // from_chars, which reads the rest.
-//
-// exact_decimal is that fast path alone: ±mantissa / 10^decimals for a mantissa < 10^15
-// and decimals ≤ 22.
-inline double exact_decimal(unsigned long long mantissa, int decimals, bool negative) {
-  static constexpr double kPowers[] = {1e0,  1e1,  1e2,  1e3,  1e4,  1e5,  1e6,  1e7,
-                                       1e8,  1e9,  1e10, 1e11, 1e12, 1e13, 1e14, 1e15,
-                                       1e16, 1e17, 1e18, 1e19, 1e20, 1e21, 1e22};
-  const double magnitude = static_cast<double>(mantissa) / kPowers[decimals];
-  return negative ? -magnitude : magnitude;
-}
-
 inline bool parse_plain_decimal(std::string_view text, double& value) {
   std::size_t i = 0;
   const bool negative = !text.empty() && text[0] == '-';
@@ -68,7 +57,13 @@ inline bool parse_plain_decimal(std::string_view text, double& value) {
   }
   if (digits == 0) return false;
   if (significant <= 15 && decimals <= 22) {
-    value = exact_decimal(mantissa, decimals, negative);
+    // The fast path: a mantissa below 10^15 and a power of ten up to 10^22 are both exact
+    // doubles, so their correctly rounded quotient is the number's nearest double.
+    static constexpr double kPowers[] = {1e0,  1e1,  1e2,  1e3,  1e4,  1e5,  1e6,  1e7,
+                                         1e8,  1e9,  1e10, 1e11, 1e12, 1e13, 1e14, 1e15,
+                                         1e16, 1e17, 1e18, 1e19, 1e20, 1e21, 1e22};
+    const double magnitude = static_cast<double>(mantissa) / kPowers[decimals];
+    value = negative ? -magnitude : magnitude;
     return true;
   }
   const auto [end, error] = std::from_chars(text.data(), text.data() + text.size(), value);
