@@ -110,7 +110,7 @@ void BaseSurface::build_inverse_table() {
   }
 }
 
-BasePoint BaseSurface::from_parameter(double u, int derivatives) const {
+BasePoint BaseSurface::from_parameter(double u) const {
   if (plane_) return {u, 0.0, 0.0, 0.0};
   // x(u) = u, so H, dH/dρ and d²H/dρ² are the scalar spline's value and derivatives: on
   // span k a polynomial in h = ρ − t_k, by Horner's rule from its Taylor coefficients at
@@ -127,7 +127,7 @@ BasePoint BaseSurface::from_parameter(double u, int derivatives) const {
   for (int m = p - 1; m >= 0; --m) b.h = b.h * h + a[m];
   b.slope = p * a[p];
   for (int m = p - 1; m >= 1; --m) b.slope = b.slope * h + m * a[m];
-  if (derivatives >= 2 && p >= 2) {
+  if (p >= 2) {
     b.curvature = p * (p - 1) * a[p];
     for (int m = p - 1; m >= 2; --m) b.curvature = b.curvature * h + m * (m - 1) * a[m];
   }
@@ -135,17 +135,17 @@ BasePoint BaseSurface::from_parameter(double u, int derivatives) const {
 }
 
 BasePoint BaseSurface::at_radius(double rho) const {
-  return from_parameter(std::clamp(rho, 0.0, rho_max_));
+  return from_parameter(rho);  // clamped there
 }
 
-BasePoint BaseSurface::at_arc_length(double s, int derivatives) const {
+BasePoint BaseSurface::at_arc_length(double s) const {
   if (plane_) return {std::clamp(s, 0.0, rho_max_), 0.0, 0.0, 0.0};
   const int n = static_cast<int>(inverse_rho_.size()) - 1;
-  if (s <= 0) return from_parameter(0.0, derivatives);
+  if (s <= 0) return from_parameter(0.0);
   if (s >= ds_ * n) {
     // Past its edge the generating curve goes on along its tangent: the spiral's first
     // contact may need a few µm more of base than the aperture (path/spiral.cpp).
-    BasePoint p = from_parameter(rho_max_, derivatives);
+    BasePoint p = from_parameter(rho_max_);
     const double beyond = s - ds_ * n, c = 1 / std::sqrt(1 + p.slope * p.slope);
     p.rho += beyond * c;
     p.h += beyond * c * p.slope;
@@ -163,7 +163,7 @@ BasePoint BaseSurface::at_arc_length(double s, int derivatives) const {
   const double rho = h0 * inverse_rho_[a] + h1 * h * inverse_d1_[a] +
                      h2 * h * h * inverse_d2_[a] + h3 * h * h * inverse_d2_[b] +
                      h4 * h * inverse_d1_[b] + h5 * inverse_rho_[b];
-  return from_parameter(rho, derivatives);
+  return from_parameter(rho);
 }
 
 double BaseSurface::arc_length(double rho) const {

@@ -74,7 +74,7 @@ class SpiralPath {
       if (theta <= 0) return base_.at_radius(o_.centre_to_edge ? o_.inner_radius : o_.outer_radius);
       if (theta >= end_) return base_.at_radius(o_.centre_to_edge ? o_.outer_radius : o_.inner_radius);
     }
-    return base_.at_arc_length(std::clamp(s, s_inner_, s_outer_), 1);
+    return base_.at_arc_length(std::clamp(s, s_inner_, s_outer_));
   }
 
  private:
@@ -87,14 +87,15 @@ class SpiralPath {
     const auto miss = [&](double arc) {
       const double theta =
           outer == o_.centre_to_edge ? (outer ? arc - s_inner_ : s_outer_ - arc) / b_ : 0.0;
-      const BasePoint bp = base_.at_arc_length(arc, 1);
-      const HeightFieldHit hit = intersect_ray(design_, BaseSurface::point(bp, theta),
-                                               BaseSurface::normal(bp, theta), 0.0);
+      const BasePoint bp = base_.at_arc_length(arc);
+      const RadialLine line(theta);
+      const HeightFieldHit hit = intersect_ray(design_, BaseSurface::point(bp, line),
+                                               BaseSurface::normal(bp, line), 0.0);
       if (hit.status != Status::kOk || !hit.point.allFinite())
         throw InputError(where(theta, bp.rho),
                          "the projection along the base normal misses the design surface",
                          "strategy.spiral");
-      return hit.point.x() * std::cos(theta) + hit.point.y() * std::sin(theta) - target;
+      return hit.point.x() * line.cos + hit.point.y() * line.sin - target;
     };
     double a = guess, fa = miss(a);
     double b = std::clamp(guess - fa, 0.0, total), fb = b == a ? fa : miss(b);

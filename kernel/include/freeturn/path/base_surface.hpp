@@ -44,9 +44,7 @@ class BaseSurface {
   BasePoint at_radius(double rho) const;
   // The point at arc length s from the axis along the generating curve.
   // Past the edge (s > total_arc_length) the curve continues along its edge tangent.
-  // derivatives: 2, or 1 to leave curvature 0 (the spiral's hot loop reads H and H' only,
-  // and the second derivative was a third of the evaluation).
-  BasePoint at_arc_length(double s, int derivatives = 2) const;
+  BasePoint at_arc_length(double s) const;
   // Arc length from the axis to ρ.
   double arc_length(double rho) const;
   double total_arc_length() const { return table_.total(); }
@@ -57,7 +55,7 @@ class BaseSurface {
   static Eigen::Vector3d normal(const BasePoint& b, const RadialLine& line);
 
  private:
-  BasePoint from_parameter(double u, int derivatives = 2) const;
+  BasePoint from_parameter(double u) const;
   void build_inverse_table();
 
   int degree_ = 1;
