@@ -7,6 +7,7 @@
 // not settle (the header and footer lines) come from the machine YAML.
 #include <cmath>
 #include <cstdio>
+#include <cstring>
 #include <string>
 
 #include "freeturn/post_adapter.hpp"
@@ -47,6 +48,10 @@ class MoorePost {
     if (!has_c) throw PostError("the moore post writes slow-tool-servo programs: the machine needs a C axis");
     for (int i = 0; i < info.layout.count; ++i)
       if (info.layout.letters[i] == 'Z') z_decimals_ = info.layout.decimals[i];
+    // The axis words of a block, C first as NanoCAM writes them, then X, Z, B.
+    for (const char letter : {'C', 'X', 'Z', 'B'})
+      for (int i = 0; i < info.layout.count && i < 4; ++i)
+        if (info.layout.letters[i] == letter) word_axes_[word_count_++] = i;
     clear_z_ = freeturn::post::clearance_z(info.top_z, info.z_away, retract_, z_decimals_);
   }
 
@@ -88,13 +93,17 @@ class MoorePost {
         out_.select_main();
         out_.put(std::string("M98(") + name + ")\n");
         out_.open_file(name);
-        last_feed_.clear();  // every child states its feed
+        last_feed_length_ = 0;  // every child states its feed
       }
       // F is modal: written when its text changes, not when the double behind it does
       // (blocks of 0.1333331 s and 0.1333334 s both read F0.133333).
-      feed_.clear();
-      append_number(feed_, b[k].time, time_decimals_);
-      if (feed_ != last_feed_) {
+      char feed[freeturn::post::kNumberCapacity];
+      const int feed_length = freeturn::post::format_fixed(b[k].time, time_decimals_, feed);
+      if (feed_length == 0) throw freeturn::post::unwritable('F', b[k].time, time_decimals_);
+      // A few bytes, compared in place (a call to memcmp per block cost more).
+      bool same_feed = feed_length == last_feed_length_;
+      for (int i = 0; same_feed && i < feed_length; ++i) same_feed = feed[i] == last_feed_[i];
+      if (!same_feed) {
         if (!(std::nearbyint(b[k].time * time_scale()) > 0)) {
           std::string message = "a block time of ";
           append_number(message, b[k].time, 9);
@@ -102,12 +111,13 @@ class MoorePost {
                           " decimals: raise time_decimals");
         }
         line_ += "G93 F";
-        line_ += feed_;
+        line_.append(feed, static_cast<std::size_t>(feed_length));
         line_ += '\n';
-        last_feed_ = feed_;
+        std::memcpy(last_feed_, feed, static_cast<std::size_t>(feed_length));
+        last_feed_length_ = feed_length;
       }
       words(b[k]);
-      line_ += "\n";
+      line_ += '\n';
       if (child_blocks_ > 0 && ++in_child_ >= static_cast<long long>(child_blocks_)) {
         line_ += "M99\n";
         in_child_ = 0;
@@ -129,16 +139,26 @@ class MoorePost {
  private:
   double time_scale() const { return freeturn::post::decimal_scale(time_decimals_); }
 
-  // The axis words of a block, C first as NanoCAM writes them, then X, Z, B.
+  // The axis words of a block (the order of word_axes_), appended to the line once: the
+  // words are formatted into a buffer on the stack, not appended one by one.
   void words(const ft_block& b) {
     const ft_axis_layout& l = info_.layout;
-    for (const char letter : {'C', 'X', 'Z', 'B'})
-      for (int i = 0; i < l.count; ++i) {
-        if (l.letters[i] != letter) continue;
-        const double v = letter == 'X' ? b.x : letter == 'Z' ? b.z : letter == 'C' ? b.c : b.b;
-        if (!line_.empty() && line_.back() != '\n') line_.push_back(' ');
-        append_word(line_, letter, v, l.decimals[i], letter == 'C' && info_.c_wrapped);
-      }
+    char text[4 * (freeturn::post::kNumberCapacity + 2)];
+    int length = 0;
+    for (int w = 0; w < word_count_; ++w) {
+      const int i = word_axes_[w];
+      const char letter = l.letters[i];
+      const double v = letter == 'X' ? b.x : letter == 'Z' ? b.z : letter == 'C' ? b.c : b.b;
+      if (w > 0) text[length++] = ' ';
+      text[length++] = letter;
+      const int n = letter == 'C' && info_.c_wrapped
+                        ? freeturn::post::format_wrapped_degrees(v, l.decimals[i], text + length)
+                        : freeturn::post::format_fixed(v, l.decimals[i], text + length);
+      if (n == 0) throw freeturn::post::unwritable(letter, v, l.decimals[i]);
+      length += n;
+    }
+    if (!line_.empty() && line_.back() != '\n' && length > 0) line_.push_back(' ');
+    line_.append(text, static_cast<std::size_t>(length));
   }
 
   const ft_program_info& info_;
@@ -148,7 +168,10 @@ class MoorePost {
   int time_decimals_ = 6;
   bool first_ = true;
   double clear_z_ = 0;
-  std::string feed_, last_feed_;  // the F text of this block and the last one written
+  char last_feed_[freeturn::post::kNumberCapacity] = {};  // the last F text written
+  int last_feed_length_ = 0;                              // 0: none yet in this file
+  int word_axes_[4] = {0, 0, 0, 0};                       // layout indices, in word order
+  int word_count_ = 0;
   int z_decimals_ = 6;
   long long in_child_ = 0;
   int children_ = 0;
