@@ -65,6 +65,39 @@ void SurfaceSpanCache::enter(int span_u, int span_v) {
   }
 }
 
+namespace {
+
+// The homogeneous partials aw[k][l] (k + l ≤ kOrder) at (du, dv) from the power form a
+// ((p + 1) × (q + 1), a_kl at k·(q + 1) + l): Horner in v for each power of u (B_k and
+// its v-derivatives), then in u. Only the chains the order needs are run: a path's
+// point and first partials skip the three second-order ones.
+template <int kOrder>
+void power_form_partials(const Vector4d* a, int p, int q, double du, double dv,
+                         Vector4d (&aw)[3][3]) {
+  const int qv = q + 1;
+  for (auto& row : aw)
+    for (Vector4d& x : row) x.setZero();
+  for (int k = p; k >= 0; --k) {
+    const Vector4d* row = a + k * qv;
+    Vector4d b = row[q], b1 = Vector4d::Zero(), b2 = Vector4d::Zero();
+    for (int l = q - 1; l >= 0; --l) {
+      if constexpr (kOrder >= 2) b2 = b2 * dv + 2 * b1;
+      if constexpr (kOrder >= 1) b1 = b1 * dv + b;
+      b = b * dv + row[l];
+    }
+    if constexpr (kOrder >= 2) {
+      aw[2][0] = aw[2][0] * du + 2 * aw[1][0];
+      aw[1][1] = aw[1][1] * du + aw[0][1];
+    }
+    if constexpr (kOrder >= 1) aw[1][0] = aw[1][0] * du + aw[0][0];
+    aw[0][0] = aw[0][0] * du + b;
+    if constexpr (kOrder >= 1) aw[0][1] = aw[0][1] * du + b1;
+    if constexpr (kOrder >= 2) aw[0][2] = aw[0][2] * du + b2;
+  }
+}
+
+}  // namespace
+
 SurfaceDerivatives SurfaceSpanCache::evaluate(double u, double v, int order) {
   const NurbsSurface& s = surface_;
   const int d = std::clamp(order, 0, 2);
@@ -72,28 +105,12 @@ SurfaceDerivatives SurfaceSpanCache::evaluate(double u, double v, int order) {
   v = std::clamp(v, s.front_v(), s.back_v());
   if (!holds(s.knots_u(), span_u_, u) || !holds(s.knots_v(), span_v_, v))
     enter(s.knots_u().find_span(u), s.knots_v().find_span(v));
-  const int p = s.degree_u(), q = s.degree_v(), qv = q + 1;
+  const int p = s.degree_u(), q = s.degree_v();
   const double du = u - u0_, dv = v - v0_;
-  // Horner in v for each power of u: B_k, B_k', B_k'' at dv; then in u.
   Vector4d aw[3][3];
-  for (auto& row : aw)
-    for (Vector4d& x : row) x.setZero();
-  for (int k = p; k >= 0; --k) {
-    const Vector4d* row = &a_[static_cast<std::size_t>(k * qv)];
-    Vector4d b = row[q], b1 = Vector4d::Zero(), b2 = Vector4d::Zero();
-    for (int l = q - 1; l >= 0; --l) {
-      b2 = b2 * dv + 2 * b1;
-      b1 = b1 * dv + b;
-      b = b * dv + row[l];
-    }
-    // A = Σ_k B_k du^k and its u-derivatives, by Horner in du as well.
-    aw[2][0] = aw[2][0] * du + 2 * aw[1][0];
-    aw[1][1] = aw[1][1] * du + aw[0][1];
-    aw[1][0] = aw[1][0] * du + aw[0][0];
-    aw[0][0] = aw[0][0] * du + b;
-    aw[0][1] = aw[0][1] * du + b1;
-    aw[0][2] = aw[0][2] * du + b2;
-  }
+  if (d == 0) power_form_partials<0>(a_.data(), p, q, du, dv, aw);
+  else if (d == 1) power_form_partials<1>(a_.data(), p, q, du, dv, aw);
+  else power_form_partials<2>(a_.data(), p, q, du, dv, aw);
   return rational_surface_derivatives(aw, d);
 }
 
