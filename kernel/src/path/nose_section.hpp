@@ -91,25 +91,6 @@ class NoseSection {
     return -o.height / std::sqrt(1 + o.slope * o.slope);
   }
 
-  // Whether the touch moves across a crease from a to b (each given by its angle c and
-  // the touch's signed radius): the count of creases within a nose radius on either side
-  // of the touch changes. Only there does the path's nose change flank, and only there can
-  // an interpolated nose slide away from it (`slide`); a crease that enters or leaves the
-  // window at its far end counts as a crossing too, which costs a check and nothing else.
-  bool crosses_crease(double c_a, double rho_a, double c_b, double rho_b) const {
-    if (R_ == 0) return false;
-    SectionCreases at_a, at_b;
-    at_a.find(design_, c_a, rho_a - R_, rho_a + R_);
-    at_b.find(design_, c_b, rho_b - R_, rho_b + R_);
-    const auto left_of = [](const SectionCreases& s, double rho) {
-      int n = 0;
-      for (int k = 0; k < s.count; ++k) n += s.rho[k] < rho;
-      return n;
-    };
-    const int left_a = left_of(at_a, rho_a), left_b = left_of(at_b, rho_b);
-    return left_a != left_b || at_a.count - left_a != at_b.count - left_b;
-  }
-
   // How far the nose at the axes (x_axis, z_axis, b) rises above the nose the path places
   // at the same τ (its axes ideal_x, ideal_z, ideal_b, touching the design at ideal_rho
   // with section slope ideal_slope), across the stretch of ±half_width about that touch

@@ -6,11 +6,16 @@
 // A Path provides:
 //   double tau_end() const;
 //   void at(double tau, AxisState& s);      // may throw InputError (a missed projection)
+//   void at(double tau, const RadialLine& line, AxisState& s);
+//                                           // the same, given the radial line at C(τ)
+//                                           // (C is affine in τ on every path: the
+//                                           // spiral's C = τ, the profile's C = 0)
 //   void commit(const AxisState& s);        // the accepted point: the next warm start
 //   double cap() const;                     // the largest step in τ
-//   double deviation(double x_axis, double c, double z, double b, double hint_r) const;
-//                                           // distance of the tool at these axes from the
-//                                           // design; hint_r: the contact radius nearby
+//   double deviation(double x_axis, const RadialLine& c, double z, double b,
+//                    double hint_r) const;  // distance of the tool at these axes (C's
+//                                           // radial line) from the design; hint_r: the
+//                                           // contact radius nearby
 //   double block_time(const AxisState& a, const AxisState& b) const;
 //                                           // the time from block a to b, up to a constant
 //                                           // factor (pvt_rule.hpp)
@@ -138,8 +143,16 @@ bool peak_within_secant_bound(const double* e, int best, int intervals, double f
   return largest >= (1 - 5e-3) * bound && largest <= (1 + 1e-9) * bound;
 }
 
+//
+// The samples are taken coarse to fine (every eighth, then the fourths between, ...).
+// Where a level's largest sample already passes `cutoff`, the segment is over it whatever
+// the finer samples show, and the search stops there: it returns that level's estimate
+// (its largest sample, raised to the parabola's vertex through it and its neighbours when
+// that is higher), which is enough for the step search to predict its next step from. A
+// rejected trial then costs 3 to 7 samples instead of 33.
 template <class Path, class Deviation>
-double largest_deviation(const Path& path, Deviation&& deviation, bool always_search = false) {
+double largest_deviation(const Path& path, Deviation&& deviation, bool always_search = false,
+                         double cutoff = std::numeric_limits<double>::infinity()) {
   constexpr int kMaxIntervals = kCreasedIntervals;
   const int intervals = path.creased() ? kMaxIntervals : 8;
   double signed_worst = 0;
@@ -150,10 +163,22 @@ double largest_deviation(const Path& path, Deviation&& deviation, bool always_se
   };
   double e[kMaxIntervals + 1];
   e[0] = e[intervals] = 0;  // the blocks themselves lie on the design
-  int best = 1;
-  for (int j = 1; j < intervals; ++j) {
-    e[j] = deviation_at(static_cast<double>(j) / intervals);
-    if (e[j] > e[best]) best = j;
+  int best = intervals / 4;
+  for (int stride = intervals / 4; stride >= 1; stride /= 2) {
+    // The first level takes every multiple of its stride; each finer one, the odd ones.
+    const int first = stride, step = stride == intervals / 4 ? stride : 2 * stride;
+    for (int j = first; j < intervals; j += step) {
+      e[j] = deviation_at(static_cast<double>(j) / intervals);
+      if (e[j] > e[best]) best = j;
+    }
+    if (stride > 1 && e[best] > cutoff) {
+      const double left = e[best - stride], right = e[best + stride];
+      const double curvature = left - 2 * e[best] + right;
+      const double vertex = curvature < 0 ? e[best] - 0.125 * (left - right) * (left - right) / curvature
+                                          : e[best];
+      const double estimate = std::min(vertex, 2 * e[best]);
+      return std::copysign(estimate, signed_worst);
+    }
   }
   const double denominator = e[best - 1] - 2 * e[best] + e[best + 1];
   if (!(denominator < 0)) return signed_worst;
@@ -204,11 +229,6 @@ double segment_error(const Path& path, const Segment& segment, Interpolation mod
                      double target) {
   const SegmentMotion motion(path, segment, mode);
   const AxisState &a = segment.a, &b = segment.b;
-  const auto gap_at = [&](double t, double& x, double& c, double& z, double& bb) {
-    motion.at(t, x, c, z, bb);
-    return path.deviation(x, c, z, bb, a.contact_r + t * (b.contact_r - a.contact_r)) -
-           path.stand_off();
-  };
   // The second search (with the slide) samples the same grid first: the gaps there are
   // kept from the first, not computed again (each is a search of the nose's section).
   constexpr int kGrid = kCreasedIntervals;  // the second search runs on creased designs only
@@ -218,6 +238,28 @@ double segment_error(const Path& path, const Segment& segment, Interpolation mod
     const int j = static_cast<int>(std::lround(t * kGrid));
     return j >= 0 && j <= kGrid && static_cast<double>(j) / kGrid == t ? j : -1;
   };
+  // The radial lines at C(τ) on the grid, by rotation from the segment's start: two sines
+  // and cosines a segment instead of one a sample (C is affine in τ, so these are also
+  // the lines of linear motion's samples; a cubic's C is not, and takes its own).
+  const RadialLine first(a.c);
+  const RadialLine unit((b.c - a.c) / kGrid);
+  RadialLine grid_line[kGrid + 1];
+  grid_line[0] = first;
+  for (int j = 1; j <= kGrid; ++j) {
+    const double t = static_cast<double>(j) / kGrid;
+    const RadialLine& last = grid_line[j - 1];
+    grid_line[j].theta = a.c + t * (b.c - a.c);  // as SegmentMotion moves C
+    grid_line[j].cos = last.cos * unit.cos - last.sin * unit.sin;
+    grid_line[j].sin = last.sin * unit.cos + last.cos * unit.sin;
+  }
+  const bool linear = mode == Interpolation::kLinear;
+  const auto gap_at = [&](double t, int j, double& x, double& c, double& z, double& bb) {
+    motion.at(t, x, c, z, bb);
+    const double hint = a.contact_r + t * (b.contact_r - a.contact_r);
+    const double d = linear && j >= 0 ? path.deviation(x, grid_line[j], z, bb, hint)
+                                      : path.deviation(x, RadialLine(c), z, bb, hint);
+    return d - path.stand_off();
+  };
   // Linear motion: every peak searched on a creased surface. PVT keeps the parabola's
   // test: there a still held nose (a profile's trough narrower than the nose) would make
   // the searched step end where it began, a block of no time (docs/path.md).
@@ -226,11 +268,12 @@ double segment_error(const Path& path, const Segment& segment, Interpolation mod
       path,
       [&](double t) {
         double x, c, z, bb;
-        const double d = gap_at(t, x, c, z, bb);
-        if (const int j = grid_index(t); j >= 0) grid_gap[j] = d, grid_known[j] = true;
+        const int j = grid_index(t);
+        const double d = gap_at(t, j, x, c, z, bb);
+        if (j >= 0) grid_gap[j] = d, grid_known[j] = true;
         return d;
       },
-      always_search);
+      always_search, target);
   if (!path.creased() || std::abs(gap) > target) return gap;
   AxisState ideal;
   const double with_slide = largest_deviation(path, [&](double t) {
@@ -241,12 +284,14 @@ double segment_error(const Path& path, const Segment& segment, Interpolation mod
       d = grid_gap[j];
       motion.at(t, x, c, z, bb);
     } else {
-      d = gap_at(t, x, c, z, bb);
+      d = gap_at(t, j, x, c, z, bb);
     }
-    path.at(a.tau + t * (b.tau - a.tau), ideal);
+    const double tau = a.tau + t * (b.tau - a.tau);
+    if (j >= 0) path.at(tau, grid_line[j], ideal);
+    else path.at(tau, ideal);
     const double above = std::max(d, path.slide(x, c, z, bb, ideal));
     return above >= -d ? above : d;
-  }, always_search);
+  }, always_search, target);
   return std::abs(with_slide) >= std::abs(gap) ? with_slide : gap;
 }
 
@@ -516,10 +561,13 @@ void distribute(Path& path, const CutterPointOptions& o, Emit&& emit, double beg
         measure(trial, kFull);
       } else if (trial.held != current.held && !jump) {
         end_at_hold_change(path, current, trial, transition);
-        // Not within a tenth of the step of either end: the kink is on a block already, and
-        // a sliver of a block would only demand more of the axes at one speed.
+        // Not within a tenth of the step of its start: a block there would leave a sliver
+        // of a segment, which only demands more of the axes at one speed. Anywhere later
+        // the block moves back onto the kink (the step shortens by at most what is left
+        // of it, and the next step starts on the kink); within 1 nm of the trial, the
+        // trial is the block.
         const double at = (transition.tau - current.tau) / step;
-        if (at > 0.1 && at < 0.9 && apart(transition, current) && apart(transition, trial) &&
+        if (at > 0.1 && apart(transition, current) && apart(transition, trial) &&
             measure(transition, target) <= target) {
           trial = transition;
           step = trial.tau - current.tau;

@@ -29,18 +29,16 @@ class ProfilePath {
   bool creased() const { return design_.has_creases(); }
   double stand_off() const { return nose_.stand_off(); }
 
-  double deviation(double x_axis, double, double z, double b, double hint_r) const {
+  double deviation(double x_axis, const RadialLine&, double z, double b, double hint_r) const {
     return nose_.deviation(x_axis, RadialLine{}, z, b, hint_r);
   }
   // A single pass: only its own touch counts.
-  bool crosses_crease(const detail::AxisState& a, const detail::AxisState& b) const {
-    return nose_.crosses_crease(a.c, a.contact_r, b.c, b.contact_r);
-  }
   double slide(double x_axis, double, double z, double b, const detail::AxisState& ideal) const {
     return nose_.slide(x_axis, z, b, ideal.x_axis, ideal.z, ideal.b, ideal.contact_r, ideal.slope,
                        0.0);
   }
 
+  void at(double tau, const RadialLine&, detail::AxisState& s) const { at(tau, s); }
   void at(double tau, detail::AxisState& s) const {
     const double r = tau >= tau_end() ? o_.inner_radius : o_.outer_radius - tau;
     s.tau = tau;

@@ -52,19 +52,19 @@ class SpiralPath {
   double stand_off() const { return nose_.stand_off(); }
   double pitch() const { return o_.pitch; }
 
-  double deviation(double x_axis, double c, double z, double b, double hint_r) const {
+  double deviation(double x_axis, const RadialLine& c, double z, double b, double hint_r) const {
     return nose_.deviation(x_axis, c, z, b, hint_r);
   }
   // The next turns lie a pitch away on either side: each turn cuts half a pitch either way.
-  bool crosses_crease(const detail::AxisState& a, const detail::AxisState& b) const {
-    return nose_.crosses_crease(a.c, a.contact_r, b.c, b.contact_r);
-  }
   double slide(double x_axis, double, double z, double b, const detail::AxisState& ideal) const {
     return nose_.slide(x_axis, z, b, ideal.x_axis, ideal.z, ideal.b, ideal.contact_r, ideal.slope,
                        0.5 * o_.pitch);
   }
 
-  void at(double theta, detail::AxisState& s) const { evaluate(theta, s); }
+  void at(double theta, detail::AxisState& s) const { evaluate(theta, RadialLine(theta), s); }
+  void at(double theta, const RadialLine& line, detail::AxisState& s) const {
+    evaluate(theta, line, s);
+  }
   void commit(const detail::AxisState& s) { lambda_ = s.warm; }
 
   BasePoint base_point(double theta) const {
@@ -109,11 +109,11 @@ class SpiralPath {
     return b;
   }
 
-  void evaluate(double theta, detail::AxisState& s) const {
+  // line: the radial line at θ.
+  void evaluate(double theta, const RadialLine& line, detail::AxisState& s) const {
     const BasePoint bp = base_point(theta);
     s.tau = theta;
     s.c = theta;
-    const RadialLine line(theta);
     const double c = line.cos, sn = line.sin;
     double contact_r, z, zx, zy;
     if (base_.is_plane()) {
