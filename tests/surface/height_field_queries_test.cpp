@@ -82,6 +82,12 @@ TEST_SUITE("surface") {
       const auto warm = intersect_ray(sphere, origin, dir, std::isnan(t_prev) ? 0.0 : t_prev);
       CHECK(warm.t == doctest::Approx(t_exact).epsilon(1e-12));
       CHECK((hit.point - (origin + t_exact * dir)).norm() <= 1e-10);
+      // The gradient at the hit, which the planner takes instead of evaluating it again:
+      // the sphere's z = R − √(R² − s) has ∇z = (x, y)/√(R² − s) at the exact hit.
+      const Eigen::Vector3d exact = origin + t_exact * dir;
+      const double root = std::sqrt(R * R - exact.x() * exact.x() - exact.y() * exact.y());
+      CHECK(hit.zx == doctest::Approx(exact.x() / root).epsilon(1e-10));
+      CHECK(hit.zy == doctest::Approx(exact.y() / root).epsilon(1e-10));
       t_prev = warm.t;
     }
     // Past the edge of the sphere the sag is undefined: the ray misses.

@@ -175,6 +175,56 @@ TEST_SUITE("surface") {
     }
   }
 
+  TEST_CASE("lenslet arrays: max_bend bounds every section's second derivative") {
+    // The bound the nose's crease searches rely on (Surface::max_bend): at random points
+    // within a radius, along random directions, the second difference of the sag (the
+    // three points on one lenslet or all on the base) stays under it. Domes and bowls on
+    // concave and convex bases, and a plane base. The bound is also not loose: the
+    // largest second difference found comes within a fifth of it where bowls or a
+    // concave base set it (their bends peak at the footprints' far edges and at the
+    // radius, where the samples reach).
+    struct Case {
+      double base_curvature, lens_radius;
+    };
+    for (const Case c : {Case{1 / 20.0, -1.5}, Case{1 / 20.0, 1.5}, Case{-1 / 20.0, 1.5},
+                         Case{-1 / 20.0, -1.5}, Case{0.0, 1.5}}) {
+      LensletArrayOptions o = eye(Pattern::kHexagonal);
+      o.base_curvature = c.base_curvature;
+      o.lens_radius = c.lens_radius;
+      const LensletArray s(o);
+      const double radius = 5.5, bound = s.max_bend(radius);
+      REQUIRE(std::isfinite(bound));
+      CHECK(s.max_bend(2.0) <= bound);  // a smaller disc bends no more
+      std::mt19937 rng(17);
+      std::uniform_real_distribution<double> unit(0, 1);
+      const double h = 1e-4;
+      double largest = -1e300;
+      int checked = 0, over = 0;
+      for (int k = 0; k < 200000; ++k) {
+        const double r = radius * std::sqrt(unit(rng)), phi = 2 * std::numbers::pi * unit(rng);
+        const double dir = 2 * std::numbers::pi * unit(rng);
+        const double x = r * std::cos(phi), y = r * std::sin(phi);
+        const double ux = std::cos(dir), uy = std::sin(dir);
+        if (std::hypot(x + h * ux, y + h * uy) > radius || std::hypot(x - h * ux, y - h * uy) > radius)
+          continue;
+        const int at = s.lenslet_at(x, y);
+        if (s.lenslet_at(x + h * ux, y + h * uy) != at || s.lenslet_at(x - h * ux, y - h * uy) != at)
+          continue;
+        const double bend = (s.sag(x + h * ux, y + h * uy) - 2 * s.sag(x, y) +
+                             s.sag(x - h * ux, y - h * uy)) / (h * h);
+        ++checked;
+        largest = std::max(largest, bend);
+        // Rounding of the second difference: ~4·1e-16·|z|/h² with |z| ≤ 1 mm.
+        over += bend > bound + 1e-7;
+      }
+      MESSAGE("bound ", bound, " mm⁻¹, largest second difference ", largest);
+      CHECK(over == 0);
+      CHECK(checked > 150000);
+      if (c.lens_radius > 0 || c.base_curvature > 0) CHECK(largest >= 0.8 * bound);
+      else CHECK(bound == 0.0);
+    }
+  }
+
   TEST_CASE("microlens array on a plane: square lattice count and sag") {
     LensletArrayOptions o;
     o.lens_radius = 2.0;

@@ -71,10 +71,26 @@ bool offsets_meet(const Section& section, double R, double a_lo, double a_hi, do
   return false;
 }
 
+// How strongly h(ρ) = g(ρ) − z_c + √(R² − (ρ − x_c)²) is concave on a smooth piece of
+// the section within `radius` of the axis: h'' = g'' − R²/s³ ≤ max_bend − 1/R (s ≤ R).
+// 0 where that bound is not negative (or not known): nothing is left out then.
+double concavity(const Surface& design, double R, double radius) {
+  const double m = 1 / R - design.max_bend(radius);
+  return m > 0 ? m : 0.0;
+}
+
 // Newton steps on h(ρ) = g(ρ) − z_c + √(R² − (ρ − x_c)²) within [lo, hi], keeping the
 // largest h met in `best`.
+//
+// A search from a crease (start at the end of its piece on the crease's side, the piece
+// reaching `side` (±1) from there) stops after its first value where the piece cannot
+// rise to `floor`: h is m-strongly concave on it (`m`, concavity()), so nowhere on it
+// does h exceed h₀ + max(0, side·h'₀)²/(2m). Such a search could only have kept values
+// below `floor`, which the caller compares with a larger one; leaving it out changes no
+// answer (a margin of 1e-12 mm covers the rounding of both).
 void search(const Section& section, double x_c, double z_c, double R, double start, double lo,
-            double hi, int steps, NoseOverlap& best) {
+            double hi, int steps, NoseOverlap& best, int side = 0, double m = 0,
+            double floor = -1e300) {
   if (!(lo <= hi)) return;
   double r = std::clamp(start, lo, hi);
   for (int it = 0; it < steps; ++it) {
@@ -84,6 +100,10 @@ void search(const Section& section, double x_c, double z_c, double R, double sta
     const double h = g - z_c + s;
     if (h > best.height) best = {h, r, slope};
     if (!(s > 0)) return;
+    if (it == 0 && side != 0 && m > 0 && r == start) {
+      const double rise = std::max(0.0, side * (slope - d / s));  // h' = g' − d/s, into the piece
+      if (h + rise * rise / (2 * m) + 1e-12 < floor) return;
+    }
     const double next = std::clamp(r + (slope - d / s) * s * s * s / (R * R), lo, hi);
     if (std::abs(next - r) <= 1e-15 * (1 + std::abs(r))) return;
     r = next;
@@ -121,10 +141,13 @@ NoseOverlap nose_overlap(const Surface& design, const RadialLine& line, double x
     }
   }
   search(section, x_c, z_c, R, hint_rho, a, b, 2, best);
+  if (creases.count == 0) return best;
+  const double m = concavity(design, R, std::max(std::abs(lo), std::abs(hi)));
   for (int k = 0; k < creases.count; ++k)
     for (const int side : {-1, 1}) {
       piece_bounds(creases, k, side, lo, hi, a, b);
-      search(section, x_c, z_c, R, creases.rho[k] + side * kOffCrease, a, b, 3, best);
+      search(section, x_c, z_c, R, creases.rho[k] + side * kOffCrease, a, b, 3, best, side, m,
+             best.height);
     }
   return best;
 }
@@ -151,6 +174,7 @@ NoseTouch nose_touch(const Surface& design, const RadialLine& line, double nose_
   int held_at = -1, far = 0;
   NoseOverlap worst;
   worst.height = tolerance;
+  const double m = concavity(design, R, std::max(std::abs(t.centre_x - reach), std::abs(t.centre_x + reach)));
   for (int k = 0; k < creases.count; ++k) {
     if (!(std::abs(creases.rho[k] - t.centre_x) < reach) &&
         !(std::abs(creases.rho[k] - rho_p) <= kOffCrease))
@@ -166,7 +190,8 @@ NoseTouch nose_touch(const Surface& design, const RadialLine& line, double nose_
       double a, b;
       piece_bounds(creases, k, side, t.centre_x - reach, t.centre_x + reach, a, b);
       NoseOverlap o;
-      search(section, t.centre_x, t.centre_z, R, creases.rho[k] + side * kOffCrease, a, b, 4, o);
+      search(section, t.centre_x, t.centre_z, R, creases.rho[k] + side * kOffCrease, a, b, 4, o,
+             side, m, worst.height);
       if (o.height > worst.height) {
         worst = o;
         held_at = k;

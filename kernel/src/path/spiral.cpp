@@ -143,8 +143,8 @@ class SpiralPath {
         s.uncut = 0;
         return;
       }
-      double sag;
-      design_.sag_gradient(hit.point.x(), hit.point.y(), sag, zx, zy);
+      zx = hit.zx;
+      zy = hit.zy;
     }
     // Where a crease is under the nose, the nose may be held touching both its flanks.
     const NoseTouch touch = nose_.touch(line, contact_r, z, zx * c + zy * sn);

@@ -13,12 +13,19 @@ HeightFieldHit intersect_ray(const Surface& surface, const Eigen::Vector3d& orig
     return hit;
   }
   const Eigen::Vector3d d = direction / len;
+  // The surface at the last point evaluated, and at the accepted one (the answer's: not
+  // evaluated again).
+  double z_last = 0, zx_last = 0, zy_last = 0, z_at = 0;
   const auto g = [&](double s, double& slope) {
     const Eigen::Vector3d q = origin + s * d;
-    double z, zx, zy;
-    surface.sag_gradient(q.x(), q.y(), z, zx, zy);
-    slope = d.z() - zx * d.x() - zy * d.y();
-    return q.z() - z;
+    surface.sag_gradient(q.x(), q.y(), z_last, zx_last, zy_last);
+    slope = d.z() - zx_last * d.x() - zy_last * d.y();
+    return q.z() - z_last;
+  };
+  const auto accept = [&] {
+    z_at = z_last;
+    hit.zx = zx_last;
+    hit.zy = zy_last;
   };
   if (std::isnan(t)) {
     const double z0 = surface.sag(origin.x(), origin.y());
@@ -29,6 +36,7 @@ HeightFieldHit intersect_ray(const Surface& surface, const Eigen::Vector3d& orig
   }
   double slope;
   double value = g(t, slope);
+  accept();
   const double tolerance = 1e-14 * (1 + origin.norm() + std::abs(t));
   hit.status = Status::kNotConverged;
   for (int it = 0; it < 60; ++it) {
@@ -55,6 +63,7 @@ HeightFieldHit intersect_ray(const Surface& surface, const Eigen::Vector3d& orig
         t += step;
         value = value_new;
         slope = slope_new;
+        accept();
         improved = true;
         break;
       }
@@ -65,7 +74,7 @@ HeightFieldHit intersect_ray(const Surface& surface, const Eigen::Vector3d& orig
     }
   }
   const Eigen::Vector3d q = origin + t * d;
-  hit.point = {q.x(), q.y(), surface.sag(q.x(), q.y())};
+  hit.point = {q.x(), q.y(), z_at};
   hit.t = t / len;
   return hit;
 }

@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <limits>
 #include <numbers>
 #include <string>
 
@@ -106,6 +107,17 @@ LensletArray::LensletArray(const LensletArrayOptions& options) : o_(options) {
   crease_reach_ = 0.5 * d + (cb != 0 ? o_.extent * (1 - std::sqrt(std::max(0.0, 1 - 0.25 * d * d * cb * cb)))
                                      : 0.0);
   crease_reach_ += 1e-9 * (1 + o_.extent);
+  // A lenslet's height is z = C_z − σ√(r² − d²), d the distance in (x, y) from its
+  // sphere's centre, σ the sign of r: a dome (σ < 0) has a negative definite Hessian; a
+  // bowl's largest eigenvalue is 1/w + d²/w³ = r²/w³ (w = √(r² − d²)), largest where its
+  // footprint reaches farthest from the centre: at most crease_reach_ beyond the base point.
+  for (const Lenslet& l : lenslets_) {
+    if (!(o_.lens_radius > 0)) break;
+    const double d_far = std::hypot(l.centre.x() - l.base_point.x(), l.centre.y() - l.base_point.y()) + crease_reach_;
+    const double w2 = r * r - d_far * d_far;
+    lenslet_bend_ = w2 > 0 ? std::max(lenslet_bend_, r * r / (w2 * std::sqrt(w2)))
+                           : std::numeric_limits<double>::infinity();
+  }
   // What section_creases needs of each lenslet on a sphere, computed once.
   if (cb != 0) {
     const double rb = 1 / std::abs(cb);
@@ -160,6 +172,20 @@ void LensletArray::add_lenslet(double x, double y) {
 
 const char* LensletArray::type() const {
   return o_.base_curvature != 0 ? "compound_eye" : "microlens_array";
+}
+
+double LensletArray::max_bend(double radius) const {
+  // The base z = (1 − q)/c, q = √(1 − c²s): its Hessian cI/q + c³ppᵀ/q³ has the
+  // eigenvalues c/q (along the circle) and c/q³ (along the radius), largest at the
+  // largest s; both ≤ 0 on a convex base.
+  const double c = o_.base_curvature, s = radius * radius;
+  double base = 0;
+  if (c > 0) {
+    const double q2 = 1 - c * c * s;
+    base = q2 > 0 ? c / (q2 * std::sqrt(q2)) : std::numeric_limits<double>::infinity();
+  }
+  if (!(radius >= 0)) base = std::numeric_limits<double>::infinity();
+  return std::max(base, lenslet_bend_);
 }
 
 double LensletArray::defined_radius() const {

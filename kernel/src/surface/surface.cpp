@@ -24,4 +24,6 @@ int Surface::section_creases(const RadialLine&, double rho_lo, double rho_hi, st
   return 1;
 }
 
+double Surface::max_bend(double) const { return std::numeric_limits<double>::infinity(); }
+
 }  // namespace freeturn

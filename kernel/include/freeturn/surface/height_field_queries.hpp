@@ -11,6 +11,7 @@ namespace freeturn {
 
 struct HeightFieldHit {
   Eigen::Vector3d point = Eigen::Vector3d::Zero();  // on the surface
+  double zx = 0, zy = 0;  // the surface's gradient at point (its last evaluation)
   double t = 0;  // origin + t·direction = point (t in units of |direction|)
   Status status = Status::kMissed;
   int iterations = 0;

@@ -39,6 +39,8 @@ class LensletArray final : public Surface {
   HeightDerivatives height_derivatives(double x, double y) const override;
   double defined_radius() const override;
   bool has_creases() const override { return true; }
+  // The base sphere's bend within `radius` and every lenslet's within its footprint.
+  double max_bend(double radius) const override;
   // Where the radial line crosses the lenslets' rims, in closed form (a circle on a plane
   // base; on a sphere, a cone about the lenslet's axis through the sphere's centre).
   int section_creases(const RadialLine& line, double rho_lo, double rho_hi,
@@ -86,6 +88,8 @@ class LensletArray final : public Surface {
   double rim_cosine_ = 0;
   // How far from its base point's (x, y) a footprint reaches in (x, y) (section_creases).
   double crease_reach_ = 0;
+  // The largest bend of any lenslet's sphere over its footprint (max_bend).
+  double lenslet_bend_ = 0;
   double rb_squared_ = 0;  // R_b² on a sphere (lenslet_at)
 };
 

@@ -26,6 +26,7 @@ class RaisedSurface final : public Surface {
   int section_creases(const RadialLine& line, double lo, double hi, std::span<double> out) const override {
     return s_.section_creases(line, lo, hi, out);
   }
+  double max_bend(double radius) const override { return s_.max_bend(radius); }
 
  private:
   const Surface& s_;

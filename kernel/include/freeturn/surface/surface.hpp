@@ -56,6 +56,14 @@ class Surface {
   virtual int section_creases(const RadialLine& line, double rho_lo, double rho_hi,
                               std::span<double> out) const;
 
+  // An upper bound of the surface's second derivative along any straight line in (x, y)
+  // (d²z/dt² for a unit direction; the largest eigenvalue of the Hessian) at the points
+  // within `radius` of the z axis, away from creases: the most a section can bend toward
+  // the tool. +∞ when not known (the default). The nose's searches at creases use it to
+  // leave out a flank that cannot reach the nose (path/section_envelope.cpp); a bound
+  // below the truth would hide an overlap, so it must hold everywhere it is asked.
+  virtual double max_bend(double radius) const;
+
   double sag(double x, double y) const;
   // (x, y, z(x, y)).
   Eigen::Vector3d point(double x, double y) const;
