@@ -461,6 +461,16 @@ void distribute(Path& path, const CutterPointOptions& o, Emit&& emit, double beg
       // The last accepted trial, for the local order of the error as the step grows.
       double grown_step = 0, grown_error = 0;
       bool exhausted = false;
+      // A trial across a hold change (section_envelope.hpp: the kink where the nose begins
+      // or ends a hold at a crease) is answered by the step that ends on the kink, tried
+      // at once. The block goes there anyway whenever the final step holds the kink past
+      // its first tenth (below, after the search); short of the kink the motion is smooth
+      // and the model predicts well, while across it the error jumps with the step (0
+      // just short of it, several times the target just past it on the compound eye), and
+      // the bracket alone took five or more trials to close in on it. Linear motion only:
+      // a PVT step also judges the segment before it.
+      bool kink_measured = false, on_kink = false;
+      double kink_step = -1;  // to `transition`, the hold change found (once a search)
       for (int it = 0; it < 80; ++it) {
         path.at(advance(step), trial);
         error = measure(trial, target);
@@ -470,6 +480,33 @@ void distribute(Path& path, const CutterPointOptions& o, Emit&& emit, double beg
           least_step = step;
           least_new = new_error;
           least_previous = previous_error;
+        }
+        if (!pvt && !kink_measured && trial.held != current.held &&
+            (error > target || error < 0.9 * target)) {
+          // Found once; a later, shorter trial that still holds it past its first tenth
+          // tries it then.
+          if (kink_step < 0) {
+            end_at_hold_change(path, current, trial, transition);
+            kink_step = transition.tau - current.tau;
+          }
+          if (kink_step > 0.1 * step && kink_step < step && kink_step > accepted &&
+              apart(transition, current) && apart(transition, trial)) {
+            kink_measured = true;
+            const double trial_new = new_error, trial_previous = previous_error;
+            if (measure(transition, target) <= target) {
+              accepted = kink_step;
+              best = transition;
+              best_new = new_error;
+              best_previous = previous_error;
+              on_kink = true;
+              break;
+            }
+            new_error = trial_new;
+            previous_error = trial_previous;
+            // Past the kink fails too (the longer trial is either rejected or, the
+            // error not monotonic there, left to the search as it stands).
+            if (error > target) rejected = std::min(rejected, kink_step);
+          }
         }
         double next;
         if (error <= target) {
@@ -559,7 +596,7 @@ void distribute(Path& path, const CutterPointOptions& o, Emit&& emit, double beg
       // Taken over the target (a jump, or PVT's least error): its gap alone was measured.
       if (std::max(std::abs(new_error), std::abs(previous_error)) > target) {
         measure(trial, kFull);
-      } else if (trial.held != current.held && !jump) {
+      } else if (trial.held != current.held && !jump && !on_kink) {
         end_at_hold_change(path, current, trial, transition);
         // Not within a tenth of the step of its start: a block there would leave a sliver
         // of a segment, which only demands more of the axes at one speed. Anywhere later
