@@ -118,6 +118,55 @@ TEST_SUITE("surface") {
     }
   }
 
+  TEST_CASE("lenslet arrays: a path's consecutive crease queries agree with cold ones") {
+    // section_creases keeps, per thread, the lenslets near the last stretch it was asked
+    // about, and answers a nearby stretch from that list. Along a spiral-like walk of
+    // stretches (0.3° and 2 µm apart, ±0.4 mm about the contact) each warm answer must
+    // equal, bit for bit, the answer to the same stretch asked cold (another array asked
+    // in between takes the thread's list, so the next query rebuilds it), and every
+    // tenth is walked as above. A copy of the array keeps its own list.
+    const LensletArray a(eye(Pattern::kRings));
+    const LensletArray b(eye(Pattern::kHexagonal));
+    const LensletArray copy = a;
+    long compared = 0, crossings = 0;
+    double rho = 5.2, theta = 0.3;
+    std::mt19937 rng(23);
+    std::uniform_real_distribution<double> unit(0, 1);
+    for (int k = 0; k < 6000; ++k, theta += 0.3 * std::numbers::pi / 180, rho -= 2e-4) {
+      const RadialLine line(theta);
+      std::array<double, 32> warm{}, cold{}, other{}, copied{};
+      // A stretch beside this one first, up to 0.1 rad and 0.3 mm away: the query after
+      // it is answered from its list where that covers it, and rebuilds it where not.
+      a.section_creases(RadialLine(theta - 0.1 * unit(rng)), rho - 0.4 + 0.3 * unit(rng),
+                        rho + 0.4 + 0.3 * unit(rng), warm);
+      const int n_warm = a.section_creases(line, rho - 0.4, rho + 0.4, warm);
+      b.section_creases(line, rho - 0.4, rho + 0.4, other);  // takes the thread's list
+      const int n_cold = a.section_creases(line, rho - 0.4, rho + 0.4, cold);
+      const int n_copy = copy.section_creases(line, rho - 0.4, rho + 0.4, copied);
+      REQUIRE(n_warm == n_cold);
+      REQUIRE(n_copy == n_cold);
+      for (int j = 0; j < n_warm; ++j) {
+        CHECK(warm[j] == cold[j]);
+        CHECK(copied[j] == cold[j]);
+      }
+      ++compared;
+      crossings += n_warm;
+      if (k % 10 != 0) continue;
+      const auto at = [&](double r) { return a.lenslet_at(r * line.cos, r * line.sin); };
+      for (double x = rho - 0.4; x < rho + 0.4; x += 5e-4) {
+        const double y = std::min(rho + 0.4, x + 5e-4);
+        if (at(x) == at(y)) continue;
+        bool reported = false;
+        for (int j = 0; j < n_cold; ++j) reported = reported || (cold[j] >= x - 1e-9 && cold[j] <= y + 1e-9);
+        CAPTURE(theta);
+        CAPTURE(x);
+        CHECK(reported);
+      }
+    }
+    CHECK(compared == 6000);
+    CHECK(crossings > 3000);
+  }
+
   TEST_CASE("compound eye: lens points on their sphere, continuous at every rim") {
     const LensletArrayOptions o = eye(Pattern::kRings);
     const LensletArray s(o);

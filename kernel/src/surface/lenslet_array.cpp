@@ -2,9 +2,11 @@
 
 #include <algorithm>
 #include <cmath>
+#include <cstdint>
 #include <limits>
 #include <numbers>
 #include <string>
+#include <vector>
 
 #include "freeturn/core/error.hpp"
 #include "freeturn/core/number_text.hpp"
@@ -21,6 +23,27 @@ double sphere_sag(double c, double a) {
 std::string mm(double v) {
   return significant_text(v, 6) + " mm";
 }
+
+// The squared distance in (x, y) from p to the segment from a to b (compared with a
+// squared bound: std::hypot's care for overflow costs more than the rest of a query).
+double segment_distance_squared(double px, double py, double ax, double ay, double bx, double by) {
+  const double dx = bx - ax, dy = by - ay, len2 = dx * dx + dy * dy;
+  const double t = len2 > 0 ? std::clamp(((px - ax) * dx + (py - ay) * dy) / len2, 0.0, 1.0) : 0.0;
+  const double ex = px - ax - t * dx, ey = py - ay - t * dy;
+  return ex * ex + ey * ey;
+}
+
+// This thread's crease candidates (LensletArray::section_creases): every lenslet whose
+// footprint comes within `pad` of a stretch of a radial line, ascending. A later stretch
+// whose ends both lie within `pad` of that one lies wholly within it (the pad's
+// neighbourhood of a segment is convex), so every footprint that reaches the later one is
+// listed: consecutive queries of a path reuse the list instead of scanning grid cells.
+struct CreaseCandidates {
+  std::uint64_t owner = 0;  // the array's instance id; 0: none yet
+  double x0 = 0, y0 = 0, x1 = 0, y1 = 0, pad = 0;
+  std::vector<int> lenslets;
+};
+thread_local CreaseCandidates crease_candidates;
 
 }  // namespace
 
@@ -156,6 +179,45 @@ LensletArray::LensletArray(const LensletArrayOptions& options) : o_(options) {
     for (int i : list) lookup_.push_back(by_lenslet_[static_cast<std::size_t>(i)]);
     cell_start_.push_back(static_cast<int>(cell_items_.size()));
   }
+  // lenslet_at's own grid, up to four times finer (at most about two million cells), each
+  // cell listing only the lenslets whose footprint can reach it (within crease_reach_ of
+  // the base point): a point on the base between lenslets, near half of a path's
+  // queries, then tests one or two footprints, or none, instead of a pitch-sized cell's
+  // three or four. In ascending lenslet order, like the cells above, so that where
+  // footprints overlap the first to hold a point is the same lenslet.
+  const int fine = std::clamp(static_cast<int>(std::sqrt(2e6 / (side * side))), 1, 4);
+  fine_cell_ = cell_ / fine;
+  inverse_fine_cell_ = 1 / fine_cell_;
+  fine_per_side_ = cells_per_side_ * fine;
+  std::vector<int> fine_count(static_cast<std::size_t>(fine_per_side_) * fine_per_side_ + 1, 0);
+  const auto fine_cells_of = [&](const Lenslet& l, auto&& visit) {
+    const double px = l.base_point.x(), py = l.base_point.y();
+    const auto index = [&](double v) {
+      return std::clamp(static_cast<int>(std::floor((v + o_.extent) * inverse_fine_cell_)), 0,
+                        fine_per_side_ - 1);
+    };
+    for (int b = index(py - crease_reach_); b <= index(py + crease_reach_); ++b)
+      for (int a = index(px - crease_reach_); a <= index(px + crease_reach_); ++a) {
+        // The distance from the base point to the cell's square (the edge cells extend to
+        // infinity: the clamp sends points beyond the grid there).
+        const double x_lo = a == 0 ? -1e300 : -o_.extent + a * fine_cell_;
+        const double x_hi = a == fine_per_side_ - 1 ? 1e300 : -o_.extent + (a + 1) * fine_cell_;
+        const double y_lo = b == 0 ? -1e300 : -o_.extent + b * fine_cell_;
+        const double y_hi = b == fine_per_side_ - 1 ? 1e300 : -o_.extent + (b + 1) * fine_cell_;
+        const double dx = std::max({x_lo - px, 0.0, px - x_hi});
+        const double dy = std::max({y_lo - py, 0.0, py - y_hi});
+        if (dx * dx + dy * dy <= crease_reach_ * crease_reach_)
+          visit(static_cast<std::size_t>(b) * fine_per_side_ + a);
+      }
+  };
+  for (const Lenslet& l : lenslets_) fine_cells_of(l, [&](std::size_t k) { ++fine_count[k + 1]; });
+  for (std::size_t k = 1; k < fine_count.size(); ++k) fine_count[k] += fine_count[k - 1];
+  fine_start_ = fine_count;
+  fine_lookup_.resize(static_cast<std::size_t>(fine_start_.back()));
+  for (int i = 0; i < lenslet_count(); ++i)  // ascending: each cell's list is in lenslet order
+    fine_cells_of(lenslets_[static_cast<std::size_t>(i)], [&](std::size_t k) {
+      fine_lookup_[static_cast<std::size_t>(fine_count[k]++)] = by_lenslet_[static_cast<std::size_t>(i)];
+    });
 }
 
 void LensletArray::add_lenslet(double x, double y) {
@@ -223,11 +285,11 @@ int LensletArray::lenslet_at(double x, double y) const {
       holds(by_lenslet_[static_cast<std::size_t>(last_found)]))
     return last_found;
   // x + extent ≥ −cell here: truncation and floor differ only on (−1, 0), clamped to 0.
-  const int a = std::clamp(static_cast<int>((x + o_.extent) * inverse_cell_), 0, cells_per_side_ - 1);
-  const int b = std::clamp(static_cast<int>((y + o_.extent) * inverse_cell_), 0, cells_per_side_ - 1);
-  const int k = b * cells_per_side_ + a;
-  for (int idx = cell_start_[k]; idx < cell_start_[k + 1]; ++idx) {
-    const LookupEntry& l = lookup_[static_cast<std::size_t>(idx)];
+  const int a = std::clamp(static_cast<int>((x + o_.extent) * inverse_fine_cell_), 0, fine_per_side_ - 1);
+  const int b = std::clamp(static_cast<int>((y + o_.extent) * inverse_fine_cell_), 0, fine_per_side_ - 1);
+  const int k = b * fine_per_side_ + a;
+  for (int idx = fine_start_[k]; idx < fine_start_[k + 1]; ++idx) {
+    const LookupEntry& l = fine_lookup_[static_cast<std::size_t>(idx)];
     if (holds(l)) return last_found = l.lenslet;
   }
   return -1;
@@ -258,59 +320,79 @@ int LensletArray::section_creases(const RadialLine& line, double rho_lo, double 
   if (!(rho_lo <= rho_hi) || !std::isfinite(rho_lo) || !std::isfinite(rho_hi)) return 0;
   const double ct = line.cos, st = line.sin;
   const double half = 0.5 * o_.lens_diameter, cb = o_.base_curvature;
-  // The cells the segment's bounding box meets list every lenslet whose rim it can cross.
-  const auto cell_of = [&](double v) {
-    return std::clamp(static_cast<int>(std::floor((v + o_.extent) / cell_)), 0,
-                      cells_per_side_ - 1);
-  };
   const double x0 = rho_lo * ct, x1 = rho_hi * ct, y0 = rho_lo * st, y1 = rho_hi * st;
-  const int a_lo = cell_of(std::min(x0, x1)), a_hi = cell_of(std::max(x0, x1));
-  const int b_lo = cell_of(std::min(y0, y1)), b_hi = cell_of(std::max(y0, y1));
+  CreaseCandidates& c = crease_candidates;
+  const double pad_squared = c.pad * c.pad;
+  if (c.owner != id_.value ||
+      !(segment_distance_squared(x0, y0, c.x0, c.y0, c.x1, c.y1) <= pad_squared &&
+        segment_distance_squared(x1, y1, c.x0, c.y0, c.x1, c.y1) <= pad_squared)) {
+    // The lenslets listed in the cells the padded stretch's bounding box meets (a
+    // footprint lies within its bounding square, which is what the cells list), kept
+    // where the footprint can come within the pad of the stretch.
+    c.owner = id_.value;
+    c.x0 = x0, c.y0 = y0, c.x1 = x1, c.y1 = y1;
+    c.pad = 0.25 * o_.pitch;
+    c.lenslets.clear();
+    const auto cell_of = [&](double v) {
+      return std::clamp(static_cast<int>(std::floor((v + o_.extent) / cell_)), 0,
+                        cells_per_side_ - 1);
+    };
+    const double keep_squared = (crease_reach_ + c.pad) * (crease_reach_ + c.pad);
+    const int a_lo = cell_of(std::min(x0, x1) - c.pad), a_hi = cell_of(std::max(x0, x1) + c.pad);
+    const int b_lo = cell_of(std::min(y0, y1) - c.pad), b_hi = cell_of(std::max(y0, y1) + c.pad);
+    for (int b = b_lo; b <= b_hi; ++b)
+      for (int a = a_lo; a <= a_hi; ++a) {
+        const int k = b * cells_per_side_ + a;
+        for (int idx = cell_start_[k]; idx < cell_start_[k + 1]; ++idx) {
+          const LookupEntry& l = lookup_[static_cast<std::size_t>(idx)];
+          if (segment_distance_squared(l.px, l.py, x0, y0, x1, y1) <= keep_squared)
+            c.lenslets.push_back(l.lenslet);
+        }
+      }
+    std::sort(c.lenslets.begin(), c.lenslets.end());
+    c.lenslets.erase(std::unique(c.lenslets.begin(), c.lenslets.end()), c.lenslets.end());
+  }
   int count = 0;
   const auto add = [&](double rho) {
     if (!(rho >= rho_lo && rho <= rho_hi)) return;
     for (int k = 0; k < count; ++k)
-      if (std::abs(out[k] - rho) <= 1e-12) return;  // a lenslet listed in two cells
+      if (std::abs(out[k] - rho) <= 1e-12) return;  // two rims through one point
     if (count < static_cast<int>(out.size())) out[count++] = rho;
   };
-  for (int b = b_lo; b <= b_hi; ++b)
-    for (int a = a_lo; a <= a_hi; ++a) {
-      const int k = b * cells_per_side_ + a;
-      for (int idx = cell_start_[k]; idx < cell_start_[k + 1]; ++idx) {
-        const LookupEntry& l = lookup_[static_cast<std::size_t>(idx)];
-        const double along = l.px * ct + l.py * st;  // the centre's projection on the line
-        // A footprint lies within crease_reach_ of its centre in (x, y): a lenslet farther
-        // from the line, or beside the stretch, has no rim on it there. Most candidates
-        // of the cells end here, before the roots below.
-        if (!(std::abs(l.py * ct - l.px * st) <= crease_reach_ && along >= rho_lo - crease_reach_ &&
-              along <= rho_hi + crease_reach_))
-          continue;
-        const double cx = l.px, cy = l.py;
-        if (cb == 0) {
-          // |ρ e_r − c|² = (D/2)²: ρ² − 2ρ·along + |c|² − (D/2)² = 0.
-          const double disc = along * along - (cx * cx + cy * cy) + half * half;
-          if (disc < 0) continue;
-          add(along - std::sqrt(disc));
-          add(along + std::sqrt(disc));
-          continue;
-        }
-        // On the sphere (centre O on the axis, radius R_b) the rim is where the angle at O
-        // between the point and c is α, sin α = (D/2)/R_b: with ρ = R_b sin φ,
-        //   along·sin φ + √(R_b² − |c_xy|²)·cos φ = R_b cos α.
-        const double rb = 1 / std::abs(cb);
-        const double bc = rim_height_[static_cast<std::size_t>(l.lenslet)];
-        const double m = std::sqrt(along * along + bc * bc);  // mm-sized: no overflow
-        const double q = rim_cosine_ / m;
-        if (!(q <= 1)) continue;
-        // φ + β = asin q or π − asin q, with cos β = along/m, sin β = bc/m, kept where
-        // |φ| ≤ π/2 (cos φ ≥ 0): sin φ and cos φ by the angle-sum rules, no inverse
-        // trigonometric function (three of them per lenslet were a tenth of the planner).
-        const double cos_beta = along / m, sin_beta = bc / m;
-        const double root = std::sqrt(std::max(0.0, 1 - q * q));  // cos(asin q)
-        if (root * cos_beta + q * sin_beta >= 0) add(rb * (q * cos_beta - root * sin_beta));
-        if (q * sin_beta - root * cos_beta >= 0) add(rb * (q * cos_beta + root * sin_beta));
-      }
+  for (const int i : c.lenslets) {
+    const LookupEntry& l = by_lenslet_[static_cast<std::size_t>(i)];
+    const double along = l.px * ct + l.py * st;  // the centre's projection on the line
+    // A footprint lies within crease_reach_ of its centre in (x, y): a lenslet farther
+    // from the line, or beside the stretch, has no rim on it there. Most candidates end
+    // here, before the roots below.
+    if (!(std::abs(l.py * ct - l.px * st) <= crease_reach_ && along >= rho_lo - crease_reach_ &&
+          along <= rho_hi + crease_reach_))
+      continue;
+    const double cx = l.px, cy = l.py;
+    if (cb == 0) {
+      // |ρ e_r − c|² = (D/2)²: ρ² − 2ρ·along + |c|² − (D/2)² = 0.
+      const double disc = along * along - (cx * cx + cy * cy) + half * half;
+      if (disc < 0) continue;
+      add(along - std::sqrt(disc));
+      add(along + std::sqrt(disc));
+      continue;
     }
+    // On the sphere (centre O on the axis, radius R_b) the rim is where the angle at O
+    // between the point and c is α, sin α = (D/2)/R_b: with ρ = R_b sin φ,
+    //   along·sin φ + √(R_b² − |c_xy|²)·cos φ = R_b cos α.
+    const double rb = 1 / std::abs(cb);
+    const double bc = rim_height_[static_cast<std::size_t>(l.lenslet)];
+    const double m = std::sqrt(along * along + bc * bc);  // mm-sized: no overflow
+    const double q = rim_cosine_ / m;
+    if (!(q <= 1)) continue;
+    // φ + β = asin q or π − asin q, with cos β = along/m, sin β = bc/m, kept where
+    // |φ| ≤ π/2 (cos φ ≥ 0): sin φ and cos φ by the angle-sum rules, no inverse
+    // trigonometric function (three of them per lenslet were a tenth of the planner).
+    const double cos_beta = along / m, sin_beta = bc / m;
+    const double root = std::sqrt(std::max(0.0, 1 - q * q));  // cos(asin q)
+    if (root * cos_beta + q * sin_beta >= 0) add(rb * (q * cos_beta - root * sin_beta));
+    if (q * sin_beta - root * cos_beta >= 0) add(rb * (q * cos_beta + root * sin_beta));
+  }
   std::sort(out.begin(), out.begin() + count);
   return count;
 }

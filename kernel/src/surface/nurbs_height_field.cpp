@@ -2,7 +2,6 @@
 
 #include <Eigen/LU>
 #include <algorithm>
-#include <atomic>
 #include <cmath>
 #include <limits>
 #include <optional>
@@ -31,8 +30,6 @@ struct ThreadSpanCache {
 };
 thread_local ThreadSpanCache span_cache;
 
-std::atomic<std::uint64_t> next_instance_id{1};
-
 // Greville abscissa of control point i: the knot average that reproduces linear functions.
 double greville(const nurbs::KnotVector& k, int i) {
   double sum = 0;
@@ -50,9 +47,6 @@ double segment_distance(const Eigen::Vector2d& a, const Eigen::Vector2d& b) {
 }  // namespace
 
 void forget_thread_warm_starts() { warm_start = {}; }
-
-NurbsHeightField::InstanceId::InstanceId()
-    : value(next_instance_id.fetch_add(1, std::memory_order_relaxed)) {}
 
 nurbs::SurfaceDerivatives NurbsHeightField::evaluate_cached(double u, double v, int order) const {
   if (span_cache.owner != id_.value) {

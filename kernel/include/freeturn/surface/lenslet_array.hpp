@@ -15,6 +15,7 @@
 #include <Eigen/Core>
 #include <vector>
 
+#include "freeturn/core/instance_id.hpp"
 #include "freeturn/surface/surface.hpp"
 
 namespace freeturn {
@@ -64,6 +65,7 @@ class LensletArray final : public Surface {
   HeightDerivatives evaluate(double x, double y) const;
   void add_lenslet(double x, double y);
 
+  InstanceId id_;  // the key of each thread's crease candidates (section_creases)
   LensletArrayOptions o_;
   double vertex_height_ = 0;  // h, along the axis
   std::vector<Lenslet> lenslets_;
@@ -80,6 +82,12 @@ class LensletArray final : public Surface {
   };
   std::vector<LookupEntry> lookup_;
   std::vector<LookupEntry> by_lenslet_;  // the same, one per lenslet, in lenslet order
+  // lenslet_at's finer grid: cells of fine_cell_, cell k listing the lenslets whose
+  // footprint can reach it, fine_lookup_[fine_start_[k] … fine_start_[k + 1]).
+  double fine_cell_ = 0, inverse_fine_cell_ = 0;
+  int fine_per_side_ = 0;
+  std::vector<int> fine_start_;
+  std::vector<LookupEntry> fine_lookup_;
   bool disjoint_ = false;                // no two footprints overlap (lenslet_at's hint)
   // On a sphere of radius R_b: √(R_b² − |c_xy|²) per lenslet (its base point's height over
   // the sphere's centre) and R_b cos α = √(R_b² − (D/2)²), for section_creases and

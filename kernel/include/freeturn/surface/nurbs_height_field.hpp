@@ -21,6 +21,7 @@
 #include <span>
 #include <vector>
 
+#include "freeturn/core/instance_id.hpp"
 #include "freeturn/nurbs/surface_locator.hpp"
 #include "freeturn/surface/surface.hpp"
 
@@ -68,19 +69,7 @@ class NurbsHeightField final : public Surface {
   double boundary_distance() const;
   void find_creases();
 
-  // A number no other surface of this process has had: fresh on construction, copy and
-  // move (the thread caches' key).
-  struct InstanceId {
-    std::uint64_t value;
-    InstanceId();
-    InstanceId(const InstanceId&) : InstanceId() {}
-    InstanceId& operator=(const InstanceId&) {
-      *this = InstanceId();
-      return *this;
-    }
-  };
-
-  InstanceId id_;
+  InstanceId id_;  // the thread caches' key
   nurbs::SurfaceLocator locator_;
   bool affine_ = false;
   double x0_ = 0, sx_ = 1, y0_ = 0, sy_ = 1;
