@@ -143,9 +143,8 @@ bool peak_within_secant_bound(const double* e, int best, int intervals, double f
   return largest >= (1 - 5e-3) * bound && largest <= (1 + 1e-9) * bound;
 }
 
-//
-// The samples are taken coarse to fine (every eighth, then the fourths between, ...).
-// Where a level's largest sample already passes `cutoff`, the segment is over it whatever
+// The largest deviation (described above kCreasedIntervals). Its samples are taken coarse
+// to fine (every eighth, then the fourths between, ...). Where a level's largest sample already passes `cutoff`, the segment is over it whatever
 // the finer samples show, and the search stops there: it returns that level's estimate
 // (its largest sample, raised to the parabola's vertex through it and its neighbours when
 // that is higher), which is enough for the step search to predict its next step from. A
@@ -241,10 +240,9 @@ double segment_error(const Path& path, const Segment& segment, Interpolation mod
   // The radial lines at C(τ) on the grid, by rotation from the segment's start: two sines
   // and cosines a segment instead of one a sample (C is affine in τ, so these are also
   // the lines of linear motion's samples; a cubic's C is not, and takes its own).
-  const RadialLine first(a.c);
   const RadialLine unit((b.c - a.c) / kGrid);
   RadialLine grid_line[kGrid + 1];
-  grid_line[0] = first;
+  grid_line[0] = RadialLine(a.c);
   for (int j = 1; j <= kGrid; ++j) {
     const double t = static_cast<double>(j) / kGrid;
     const RadialLine& last = grid_line[j - 1];
