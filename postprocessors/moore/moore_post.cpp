@@ -150,12 +150,8 @@ class MoorePost {
       const char letter = l.letters[i];
       const double v = letter == 'X' ? b.x : letter == 'Z' ? b.z : letter == 'C' ? b.c : b.b;
       if (w > 0) text[length++] = ' ';
-      text[length++] = letter;
-      const int n = letter == 'C' && info_.c_wrapped
-                        ? freeturn::post::format_wrapped_degrees(v, l.decimals[i], text + length)
-                        : freeturn::post::format_fixed(v, l.decimals[i], text + length);
-      if (n == 0) throw freeturn::post::unwritable(letter, v, l.decimals[i]);
-      length += n;
+      length += freeturn::post::format_word(letter, v, l.decimals[i],
+                                            letter == 'C' && info_.c_wrapped, text + length);
     }
     if (!line_.empty() && line_.back() != '\n' && length > 0) line_.push_back(' ');
     line_.append(text, static_cast<std::size_t>(length));

@@ -176,7 +176,6 @@ LensletArray::LensletArray(const LensletArrayOptions& options) : o_(options) {
   cell_start_.push_back(0);
   for (const auto& list : cells) {
     cell_items_.insert(cell_items_.end(), list.begin(), list.end());
-    for (int i : list) lookup_.push_back(by_lenslet_[static_cast<std::size_t>(i)]);
     cell_start_.push_back(static_cast<int>(cell_items_.size()));
   }
   // lenslet_at's own grid, up to four times finer (at most about two million cells), each
@@ -344,9 +343,10 @@ int LensletArray::section_creases(const RadialLine& line, double rho_lo, double 
       for (int a = a_lo; a <= a_hi; ++a) {
         const int k = b * cells_per_side_ + a;
         for (int idx = cell_start_[k]; idx < cell_start_[k + 1]; ++idx) {
-          const LookupEntry& l = lookup_[static_cast<std::size_t>(idx)];
+          const int i = cell_items_[static_cast<std::size_t>(idx)];
+          const LookupEntry& l = by_lenslet_[static_cast<std::size_t>(i)];
           if (segment_distance_squared(l.px, l.py, x0, y0, x1, y1) <= keep_squared)
-            c.lenslets.push_back(l.lenslet);
+            c.lenslets.push_back(i);
         }
       }
     std::sort(c.lenslets.begin(), c.lenslets.end());

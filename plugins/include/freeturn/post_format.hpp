@@ -121,15 +121,23 @@ inline std::range_error unwritable(char letter, double value, int decimals) {
                           " decimals (not finite, or too long for an NC word)");
 }
 
+// Writes `letter` and the value (fixed decimals; C wrapped when `wrapped`) into `out`
+// (room for kNumberCapacity + 1 bytes) and returns the length. Throws std::range_error
+// when the value cannot be written (format_fixed).
+inline int format_word(char letter, double value, int decimals, bool wrapped, char* out) {
+  out[0] = letter;
+  const int n = wrapped ? format_wrapped_degrees(value, decimals, out + 1)
+                        : format_fixed(value, decimals, out + 1);
+  if (n == 0) throw unwritable(letter, value, decimals);
+  return n + 1;
+}
+
 // Appends `letter` and the value (fixed decimals; C wrapped when `wrapped`) to `line`.
 // Throws std::range_error when the value cannot be written (format_fixed).
 inline void append_word(std::string& line, char letter, double value, int decimals,
                         bool wrapped = false) {
-  char buf[kNumberCapacity];
-  const int n = wrapped ? format_wrapped_degrees(value, decimals, buf) : format_fixed(value, decimals, buf);
-  if (n == 0) throw unwritable(letter, value, decimals);
-  line.push_back(letter);
-  line.append(buf, static_cast<std::size_t>(n));
+  char buf[kNumberCapacity + 1];
+  line.append(buf, static_cast<std::size_t>(format_word(letter, value, decimals, wrapped, buf)));
 }
 
 // Appends the value alone (fixed decimals). Throws std::range_error as append_word does.

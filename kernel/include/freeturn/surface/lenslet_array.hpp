@@ -69,19 +69,18 @@ class LensletArray final : public Surface {
   LensletArrayOptions o_;
   double vertex_height_ = 0;  // h, along the axis
   std::vector<Lenslet> lenslets_;
-  // Lookup grid: cells of size cell_ over [−extent, extent]²; cell k lists lenslets
-  // cell_items_[cell_start_[k] … cell_start_[k + 1]).
+  // The pitch-sized grid (section_creases' candidates): cells of size cell_ over
+  // [−extent, extent]²; cell k lists lenslets cell_items_[cell_start_[k] … cell_start_[k + 1]).
   double cell_ = 0, inverse_cell_ = 0;
   int cells_per_side_ = 0;
   std::vector<int> cell_start_, cell_items_;
-  // What lenslet_at reads of cell_items_[j]'s lenslet, in cell order.
+  // What lenslet_at and section_creases read of a lenslet.
   struct LookupEntry {
     double px, py;      // the base point's (x, y)
     double ux, uy, w2;  // on a sphere: sgn(c)·a_x, sgn(c)·a_y and a_z² of the axis a
     int lenslet;
   };
-  std::vector<LookupEntry> lookup_;
-  std::vector<LookupEntry> by_lenslet_;  // the same, one per lenslet, in lenslet order
+  std::vector<LookupEntry> by_lenslet_;  // one per lenslet, in lenslet order
   // lenslet_at's finer grid: cells of fine_cell_, cell k listing the lenslets whose
   // footprint can reach it, fine_lookup_[fine_start_[k] … fine_start_[k + 1]).
   double fine_cell_ = 0, inverse_fine_cell_ = 0;
