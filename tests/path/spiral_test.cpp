@@ -377,4 +377,49 @@ TEST_SUITE("path") {
     CHECK(std::abs(runs[0][360].theta - 360 * step) <= 1e-12);
     CHECK(runs[0].size() > 200 * 90);
   }
+
+  TEST_CASE("equal arc lengths in bands: the same points on 1, 2 and 8 threads, equal chords across seams") {
+    const NurbsHeightField surface = test::wavy_nurbs(12, 0.2);
+    const BaseSurface base = fit_base_least_squares(sample_aperture(surface, 0, 4.0));
+    SpiralOptions o;
+    o.outer_radius = 4.0;
+    o.pitch = 0.02;  // about 200 turns: 50 bands or so, each seam a point of the rule's walk
+    o.points.rule = CutterPointRule::kEqualArcLength;
+    o.points.arc_length = 0.05;
+    std::vector<std::vector<ContactPoint>> runs;
+    for (int threads : {1, 2, 8}) {
+      o.threads = threads;
+      ContactCollector out;
+      plan_spiral(surface, base, o, out);
+      runs.push_back(out.points);
+    }
+    for (std::size_t r = 1; r < runs.size(); ++r) {
+      REQUIRE(runs[r].size() == runs[0].size());
+      bool same = true;
+      for (std::size_t k = 0; k < runs[0].size(); ++k)
+        same = same && runs[r][k].theta == runs[0][k].theta && runs[r][k].point == runs[0][k].point &&
+               runs[r][k].chord_error == runs[0][k].chord_error;
+      CHECK(same);
+    }
+    // The path is about π·4²/0.02 = 2513 mm long (its turns a pitch apart): some 50 000
+    // chords of 0.05 mm. Where the angle cap (5°) binds, inside r = 0.05 mm / 5° = 0.573 mm,
+    // a chord is shorter: 0.573 / 0.02 = 28.6 turns of 72 steps, 2 063. Elsewhere every
+    // chord is 0.05 mm to the rule's 1e-8, the last excepted, and none is shorter (a seam
+    // that cut a step short would show here).
+    const std::vector<ContactPoint>& p = runs[0];
+    REQUIRE(p.size() > 40000);
+    double worst = 0;
+    long capped = 0;
+    for (std::size_t k = 1; k + 1 < p.size(); ++k) {
+      const double chord = (p[k].point - p[k - 1].point).norm();
+      if (p[k].theta - p[k - 1].theta >= 5 * std::numbers::pi / 180 * (1 - 1e-9)) {
+        ++capped;
+        continue;
+      }
+      worst = std::max(worst, std::abs(chord / 0.05 - 1));
+    }
+    CHECK(worst <= 1e-6);
+    CHECK(capped >= 1950);
+    CHECK(capped <= 2150);
+  }
 }

@@ -337,6 +337,71 @@ inline bool apart(const AxisState& a, const AxisState& b) {
 // jump the ratio grows without bound as the step shrinks.
 constexpr double kJumpRatio = 100;
 
+// The equal-arc-length rule's next block after `current`: the step in τ whose chord
+// between the two contacts is o.arc_length to 1e-8 (or the largest step, where the angle
+// cap or the end binds), by proportional corrections from `step`, the last step taken
+// (along a path they change slowly: two or three evaluations a block). The tight
+// tolerance makes a block a function of the one before it alone, whatever the first guess:
+// a band that walks from a seam follows the walk that placed it (spiral.cpp,
+// equal_arc_seams), where a looser one let the two drift apart by a tenth of a step.
+//
+// The contact is not continuous everywhere: where the nose is held at a crease it touches
+// one flank while the projection crosses the crease, then the other (section_envelope.hpp),
+// and the contact jumps. So the corrections keep a bracket of steps short and long of the
+// length, and bisect it where they would leave it. A bracket that closes on a jump takes
+// the step just short of it; where that step would not move the block (the jump is at the
+// start), the length counts from where the contact lands past the jump instead. `step`
+// returns the step taken.
+template <class Path>
+void next_equal_arc_point(const Path& path, const CutterPointOptions& o, const AxisState& current,
+                          double end, double& step, AxisState& trial) {
+  const double remaining = end - current.tau;
+  const auto advance = [&](double d) { return d >= remaining ? end : current.tau + d; };
+  const double limit = std::min(path.cap(), remaining);
+  step = std::min(step, limit);
+  const double first_guess = step;
+  constexpr double kNone = std::numeric_limits<double>::infinity();
+  Eigen::Vector3d from = current.point;
+  double short_step = 0, long_step = kNone;
+  AxisState short_state, long_state;
+  bool landed = false;
+  for (int it = 0; it < 100; ++it) {
+    path.at(advance(step), trial);
+    const double chord = (trial.point - from).norm();
+    if (std::abs(chord - o.arc_length) <= 1e-8 * o.arc_length) return;
+    if (chord < o.arc_length) {
+      if (step >= limit) return;  // the cap or the end binds
+      short_step = step;
+      short_state = trial;
+    } else {
+      long_step = step;
+      long_state = trial;
+    }
+    // A jump: the bracket closed on it, or no step is short of the length however short.
+    if ((long_step < kNone && long_step - short_step <= 1e-9 * long_step) ||
+        (short_step == 0 && long_step <= 1e-9 * first_guess)) {
+      if (short_step > 0 && apart(short_state, current)) break;
+      if (landed) break;
+      landed = true;
+      from = long_state.point;
+      short_step = long_step;
+      short_state = long_state;
+      long_step = kNone;
+      step = std::max(first_guess, 2 * short_step);
+      continue;
+    }
+    double next = chord > 0 ? std::min(limit, step * o.arc_length / chord) : limit;
+    if (!(next > short_step && next < long_step)) next = 0.5 * (short_step + long_step);
+    if (next == step) break;
+    step = next;
+  }
+  // Unconverged (a jump): the step just short of the length.
+  if (short_step > 0 && trial.tau != short_state.tau) {
+    step = short_step;
+    trial = short_state;
+  }
+}
+
 // Walks τ from 0 to tau_end, calling emit(state, chord_error, jump) for every point, the
 // chord error (of the segment that ends at the point) signed as segment_error's. `jump`
 // marks a segment across which the programmed point jumps (the nose centre at a crease
@@ -425,15 +490,7 @@ void distribute(Path& path, const CutterPointOptions& o, Emit&& emit, double beg
       step = trial.tau - current.tau;
       measure(trial, kFull);
     } else if (o.rule == CutterPointRule::kEqualArcLength) {
-      step = std::min(step, limit);
-      for (int it = 0; it < 3; ++it) {
-        path.at(advance(step), trial);
-        const double chord = (trial.point - current.point).norm();
-        const double next = chord > 0 ? std::min(limit, step * o.arc_length / chord) : limit;
-        if (std::abs(next - step) <= 1e-3 * step) break;
-        step = next;
-      }
-      path.at(advance(step), trial);
+      next_equal_arc_point(path, o, current, end, step, trial);
       measure(trial, kFull);
     } else {
       // The largest step whose error is at most the target: e ∝ step^order locally, so
@@ -612,8 +669,12 @@ void distribute(Path& path, const CutterPointOptions& o, Emit&& emit, double beg
         }
       }
     }
-    // A last sliver shorter than a millionth of a step joins this one instead.
-    if (end - trial.tau < 1e-6 * step && trial.tau < end) {
+    // A last sliver shorter than a millionth of a step joins this one instead. Under
+    // equal arc lengths, one shorter than a hundredth: a band's end is a point of the same
+    // rule's walk (spiral.cpp, equal_arc_seams), which the band's own points follow to
+    // the rule's tolerance, not to the bit.
+    const double sliver = o.rule == CutterPointRule::kEqualArcLength ? 1e-2 : 1e-6;
+    if (end - trial.tau < sliver * step && trial.tau < end) {
       path.at(end, trial);
       measure(trial, kFull);
     }

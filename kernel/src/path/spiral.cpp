@@ -171,13 +171,15 @@ class SpiralPath {
 // consumed, so its length, not the path's, bounds the memory. PVT programs are one band:
 // a cubic's velocities depend on the blocks either side, which a seam would leave unjudged.
 // Equal angles are banded by whole turns, seams on the steps' own angles; equal arc
-// lengths are one band (a seam would leave a short step, and a dialect without block
-// times relies on equal ones). A path of one band streams to the sink.
+// lengths are banded at points of one walk of the rule (equal_arc_seams below), so that
+// no step is cut short at a seam. A path of one band streams to the sink.
 std::vector<double> band_bounds(double end, const CutterPointOptions& points) {
   constexpr double kTurn = 2 * std::numbers::pi;
   std::vector<double> bounds{0.0};
   const double turns = std::clamp(std::ceil(end / kTurn / 64), 1.0, 4.0);
-  if (points.interpolation != Interpolation::kCubic && points.rule == CutterPointRule::kChordError &&
+  if (points.interpolation != Interpolation::kCubic &&
+      (points.rule == CutterPointRule::kChordError ||
+       points.rule == CutterPointRule::kEqualArcLength) &&
       end > kTurn) {
     // n turns and one radian: a seam's block never falls on a round angle (θ = 2πk, where
     // a sampler that brackets C by whole turns can miss the block by rounding).
@@ -191,6 +193,38 @@ std::vector<double> band_bounds(double end, const CutterPointOptions& points) {
     const long per_band = static_cast<long>(turns) * points.points_per_revolution;
     for (long k = 1; static_cast<double>(k * per_band) * step < end - 1e-9 * step; ++k)
       bounds.push_back(static_cast<double>(k * per_band) * step);
+  }
+  bounds.push_back(end);
+  return bounds;
+}
+
+// Equal arc lengths: the bands' seams are points of one walk of the whole path by the
+// rule, the first at or past each of `nominal`'s inner bounds. The walk places points
+// only, measuring no chord: four path evaluations a point against the hundred or so a
+// measured point costs on a creased design, so it holds the bands back little. Each band
+// then walks from its seam to the next one by the same rule and lands on it, so every step
+// is the rule's own, across the seams too (the band's points follow the walk's to rounding;
+// a remainder under a hundredth of a step joins the last one: path_stepper.hpp). The walk
+// depends on the path alone: the seams are the same on any number of threads.
+std::vector<double> equal_arc_seams(const SpiralPath& path, const CutterPointOptions& points,
+                                    const std::vector<double>& nominal) {
+  const double end = nominal.back();
+  std::vector<double> bounds{nominal.front()};
+  SpiralPath walker = path;
+  detail::AxisState current, next;
+  walker.at(nominal.front(), current);
+  walker.commit(current);
+  double step = std::min(walker.cap(), end - nominal.front());
+  std::size_t k = 1;
+  while (k + 1 < nominal.size() && current.tau < end) {
+    detail::next_equal_arc_point(walker, points, current, end, step, next);
+    walker.commit(next);
+    current = next;
+    // A seam within a step of the end would leave a band of one short step.
+    if (current.tau >= nominal[k] && end - current.tau > walker.cap()) {
+      bounds.push_back(current.tau);
+      while (k + 1 < nominal.size() && nominal[k] <= current.tau) ++k;
+    }
   }
   bounds.push_back(end);
   return bounds;
@@ -211,7 +245,11 @@ PathSummary plan_spiral(const Surface& design, const BaseSurface& base,
     throw InputError("points_per_revolution", "must be at least 3");
   forget_thread_warm_starts();
   const SpiralPath path(design, base, o);
-  const std::vector<double> bounds = band_bounds(path.tau_end(), o.points);
+  std::vector<double> bounds = band_bounds(path.tau_end(), o.points);
+  if (o.points.rule == CutterPointRule::kEqualArcLength && bounds.size() > 2) {
+    forget_thread_warm_starts();  // the walk's bits may not depend on the thread's past
+    bounds = equal_arc_seams(path, o.points, bounds);
+  }
   const long bands = static_cast<long>(bounds.size()) - 1;
   struct Band {
     std::vector<ContactPoint> points;
@@ -245,7 +283,7 @@ PathSummary plan_spiral(const Surface& design, const BaseSurface& base,
     out.push(p);
   };
   if (bands == 1) {
-    // One band (PVT, equal steps, or a path of a turn or so): there is nothing to put in
+    // One band (PVT, or a path of a turn or so): there is nothing to put in
     // order, so its points go straight to the sink and memory stays flat however long
     // the path is.
     forget_thread_warm_starts();  // as a band would: the path's set-up used them
