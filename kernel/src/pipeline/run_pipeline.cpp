@@ -557,8 +557,12 @@ RunResult run_job_at_requested_speed(const Job& job, const PreparedJob& prepared
       !scheduling(job, prepared.machine)) {
     const RunResult probe =
         execute_job(job, prepared, out_dir, nullptr, nullptr, nullptr, requested, true);
+    // The speed the probe found, less a billionth: the run at that speed computes each
+    // block's limit again, and rounding can put it an ulp under the probe's, which its
+    // check would then refuse.
     double rpm = requested;
-    for (const PassFigures& f : probe.report.passes) rpm = std::min(rpm, f.dynamics.max_rpm);
+    for (const PassFigures& f : probe.report.passes)
+      if (f.dynamics.max_rpm < rpm) rpm = f.dynamics.max_rpm * (1 - 1e-9);
     return execute_job(job, prepared, out_dir, observer, files, simulation, rpm);
   }
   return execute_job(job, prepared, out_dir, observer, files, simulation);
