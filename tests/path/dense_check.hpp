@@ -143,8 +143,13 @@ inline double dense_spiral_residual(const Surface& s, const std::vector<CutterLo
     centres.clear();
     for (std::size_t k = 1; k < path.size(); ++k) {
       const double ta = path[k - 1].contact.theta, tb = path[k].contact.theta;
-      const double turns = std::ceil((ta - phi) / kTwoPi);
-      const double t = phi + turns * kTwoPi;
+      // The turn whose φ lies in [ta, tb): both candidates either side of (ta − φ)/2π, so
+      // that a block on φ itself (equal angles, or steps of a cap that divides a turn) is
+      // met by exactly one of its two segments: both compute the same t for the same turn,
+      // where ceil((ta − φ)/2π) alone can round to different turns on either side.
+      const double first = std::floor((ta - phi) / kTwoPi);
+      double t = phi + first * kTwoPi;
+      if (!(t >= ta && t < tb)) t = phi + (first + 1) * kTwoPi;
       if (!(t >= ta && t < tb)) continue;
       const double u = (t - ta) / (tb - ta);
       const auto radial = [&](const CutterLocation& cl) {

@@ -333,17 +333,82 @@ TEST_SUITE("path") {
                runs[r][k].chord_error == runs[0][k].chord_error;
       CHECK(same);
     }
-    // The seams are points: every k·(8π + 1), exactly (four turns and a radian). The
-    // base's arc length is a little over the radius: a little over 200 turns.
-    const double width = 4 * 2 * std::numbers::pi + 1, end = runs[0].back().theta;
+    // The seams are points: every k·299 steps of the 5° cap, exactly (four turns and a
+    // radian, 8π + 1 = 26.13, is 299.5 caps; 299 = 13·23 is prime to the 72 caps a turn).
+    // The base's arc length is a little over the radius: a little over 200 turns.
+    const double cap = 5 * std::numbers::pi / 180, width = 299 * cap, end = runs[0].back().theta;
     long seams = 0;
     for (const ContactPoint& p : runs[0]) {
-      const double k = std::round(p.theta / width);
-      if (p.theta > 0 && p.theta < end && p.theta == k * width) ++seams;
+      const long k = std::lround(p.theta / width);
+      if (p.theta > 0 && p.theta < end && p.theta == static_cast<double>(k * 299) * cap) ++seams;
     }
     CHECK(seams == static_cast<long>(std::ceil(end / width - 1e-9)) - 1);
     CHECK(seams >= 47);
     CHECK(test::densest_chord_error(surface, runs[0]) <= 2e-4);
+  }
+
+  TEST_CASE("PVT in bands: the same points and seams planned again on 1, 2 and 8 threads; ε holds") {
+    const NurbsHeightField surface = test::wavy_nurbs(12, 0.2);
+    const BaseSurface base = fit_base_least_squares(sample_aperture(surface, 0, 4.0));
+    SpiralOptions o;
+    o.outer_radius = 4.0;
+    o.pitch = 0.02;  // about 200 turns: bands of 4 turns and a radian
+    o.points.tolerance = 2e-4;
+    o.points.interpolation = Interpolation::kCubic;
+    std::vector<std::vector<ContactPoint>> runs;
+    std::vector<long> replanned;
+    for (int threads : {1, 2, 8}) {
+      o.threads = threads;
+      ContactCollector out;
+      replanned.push_back(plan_spiral(surface, base, o, out).replanned_seams);
+      runs.push_back(out.points);
+    }
+    REQUIRE(runs[0].size() > 1000);
+    for (std::size_t r = 1; r < runs.size(); ++r) {
+      REQUIRE(runs[r].size() == runs[0].size());
+      bool same = true;
+      for (std::size_t k = 0; k < runs[0].size(); ++k)
+        same = same && runs[r][k].theta == runs[0][k].theta && runs[r][k].point == runs[0][k].point &&
+               runs[r][k].chord_error == runs[0][k].chord_error;
+      CHECK(same);
+      CHECK(replanned[r] == replanned[0]);
+    }
+    // Seams every 299 steps of the 5° cap, as for linear motion: each is a point.
+    const double cap = 5 * std::numbers::pi / 180, width = 299 * cap, end = runs[0].back().theta;
+    long seams = 0;
+    for (const ContactPoint& p : runs[0]) {
+      const long k = std::lround(p.theta / width);
+      if (p.theta > 0 && p.theta < end && p.theta == static_cast<double>(k * 299) * cap) ++seams;
+    }
+    CHECK(seams == static_cast<long>(std::ceil(end / width - 1e-9)) - 1);
+    MESSAGE(seams << " seams, " << replanned[0] << " planned again, " << runs[0].size() << " points");
+    double planned = 0;
+    for (const ContactPoint& p : runs[0]) planned = std::max(planned, p.chord_error);
+    CHECK(planned <= 2e-4);
+  }
+
+  TEST_CASE("chord control where the cap binds: every step is the cap, across the seams too") {
+    // A gentle sphere at a coarse tolerance: the 3° cap binds everywhere, so a one-time
+    // dialect (block_times: constant) can take the program; seams at multiples of the cap
+    // keep it so (a seam at any other angle would cut one step a band short).
+    const EvenAsphere sphere(1 / 200.0, 0);
+    for (const Interpolation mode : {Interpolation::kLinear, Interpolation::kCubic}) {
+      SpiralOptions o;
+      o.outer_radius = 4.0;
+      o.pitch = 0.05;  // 80 turns: bands of a turn and about a radian
+      o.points.tolerance = 1e-2;
+      o.points.max_angle_step = 3 * std::numbers::pi / 180;
+      o.points.interpolation = mode;
+      o.threads = 2;
+      ContactCollector out;
+      plan_spiral(sphere, BaseSurface::plane(4.0), o, out);
+      const std::vector<ContactPoint>& p = out.points;
+      REQUIRE(p.size() > 80 * 120);
+      double worst = 0;
+      for (std::size_t k = 1; k + 1 < p.size(); ++k)
+        worst = std::max(worst, std::abs((p[k].theta - p[k - 1].theta) / o.points.max_angle_step - 1));
+      CHECK(worst <= 1e-9);
+    }
   }
 
   TEST_CASE("equal angles in bands of whole turns: the same points on 1 and 2 threads, equal steps") {

@@ -420,16 +420,48 @@ void next_equal_arc_point(const Path& path, const CutterPointOptions& o, const A
 // the target, and a short enough next step always exists. It is judged finally when the
 // next block is chosen, and emitted then: emission lags one block in PVT mode.
 //
+// The error a segment may reach: the band is [0, ε] above the design, its centre the
+// blocks' stand-off, so each segment may bend ε − stand_off either way from it, less a
+// margin for the sampled maximum.
+inline double chord_target(const CutterPointOptions& o, double stand_off) {
+  return 0.97 * (o.tolerance - stand_off);
+}
+
+// Where a piece of a PVT path meets the pieces either side (spiral.cpp plans bands at
+// once). A cubic's velocity at a seam depends on blocks on both sides, so a piece either
+// knows the blocks before its start (`before2`, `before`: a band planned again after the one
+// before it) or judges its first segment over every block before it the other piece could
+// place: a step back of up to the cap, on the path, or none (`open_start`). Likewise, a
+// piece whose end is a seam judges its last segment over every next step up to the cap
+// (`open_end`). Every judgement over such a range is at its ends and at the piece's own
+// step (as the search judges a new segment at an equal next step, below): the error is
+// convex in the velocity, which runs between them. The seam's true segments are judged again
+// once both pieces are known (spiral.cpp).
+struct PieceJoints {
+  const AxisState* before2 = nullptr;
+  const AxisState* before = nullptr;
+  bool open_start = false;
+  bool open_end = false;
+};
+
 // A piece of the path: τ from `begin` to `end` (the whole path by default), its first point
 // emitted only if `emit_begin` (a piece that continues another leaves that point to it).
 template <class Path, class Emit>
 void distribute(Path& path, const CutterPointOptions& o, Emit&& emit, double begin = 0.0,
-                double end = -1.0, bool emit_begin = true) {
+                double end = -1.0, bool emit_begin = true, const PieceJoints& joints = {}) {
   if (end < 0) end = path.tau_end();
   const bool pvt = o.interpolation == Interpolation::kCubic;
   // The last two blocks before `current` (PVT), and whether they exist.
   AxisState before2, before, current, trial, look, transition;
   bool has_before2 = false, has_before = false;
+  if (pvt && joints.before) {
+    before = *joints.before;
+    has_before = true;
+    if (joints.before2) {
+      before2 = *joints.before2;
+      has_before2 = true;
+    }
+  }
   path.at(begin, current);
   path.commit(current);
   if (emit_begin) emit(current, 0.0, false);
@@ -439,7 +471,7 @@ void distribute(Path& path, const CutterPointOptions& o, Emit&& emit, double beg
   const double order = pvt ? 3.0 : 2.0;
   // The band is [0, ε] above the design, its centre the blocks' stand-off: each segment
   // may bend ε − stand_off either way from it (margin for the sampled maximum).
-  const double target = 0.97 * (o.tolerance - path.stand_off());
+  const double target = chord_target(o, path.stand_off());
   const double min_step = 1e-12 * std::max(1.0, end);
   double step = std::min(path.cap(), end - begin);
   // A trial block's errors: of the new segment (current, trial) and, in PVT mode, of the
@@ -447,26 +479,56 @@ void distribute(Path& path, const CutterPointOptions& o, Emit&& emit, double beg
   double new_error = 0, previous_error = 0;
   // `cutoff`: a segment whose gap alone misses it is not measured further (segment_error).
   constexpr double kFull = std::numeric_limits<double>::infinity();
+  // A PVT segment (a, b) with the blocks either side, signed error. Where a side is a seam
+  // whose block there is not known (PieceJoints), the largest over the blocks it may be:
+  // none (the secant), a step back (or on) of the segment's own length, or of the cap.
+  AxisState joint_before[2], joint_after[2];
+  const auto judge = [&](const AxisState* b0, const AxisState& a, const AxisState& b,
+                         const AxisState* b3, double cutoff) {
+    const bool open_before = !b0 && joints.open_start && a.tau == begin;
+    const bool open_after = !b3 && joints.open_end && b.tau >= end;
+    const AxisState* befores[3] = {b0, nullptr, nullptr};
+    const AxisState* afters[3] = {b3, nullptr, nullptr};
+    const double steps[2] = {b.tau - a.tau, path.cap()};
+    if (open_before) {
+      for (int k = 0; k < 2; ++k) {
+        path.at(std::max(0.0, a.tau - steps[k]), joint_before[k]);
+        befores[k + 1] = &joint_before[k];
+      }
+    }
+    if (open_after) {
+      for (int k = 0; k < 2; ++k) {
+        path.at(std::min(path.tau_end(), b.tau + steps[k]), joint_after[k]);
+        afters[k + 1] = &joint_after[k];
+      }
+    }
+    const int n_before = open_before ? 3 : 1, n_after = open_after ? 3 : 1;
+    double signed_worst = 0;
+    for (int i = 0; i < n_before; ++i)
+      for (int j = 0; j < n_after; ++j) {
+        const double e =
+            segment_error(path, Segment{befores[i], a, b, afters[j]}, o.interpolation, cutoff);
+        if (std::abs(e) > std::abs(signed_worst)) signed_worst = e;
+        if (std::abs(signed_worst) > cutoff) return signed_worst;
+      }
+    return signed_worst;
+  };
   const auto measure = [&](const AxisState& t, double cutoff) {
     if (!pvt) {
       new_error = segment_error(path, Segment{nullptr, current, t, nullptr}, o.interpolation, cutoff);
       previous_error = 0;
       return std::abs(new_error);
     }
-    const Segment secant{has_before ? &before : nullptr, current, t, nullptr};
-    new_error = segment_error(path, secant, o.interpolation, cutoff);
+    const AxisState* known_before = has_before ? &before : nullptr;
+    new_error = judge(known_before, current, t, nullptr, cutoff);
     double worst = std::abs(new_error);
     if (t.tau < end) {
       path.at(std::min(end, t.tau + (t.tau - current.tau)), look);
-      const double equal_step =
-          segment_error(path, Segment{secant.before, current, t, &look}, o.interpolation, cutoff);
+      const double equal_step = judge(known_before, current, t, &look, cutoff);
       worst = std::max(worst, std::abs(equal_step));
     }
-    previous_error =
-        has_before
-            ? segment_error(path, Segment{has_before2 ? &before2 : nullptr, before, current, &t},
-                            o.interpolation, cutoff)
-            : 0.0;
+    previous_error = has_before ? judge(has_before2 ? &before2 : nullptr, before, current, &t, cutoff)
+                                : 0.0;
     return std::max(worst, std::abs(previous_error));
   };
   bool pending_jump = false;  // PVT: the jump flag of the segment that ends at `current`
@@ -688,7 +750,9 @@ void distribute(Path& path, const CutterPointOptions& o, Emit&& emit, double beg
       if (!still) emit(current, new_error, jump);
       continue;
     }
-    if (has_before) emit(current, previous_error, pending_jump);
+    // A piece that continues another (with the blocks before it known) leaves its first
+    // block to that one.
+    if (has_before && (emit_begin || current.tau != begin)) emit(current, previous_error, pending_jump);
     before2 = before;
     has_before2 = has_before;
     before = current;

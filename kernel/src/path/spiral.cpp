@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <cmath>
 #include <numbers>
+#include <numeric>
 #include <string>
 #include <vector>
 
@@ -168,23 +169,41 @@ class SpiralPath {
 // exactly at its last, so that bands can be planned at once on several threads and the
 // points stay the same on any number (docs/path.md, "Bands"). About 64 bands over the
 // path, each one to four turns and a radian: a band is held whole until its turn to be
-// consumed, so its length, not the path's, bounds the memory. PVT programs are one band:
-// a cubic's velocities depend on the blocks either side, which a seam would leave unjudged.
-// Equal angles are banded by whole turns, seams on the steps' own angles; equal arc
-// lengths are banded at points of one walk of the rule (equal_arc_seams below), so that
-// no step is cut short at a seam. A path of one band streams to the sink.
+// consumed, so its length, not the path's, bounds the memory. Chord-controlled PVT
+// programs are banded likewise, their seams judged once both bands are known (plan_spiral);
+// equal angles or arc lengths under PVT are one band. Equal angles are banded by whole
+// turns, seams on the steps' own angles; equal arc lengths at points of one walk of the
+// rule (equal_arc_seams below), so that no step is cut short at a seam. A path of one
+// band streams to the sink.
 std::vector<double> band_bounds(double end, const CutterPointOptions& points) {
   constexpr double kTurn = 2 * std::numbers::pi;
   std::vector<double> bounds{0.0};
   const double turns = std::clamp(std::ceil(end / kTurn / 64), 1.0, 4.0);
-  if (points.interpolation != Interpolation::kCubic &&
-      (points.rule == CutterPointRule::kChordError ||
-       points.rule == CutterPointRule::kEqualArcLength) &&
+  if ((points.rule == CutterPointRule::kChordError ||
+       (points.interpolation != Interpolation::kCubic &&
+        points.rule == CutterPointRule::kEqualArcLength)) &&
       end > kTurn) {
-    // n turns and one radian: a seam's block never falls on a round angle (θ = 2πk, where
-    // a sampler that brackets C by whole turns can miss the block by rounding).
+    // n turns and about a radian: a seam's block stays off the round angles θ = 2πk, where
+    // a sampler that brackets C by whole turns can miss the block by rounding. Chord
+    // control: in whole steps of the angle cap, each seam the j-th cap's angle j·cap, so
+    // that where the cap binds throughout (a smooth part, a coarse tolerance) the steps stay
+    // equal across the seams, as a dialect with one block time (`block_times: constant`)
+    // needs. Where the cap divides a turn into N steps, the band's count of steps is kept
+    // prime to N, so a seam meets a whole turn only at the N-th band (the cap at 5.6° or
+    // more, with 64 bands or more).
     const double width = kTurn * turns + 1.0;
-    for (int k = 1; k * width < end - 1e-9 * width; ++k) bounds.push_back(k * width);
+    if (points.rule == CutterPointRule::kChordError) {
+      const double cap = points.max_angle_step;
+      long per_band = std::max(1L, std::lround(width / cap));
+      const double per_turn = kTurn / cap;
+      const long n = std::lround(per_turn);
+      if (n > 1 && std::abs(per_turn - static_cast<double>(n)) <= 1e-9 * per_turn)
+        while (std::gcd(per_band, n) != 1) ++per_band;
+      for (long k = 1; static_cast<double>(k * per_band) * cap < end - 1e-9 * cap; ++k)
+        bounds.push_back(static_cast<double>(k * per_band) * cap);
+    } else {
+      for (int k = 1; k * width < end - 1e-9 * width; ++k) bounds.push_back(k * width);
+    }
   } else if (points.interpolation != Interpolation::kCubic &&
              points.rule == CutterPointRule::kEqualAngle && end > kTurn) {
     // Equal angles: bands of whole turns, each seam the j-th step's angle j·(2π/n), so the
@@ -254,7 +273,9 @@ PathSummary plan_spiral(const Surface& design, const BaseSurface& base,
   struct Band {
     std::vector<ContactPoint> points;
     std::vector<char> jumps;
+    std::vector<detail::AxisState> head, tail;  // PVT: its first two and last three blocks
   };
+  const bool pvt = o.points.interpolation == Interpolation::kCubic;
   // A point of the path as the sink takes it, with its section and scallop predicted.
   const auto contact_point = [&](const SpiralPath& piece, const detail::AxisState& s, double error,
                                  bool jump) {
@@ -297,9 +318,13 @@ PathSummary plan_spiral(const Surface& design, const BaseSurface& base,
     out.flush();
     return summary;
   }
-  const auto plan_band = [&](long k, Band& band) {
+  // A band planned from the seam at bounds[k]; in PVT mode with the blocks before it when
+  // known (`joints`), else judging its seams over every block the next band may place.
+  const auto plan_band_from = [&](long k, Band& band, const detail::PieceJoints& joints) {
     band.points.clear();
     band.jumps.clear();
+    band.head.clear();
+    band.tail.clear();
     forget_thread_warm_starts();  // the band's bits may not depend on the thread's past
     SpiralPath piece = path;
     detail::distribute(
@@ -307,14 +332,88 @@ PathSummary plan_spiral(const Surface& design, const BaseSurface& base,
         [&](const detail::AxisState& s, double error, bool jump) {
           band.points.push_back(contact_point(piece, s, error, jump));
           band.jumps.push_back(jump ? 1 : 0);
+          if (!pvt) return;
+          if (band.head.size() < 2) band.head.push_back(s);
+          if (band.tail.size() == 3) band.tail.erase(band.tail.begin());
+          band.tail.push_back(s);
         },
-        bounds[static_cast<std::size_t>(k)], bounds[static_cast<std::size_t>(k) + 1], k == 0);
+        bounds[static_cast<std::size_t>(k)], bounds[static_cast<std::size_t>(k) + 1], k == 0,
+        joints);
+  };
+  const auto plan_band = [&](long k, Band& band) {
+    detail::PieceJoints joints;
+    joints.open_start = pvt && k > 0;
+    joints.open_end = pvt && k + 1 < bands;
+    plan_band_from(k, band, joints);
+  };
+  // PVT seams (detail::PieceJoints): the two segments either side of a seam depend on both
+  // bands, and each band judged its own over every block the other might place. Once both
+  // are known they are judged as they are: a seam whose segments miss the target (the
+  // ranges' judgement is at their ends and the band's step only) has the later band
+  // planned again, from the blocks before the seam, on this thread. The band's first and
+  // the seam's own block then report their segments' true errors.
+  const double target = detail::chord_target(o.points, path.stand_off());
+  std::vector<detail::AxisState> last_blocks;  // the path's last three blocks so far
+  ContactPoint seam_point;                      // the last band's last point, held back
+  bool seam_jump = false, holding = false;
+  long replanned = 0;
+  const auto segment = [&](const detail::AxisState* b0, const detail::AxisState& a,
+                           const detail::AxisState& b, const detail::AxisState* b3) {
+    return detail::segment_error(path, detail::Segment{b0, a, b, b3}, Interpolation::kCubic,
+                                 std::numeric_limits<double>::infinity());
+  };
+  const auto join = [&](long k, Band& band) {
+    forget_thread_warm_starts();  // the seam's judgement may not depend on this thread's past
+    const std::size_t m = last_blocks.size();
+    const detail::AxisState* before2 = m >= 3 ? &last_blocks[m - 3] : nullptr;
+    const detail::AxisState& before = last_blocks[m - 2];
+    const detail::AxisState& seam = last_blocks[m - 1];
+    double into = 0, out_of = 0;
+    const auto judge_seam = [&] {
+      const detail::AxisState* after2 = band.head.size() > 1 ? &band.head[1] : nullptr;
+      into = segment(before2, before, seam, &band.head[0]);
+      out_of = segment(&before, seam, band.head[0], after2);
+    };
+    judge_seam();
+    if (std::max(std::abs(into), std::abs(out_of)) > target || band.head.size() < 2) {
+      detail::PieceJoints joints;
+      joints.before2 = before2;
+      joints.before = &before;
+      joints.open_end = k + 1 < bands;
+      plan_band_from(k, band, joints);
+      ++replanned;
+      judge_seam();
+    }
+    const SpiralPath& piece = path;
+    seam_point = contact_point(piece, seam, into, seam_jump);
+    band.points[0] = contact_point(piece, band.head[0], out_of, band.jumps[0] != 0);
   };
   const int threads = std::min<long>(thread_count(o.threads), bands);
-  ordered_parallel<Band>(threads, bands, 2 * threads, plan_band, [&](long, Band& band) {
-    for (std::size_t i = 0; i < band.points.size(); ++i) consume(band.points[i], band.jumps[i] != 0);
+  ordered_parallel<Band>(threads, bands, 2 * threads, plan_band, [&](long k, Band& band) {
+    if (!pvt) {
+      for (std::size_t i = 0; i < band.points.size(); ++i) consume(band.points[i], band.jumps[i] != 0);
+      return;
+    }
+    if (band.points.empty()) throw InputError(where(bounds[static_cast<std::size_t>(k)], 0),
+                                              "a band of the spiral has no block", "strategy");
+    if (holding) {
+      join(k, band);
+      consume(seam_point, seam_jump);
+    }
+    const std::size_t keep = k + 1 < bands ? band.points.size() - 1 : band.points.size();
+    for (std::size_t i = 0; i < keep; ++i) consume(band.points[i], band.jumps[i] != 0);
+    holding = keep < band.points.size();
+    if (holding) {
+      seam_point = band.points.back();
+      seam_jump = band.jumps.back() != 0;
+    }
+    for (const detail::AxisState& s : band.tail) {
+      if (last_blocks.size() == 3) last_blocks.erase(last_blocks.begin());
+      last_blocks.push_back(s);
+    }
   });
   out.flush();
+  summary.replanned_seams = replanned;
   return summary;
 }
 

@@ -70,6 +70,9 @@ struct PathSummary {
   long jumps = 0;
   double max_jump_error = 0;  // mm
   double first_jump_theta = 0, first_jump_r = 0;
+  // PVT spirals planned in bands: seams whose segments, judged once both bands were known,
+  // missed the target, so that the later band was planned again from the seam's blocks.
+  long replanned_seams = 0;
 
   // Counts one emitted point with its chord error (mm) and whether its segment jumps.
   void add(double theta, double r, double chord_error, bool jump) {
