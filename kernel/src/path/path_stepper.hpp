@@ -402,24 +402,6 @@ void next_equal_arc_point(const Path& path, const CutterPointOptions& o, const A
   }
 }
 
-// Walks τ from 0 to tau_end, calling emit(state, chord_error, jump) for every point, the
-// chord error (of the segment that ends at the point) signed as segment_error's. `jump`
-// marks a segment across which the programmed point jumps (the nose centre at a crease
-// sharper than the nose: the offset of a concave crease is not the offset of either
-// side): its error stops falling with the step, so the step search accepts a short step
-// over it and reports the error as it is.
-//
-// PVT (pvt_rule.hpp): a segment's cubic depends on the blocks on either side, so the
-// search for the next block b judges two segments. The one before it, (a₋, a), is final
-// once b is chosen (b sets the velocity at a): it must stay within the target too, which
-// keeps consecutive block times close wherever the path bends. The new one, (a, b), waits
-// for the block after b to set the velocity at b. That velocity runs from the secant
-// (b − a)/h, as the next step shrinks to nothing, to the velocity one equal step gives;
-// the motion is affine in it, so its largest error is convex in it, and (a, b) is judged
-// at both: whatever step the next search takes up to an equal one, (a, b) stays within
-// the target, and a short enough next step always exists. It is judged finally when the
-// next block is chosen, and emitted then: emission lags one block in PVT mode.
-//
 // The error a segment may reach: the band is [0, ε] above the design, its centre the
 // blocks' stand-off, so each segment may bend ε − stand_off either way from it, less a
 // margin for the sampled maximum.
@@ -444,8 +426,27 @@ struct PieceJoints {
   bool open_end = false;
 };
 
+// Walks τ from 0 to tau_end, calling emit(state, chord_error, jump) for every point, the
+// chord error (of the segment that ends at the point) signed as segment_error's. `jump`
+// marks a segment across which the programmed point jumps (the nose centre at a crease
+// sharper than the nose: the offset of a concave crease is not the offset of either
+// side): its error stops falling with the step, so the step search accepts a short step
+// over it and reports the error as it is.
+//
+// PVT (pvt_rule.hpp): a segment's cubic depends on the blocks on either side, so the
+// search for the next block b judges two segments. The one before it, (a₋, a), is final
+// once b is chosen (b sets the velocity at a): it must stay within the target too, which
+// keeps consecutive block times close wherever the path bends. The new one, (a, b), waits
+// for the block after b to set the velocity at b. That velocity runs from the secant
+// (b − a)/h, as the next step shrinks to nothing, to the velocity one equal step gives;
+// the motion is affine in it, so its largest error is convex in it, and (a, b) is judged
+// at both: whatever step the next search takes up to an equal one, (a, b) stays within
+// the target, and a short enough next step always exists. It is judged finally when the
+// next block is chosen, and emitted then: emission lags one block in PVT mode.
+//
 // A piece of the path: τ from `begin` to `end` (the whole path by default), its first point
-// emitted only if `emit_begin` (a piece that continues another leaves that point to it).
+// emitted only if `emit_begin` (a piece that continues another leaves that point to it);
+// in PVT mode `joints` says what lies beyond its ends (PieceJoints above).
 template <class Path, class Emit>
 void distribute(Path& path, const CutterPointOptions& o, Emit&& emit, double begin = 0.0,
                 double end = -1.0, bool emit_begin = true, const PieceJoints& joints = {}) {
@@ -469,8 +470,6 @@ void distribute(Path& path, const CutterPointOptions& o, Emit&& emit, double beg
   // Chord error ∝ step^order: linear chords; PVT's central-difference velocities are
   // second-order, so its cubics are third-order.
   const double order = pvt ? 3.0 : 2.0;
-  // The band is [0, ε] above the design, its centre the blocks' stand-off: each segment
-  // may bend ε − stand_off either way from it (margin for the sampled maximum).
   const double target = chord_target(o, path.stand_off());
   const double min_step = 1e-12 * std::max(1.0, end);
   double step = std::min(path.cap(), end - begin);

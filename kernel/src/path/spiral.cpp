@@ -384,9 +384,8 @@ PathSummary plan_spiral(const Surface& design, const BaseSurface& base,
       ++replanned;
       judge_seam();
     }
-    const SpiralPath& piece = path;
-    seam_point = contact_point(piece, seam, into, seam_jump);
-    band.points[0] = contact_point(piece, band.head[0], out_of, band.jumps[0] != 0);
+    seam_point = contact_point(path, seam, into, seam_jump);
+    band.points[0] = contact_point(path, band.head[0], out_of, band.jumps[0] != 0);
   };
   const int threads = std::min<long>(thread_count(o.threads), bands);
   ordered_parallel<Band>(threads, bands, 2 * threads, plan_band, [&](long k, Band& band) {
