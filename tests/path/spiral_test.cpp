@@ -1,6 +1,7 @@
 #include <doctest/doctest.h>
 
 #include <cmath>
+#include <initializer_list>
 #include <memory>
 #include <numbers>
 
@@ -33,6 +34,43 @@ CutterPointOptions equal_angle(int n) {
   o.rule = CutterPointRule::kEqualAngle;
   o.points_per_revolution = n;
   return o;
+}
+
+// One plan on each thread count, in order; with `replanned`, each plan's PVT seams planned
+// again.
+std::vector<std::vector<ContactPoint>> plan_on_threads(const Surface& s, const BaseSurface& base,
+                                                       SpiralOptions o, std::initializer_list<int> threads,
+                                                       std::vector<long>* replanned = nullptr) {
+  std::vector<std::vector<ContactPoint>> runs;
+  for (const int n : threads) {
+    o.threads = n;
+    ContactCollector out;
+    const PathSummary summary = plan_spiral(s, base, o, out);
+    if (replanned) replanned->push_back(summary.replanned_seams);
+    runs.push_back(out.points);
+  }
+  return runs;
+}
+
+// Whether two plans place the same points, to the bit: angle, point and chord error.
+bool same_points(const std::vector<ContactPoint>& a, const std::vector<ContactPoint>& b) {
+  if (a.size() != b.size()) return false;
+  for (std::size_t k = 0; k < a.size(); ++k)
+    if (a[k].theta != b[k].theta || a[k].point != b[k].point || a[k].chord_error != b[k].chord_error)
+      return false;
+  return true;
+}
+
+// Points that lie exactly on a seam every `steps` caps (the chord rule's band bounds),
+// strictly inside the path.
+long points_on_cap_seams(const std::vector<ContactPoint>& p, double cap, long steps) {
+  const double width = static_cast<double>(steps) * cap, end = p.back().theta;
+  long seams = 0;
+  for (const ContactPoint& q : p) {
+    const long k = std::lround(q.theta / width);
+    if (q.theta > 0 && q.theta < end && q.theta == static_cast<double>(k * steps) * cap) ++seams;
+  }
+  return seams;
 }
 
 // Angle between two points of a sphere about c, seen from c.
@@ -317,31 +355,16 @@ TEST_SUITE("path") {
     o.outer_radius = 4.0;
     o.pitch = 0.02;  // about 200 turns: bands of 4 turns and a radian (docs/path.md, "Bands")
     o.points.tolerance = 2e-4;
-    std::vector<std::vector<ContactPoint>> runs;
-    for (int threads : {1, 2, 8}) {
-      o.threads = threads;
-      ContactCollector out;
-      plan_spiral(surface, base, o, out);
-      runs.push_back(out.points);
-    }
+    const std::vector<std::vector<ContactPoint>> runs = plan_on_threads(surface, base, o, {1, 2, 8});
     REQUIRE(runs[0].size() > 1000);
     for (std::size_t r = 1; r < runs.size(); ++r) {
-      REQUIRE(runs[r].size() == runs[0].size());
-      bool same = true;
-      for (std::size_t k = 0; k < runs[0].size(); ++k)
-        same = same && runs[r][k].theta == runs[0][k].theta && runs[r][k].point == runs[0][k].point &&
-               runs[r][k].chord_error == runs[0][k].chord_error;
-      CHECK(same);
+      CHECK(same_points(runs[r], runs[0]));
     }
     // The seams are points: every k·299 steps of the 5° cap, exactly (four turns and a
     // radian, 8π + 1 = 26.13, is 299.5 caps; 299 = 13·23 is prime to the 72 caps a turn).
     // The base's arc length is a little over the radius: a little over 200 turns.
     const double cap = 5 * std::numbers::pi / 180, width = 299 * cap, end = runs[0].back().theta;
-    long seams = 0;
-    for (const ContactPoint& p : runs[0]) {
-      const long k = std::lround(p.theta / width);
-      if (p.theta > 0 && p.theta < end && p.theta == static_cast<double>(k * 299) * cap) ++seams;
-    }
+    const long seams = points_on_cap_seams(runs[0], cap, 299);
     CHECK(seams == static_cast<long>(std::ceil(end / width - 1e-9)) - 1);
     CHECK(seams >= 47);
     CHECK(test::densest_chord_error(surface, runs[0]) <= 2e-4);
@@ -355,31 +378,17 @@ TEST_SUITE("path") {
     o.pitch = 0.02;  // about 200 turns: bands of 4 turns and a radian
     o.points.tolerance = 2e-4;
     o.points.interpolation = Interpolation::kCubic;
-    std::vector<std::vector<ContactPoint>> runs;
     std::vector<long> replanned;
-    for (int threads : {1, 2, 8}) {
-      o.threads = threads;
-      ContactCollector out;
-      replanned.push_back(plan_spiral(surface, base, o, out).replanned_seams);
-      runs.push_back(out.points);
-    }
+    const std::vector<std::vector<ContactPoint>> runs =
+        plan_on_threads(surface, base, o, {1, 2, 8}, &replanned);
     REQUIRE(runs[0].size() > 1000);
     for (std::size_t r = 1; r < runs.size(); ++r) {
-      REQUIRE(runs[r].size() == runs[0].size());
-      bool same = true;
-      for (std::size_t k = 0; k < runs[0].size(); ++k)
-        same = same && runs[r][k].theta == runs[0][k].theta && runs[r][k].point == runs[0][k].point &&
-               runs[r][k].chord_error == runs[0][k].chord_error;
-      CHECK(same);
+      CHECK(same_points(runs[r], runs[0]));
       CHECK(replanned[r] == replanned[0]);
     }
     // Seams every 299 steps of the 5° cap, as for linear motion: each is a point.
     const double cap = 5 * std::numbers::pi / 180, width = 299 * cap, end = runs[0].back().theta;
-    long seams = 0;
-    for (const ContactPoint& p : runs[0]) {
-      const long k = std::lround(p.theta / width);
-      if (p.theta > 0 && p.theta < end && p.theta == static_cast<double>(k * 299) * cap) ++seams;
-    }
+    const long seams = points_on_cap_seams(runs[0], cap, 299);
     CHECK(seams == static_cast<long>(std::ceil(end / width - 1e-9)) - 1);
     MESSAGE(seams << " seams, " << replanned[0] << " planned again, " << runs[0].size() << " points");
     double planned = 0;
@@ -419,19 +428,8 @@ TEST_SUITE("path") {
     o.pitch = 0.02;  // about 200 turns: bands of 4 whole turns
     o.points.rule = CutterPointRule::kEqualAngle;
     o.points.points_per_revolution = 90;
-    std::vector<std::vector<ContactPoint>> runs;
-    for (int threads : {1, 2}) {
-      o.threads = threads;
-      ContactCollector out;
-      plan_spiral(surface, base, o, out);
-      runs.push_back(out.points);
-    }
-    REQUIRE(runs[0].size() == runs[1].size());
-    bool same = true;
-    for (std::size_t k = 0; k < runs[0].size(); ++k)
-      same = same && runs[1][k].theta == runs[0][k].theta && runs[1][k].point == runs[0][k].point &&
-             runs[1][k].chord_error == runs[0][k].chord_error;
-    CHECK(same);
+    const std::vector<std::vector<ContactPoint>> runs = plan_on_threads(surface, base, o, {1, 2});
+    REQUIRE(same_points(runs[1], runs[0]));
     // Every step is 2π/90 (the last one ends the path), across the seams too: the k-th point
     // at k·2π/90 to rounding.
     const double step = 2 * std::numbers::pi / 90;
@@ -451,20 +449,9 @@ TEST_SUITE("path") {
     o.pitch = 0.02;  // about 200 turns: 50 bands or so, each seam a point of the rule's walk
     o.points.rule = CutterPointRule::kEqualArcLength;
     o.points.arc_length = 0.05;
-    std::vector<std::vector<ContactPoint>> runs;
-    for (int threads : {1, 2, 8}) {
-      o.threads = threads;
-      ContactCollector out;
-      plan_spiral(surface, base, o, out);
-      runs.push_back(out.points);
-    }
+    const std::vector<std::vector<ContactPoint>> runs = plan_on_threads(surface, base, o, {1, 2, 8});
     for (std::size_t r = 1; r < runs.size(); ++r) {
-      REQUIRE(runs[r].size() == runs[0].size());
-      bool same = true;
-      for (std::size_t k = 0; k < runs[0].size(); ++k)
-        same = same && runs[r][k].theta == runs[0][k].theta && runs[r][k].point == runs[0][k].point &&
-               runs[r][k].chord_error == runs[0][k].chord_error;
-      CHECK(same);
+      CHECK(same_points(runs[r], runs[0]));
     }
     // The path is about π·4²/0.02 = 2513 mm long (its turns a pitch apart): some 50 000
     // chords of 0.05 mm. Where the angle cap (5°) binds, inside r = 0.05 mm / 5° = 0.573 mm,
@@ -497,18 +484,8 @@ TEST_SUITE("path") {
     o.points.arc_length = 0.01;
     o.tool.nose_radius = 0.2;
     const BaseSurface base = fit_base_least_squares(sample_aperture(eye, 0, 2));
-    std::vector<std::vector<ContactPoint>> runs;
-    for (int threads : {1, 2}) {
-      o.threads = threads;
-      ContactCollector out;
-      plan_spiral(eye, base, o, out);
-      runs.push_back(out.points);
-    }
-    REQUIRE(runs[1].size() == runs[0].size());
-    bool same = true;
-    for (std::size_t k = 0; k < runs[0].size(); ++k)
-      same = same && runs[1][k].theta == runs[0][k].theta && runs[1][k].point == runs[0][k].point;
-    CHECK(same);
+    const std::vector<std::vector<ContactPoint>> runs = plan_on_threads(eye, base, o, {1, 2});
+    CHECK(same_points(runs[1], runs[0]));
     // About π·2²/0.05 = 251 mm of path: 25 000 chords of 0.01 mm. Where the nose is held at
     // a lenslet's rim its contact stays on one flank, then jumps to the other: a chord there
     // is short of the length (the step ends before the jump) or longer (it counts from
