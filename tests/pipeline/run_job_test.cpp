@@ -119,6 +119,34 @@ TEST_SUITE("pipeline") {
                         std::filesystem::directory_iterator()) == 3);
   }
 
+  TEST_CASE("a constant-rpm run written from the probe's kept path is the same bytes as one planned twice") {
+    // The Precitech's dialect keeps one block time: the run finds the highest rpm every
+    // block allows, then writes at it. With a roughing pass, two paths are kept.
+    const PluginPaths paths;
+    test::TempDir dir;
+    std::string text = sphere_job("");
+    text.replace(text.find("cutting: {spindle_rpm: 20}"), 26,
+                 "cutting: {spindle_rpm: 2000, roughing: [0.01]}");
+    text.replace(text.find("iso-lathe-xzc"), 13, "precitech-nanoform-250");
+    const Job job = load_job(dir.write("plate.yaml", text));
+    RunOptions kept, planned_twice;
+    kept.output_dir = dir.file("kept");
+    planned_twice.output_dir = dir.file("twice");
+    planned_twice.max_replay_bytes = 0;
+    const RunResult a = run_job(job, kept), b = run_job(job, planned_twice);
+    REQUIRE(a.report.passes.size() == 2);
+    // The speed is the machine's, not the job's: the probe's answer was used.
+    CHECK(a.report.spindle_rpm < 2000);
+    CHECK(a.report.spindle_rpm == b.report.spindle_rpm);
+    REQUIRE(a.files.size() == b.files.size());
+    REQUIRE(a.files.size() >= 3);  // two programs and the report
+    for (std::size_t i = 0; i < a.files.size(); ++i) {
+      const std::filesystem::path name = std::filesystem::path(a.files[i]).filename();
+      CHECK(std::filesystem::path(b.files[i]).filename() == name);
+      CHECK_MESSAGE(test::read_file(a.files[i]) == test::read_file(b.files[i]), name);
+    }
+  }
+
   TEST_CASE("an error is an exception with the place of the setting that causes it") {
     const PluginPaths paths;
     test::TempDir dir;

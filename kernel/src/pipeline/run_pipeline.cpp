@@ -26,6 +26,7 @@
 #include "freeturn/machine/block_schedule.hpp"
 #include "freeturn/path/profile.hpp"
 #include "freeturn/path/spiral.hpp"
+#include "freeturn/pipeline/contact_tape.hpp"
 #include "freeturn/post/post_program.hpp"
 #include "freeturn/surface/raised_surface.hpp"
 #include "freeturn/tool/clearance.hpp"
@@ -253,6 +254,7 @@ struct PreparedJob {
   MachineDescription machine;
   std::unique_ptr<PostPlugin> plugin;
   int threads = 1;  // that plan the spiral (RunOptions::threads, resolved)
+  std::uintmax_t max_replay_bytes = 0;  // RunOptions::max_replay_bytes
 };
 
 MachineDescription machine_for(const Job& job, const std::string& machine_file,
@@ -358,13 +360,22 @@ void report_base(RunReport& report, const BasePlanOptions& options, const BasePl
   report.base = base_figures(options, base);
 }
 
+// Each spiral pass's planned path as the constant-rpm probe made it (contact_tape.hpp),
+// with its summary: the probe records them, the run at the speed found replays the
+// complete ones instead of planning again.
+struct PlannedPasses {
+  std::vector<std::unique_ptr<ContactTape>> tapes;
+  std::vector<PathSummary> summaries;
+};
+
 // simulation: when set, the finishing pass is also cut in simulation and its residual
 // written (grid CSV, coloured PLY) with its figures in the report.
 // files: null when nothing is written (check, and the constant-rpm probe).
+// planned: the probe's paths, recorded when `probe`, else replayed where complete.
 RunResult execute_job(const Job& job, const PreparedJob& prepared, const std::string& out_dir,
                       RunObserver* observer, RunFiles* files,
                       const SimulationOptions* simulation = nullptr, double spindle_rpm = 0,
-                      bool probe = false) {
+                      bool probe = false, PlannedPasses* planned = nullptr) {
   const bool write = files != nullptr;
   const JobPlan& plan = *job.plan;
   const MachineDescription& machine = prepared.machine;
@@ -483,7 +494,17 @@ RunResult execute_job(const Job& job, const PreparedJob& prepared, const std::st
       o.points = plan.strategy.points;
       o.points.interpolation = machine.interpolation;
       o.threads = prepared.threads;
-      summary = plan_spiral(surface, base.base, o, compensator);
+      if (planned && probe) {
+        planned->tapes.push_back(std::make_unique<ContactTape>(prepared.max_replay_bytes));
+        RecordingSink recorder(compensator, *planned->tapes.back());
+        summary = plan_spiral(surface, base.base, o, recorder);
+        planned->summaries.push_back(summary);
+      } else if (planned && pass < planned->tapes.size() && planned->tapes[pass]->complete()) {
+        planned->tapes[pass]->replay(compensator);
+        summary = planned->summaries[pass];
+      } else {
+        summary = plan_spiral(surface, base.base, o, compensator);
+      }
     } else {
       ProfileOptions o;
       o.outer_radius = job.aperture.outer_radius;
@@ -516,7 +537,8 @@ RunResult execute_job(const Job& job, const PreparedJob& prepared, const std::st
 
 // A constant-speed spiral (timing: constant_rpm, or a dialect without block times) runs at
 // the highest speed every block allows, up to the job's: found by planning once without
-// writing (velocity scales with the rpm, acceleration with its square), then written.
+// writing (velocity scales with the rpm, acceleration with its square), then written from
+// the same path, kept from that first run (RunOptions::max_replay_bytes).
 RunResult run_job_at_requested_speed(const Job& job, const PreparedJob& prepared,
                                      const std::string& out_dir, RunObserver* observer,
                                      RunFiles* files, const SimulationOptions* simulation);
@@ -555,15 +577,16 @@ RunResult run_job_at_requested_speed(const Job& job, const PreparedJob& prepared
   const double requested = plan.cutting.spindle_rpm;
   if (plan.strategy.mode == Strategy::Mode::kSpiral && plan.cutting.enforce_dynamics &&
       !scheduling(job, prepared.machine)) {
+    PlannedPasses planned;
     const RunResult probe =
-        execute_job(job, prepared, out_dir, nullptr, nullptr, nullptr, requested, true);
+        execute_job(job, prepared, out_dir, nullptr, nullptr, nullptr, requested, true, &planned);
     // The speed the probe found, less a billionth: the run at that speed computes each
     // block's limit again, and rounding can put it an ulp under the probe's, which its
     // check would then refuse.
     double rpm = requested;
     for (const PassFigures& f : probe.report.passes)
       if (f.dynamics.max_rpm < rpm) rpm = f.dynamics.max_rpm * (1 - 1e-9);
-    return execute_job(job, prepared, out_dir, observer, files, simulation, rpm);
+    return execute_job(job, prepared, out_dir, observer, files, simulation, rpm, false, &planned);
   }
   return execute_job(job, prepared, out_dir, observer, files, simulation);
 }
@@ -611,6 +634,7 @@ RunResult run_pipeline(const Job& job, const RunOptions& options, RunFiles& file
                        RunObserver* observer) {
   PreparedJob prepared = prepare_job(job, options.max_yaml_bytes);
   prepared.threads = thread_count(options.threads);
+  prepared.max_replay_bytes = options.max_replay_bytes;
   return run_with_places(job, prepared, options.output_dir, observer, &files,
                          options.simulation ? &*options.simulation : nullptr);
 }
@@ -720,6 +744,7 @@ RunResult run_program_simulation(const Job& job, const std::string& program,
 RunReport check_job(const Job& job, const RunOptions& options, RunObserver* observer) {
   PreparedJob prepared = prepare_job(job, options.max_yaml_bytes);
   prepared.threads = thread_count(options.threads);
+  prepared.max_replay_bytes = options.max_replay_bytes;
   check_dialect_settings(job, prepared);
   return run_with_places(job, prepared, "", observer, nullptr, nullptr).report;
 }

@@ -45,6 +45,12 @@ struct RunOptions {
   // Threads that plan the spiral (0: the hardware's). Every output is the same on any
   // number; the simulation has its own (SimulationOptions::threads).
   int threads = 0;
+  // A constant-rpm spiral is planned once to find the highest speed its blocks allow, then
+  // written at that speed. The plan does not depend on the speed, so the first run's path
+  // is kept in a temporary file, up to this many bytes (120 B a point), and sent again
+  // instead of planned again; a longer path is planned twice. The outputs are the same
+  // bytes either way.
+  std::uintmax_t max_replay_bytes = std::uintmax_t{1} << 30;
 };
 
 // What a run tells its caller while it works, on the calling thread. The defaults ignore it.
