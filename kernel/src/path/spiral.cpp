@@ -375,7 +375,8 @@ PathSummary plan_spiral(const Surface& design, const BaseSurface& base,
       out_of = segment(&before, seam, band.head[0], after2);
     };
     judge_seam();
-    if (std::max(std::abs(into), std::abs(out_of)) > target || band.head.size() < 2) {
+    if (std::max(std::abs(into), std::abs(out_of)) > target || band.head.size() < 2 ||
+        o.replan_every_seam) {
       detail::PieceJoints joints;
       joints.before2 = before2;
       joints.before = &before;

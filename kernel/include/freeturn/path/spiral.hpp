@@ -26,6 +26,10 @@ struct SpiralOptions {
   // Threads that plan bands of the spiral at once (0: the hardware's). The bands are fixed
   // by the path alone, so the points are the same on any number.
   int threads = 1;
+  // Tests only: every PVT seam has its later band planned again from the seam's blocks, as
+  // a seam whose segments miss the target does (spiral.cpp). No natural case was found to
+  // miss, so this is how that path is run.
+  bool replan_every_seam = false;
 };
 
 // Streams the contact points into `sink` and returns the summary. Throws InputError
