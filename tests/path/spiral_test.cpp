@@ -121,7 +121,13 @@ TEST_SUITE("path") {
     const double spacing = arc_on_sphere(path[k60].point, path[k60 + n].point, centre, radius);
     const double mid = 0.5 * (path[k60].r + path[k60 + n].r);
     CHECK(path[k60].r - path[k60 + n].r == doctest::Approx(pitch).epsilon(1e-12));
-    CHECK(spacing == doctest::Approx(pitch / std::cos(std::asin(mid / radius))).epsilon(1e-5));
+    // The two points share θ, so the arc between them is exactly R (asin(r₁/R) − asin(r₂/R));
+    // the 1/cos law is its first-order form, about the pair's midpoint.
+    CHECK(spacing == doctest::Approx(radius * (std::asin(path[k60].r / radius) -
+                                               std::asin(path[k60 + n].r / radius)))
+                         .epsilon(1e-9)
+                         .scale(0));
+    CHECK(spacing == doctest::Approx(pitch / std::cos(std::asin(mid / radius))).epsilon(1e-4).scale(0));
     CHECK(spacing == doctest::Approx(2 * pitch).epsilon(2e-3));
     CHECK(path[k60].pass_spacing == doctest::Approx(pitch / std::cos(std::asin(path[k60].r / radius)))
                                         .epsilon(1e-12));
@@ -271,7 +277,7 @@ TEST_SUITE("path") {
                                std::sqrt(nose * nose - std::pow((rho - nose) * std::sin(phi / 2), 2)));
     for (const auto& p : cut.points) {
       CHECK(p.section_curvature == doctest::Approx(0.5).epsilon(1e-9));
-      CHECK(p.scallop == doctest::Approx(cusp).epsilon(1e-4));
+      CHECK(p.scallop == doctest::Approx(cusp).epsilon(1e-4).scale(0));
       CHECK(p.scallop >= cusp * (1 - 1e-9));  // an upper bound, where f²/8 (1/R − κ) falls short
     }
   }
