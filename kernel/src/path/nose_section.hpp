@@ -51,8 +51,10 @@ class NoseSection {
       x_axis = contact_r - offset * f_r / length;
       z_axis = z + offset / length;
     }
-    x_axis += offset_ * std::sin(b);
-    z_axis += offset_ * std::cos(b);
+    if (offset_ != 0) {
+      x_axis += offset_ * std::sin(b);
+      z_axis += offset_ * std::cos(b);
+    }
   }
 
   // Where the nose touches for the contact (contact_r, z) with section slope f_r at angle
@@ -76,8 +78,7 @@ class NoseSection {
   // one), where the gap is smallest.
   double deviation(double x_axis, const RadialLine& c, double z_axis, double b,
                    double hint_r) const {
-    x_axis -= offset_ * std::sin(b);
-    z_axis -= offset_ * std::cos(b);
+    to_centre(x_axis, z_axis, b);
     if (R_ == 0) {
       double f, fx, fy;
       design_.sag_gradient(x_axis * c.cos, x_axis * c.sin, f, fx, fy);
@@ -105,10 +106,8 @@ class NoseSection {
   double slide(double x_axis, double z_axis, double b, double ideal_x, double ideal_z,
                double ideal_b, double ideal_rho, double ideal_slope, double half_width) const {
     if (R_ == 0) return 0.0;
-    x_axis -= offset_ * std::sin(b);
-    z_axis -= offset_ * std::cos(b);
-    ideal_x -= offset_ * std::sin(ideal_b);
-    ideal_z -= offset_ * std::cos(ideal_b);
+    to_centre(x_axis, z_axis, b);
+    to_centre(ideal_x, ideal_z, ideal_b);
     const double R = R_ + stand_off_;  // the radius the centres are placed at
     const auto lower_arc = [R](double centre_x, double centre_z, double rho) {
       const double d = rho - centre_x;
@@ -121,6 +120,16 @@ class NoseSection {
   }
 
  private:
+  // The nose centre from the axes (x, z, b): less the programmed point's offset from it,
+  // which only a following B swings. Without one there is no offset, and its sine and
+  // cosine (of B = 0, one pair per sample: a tenth of the planner's time on a compound
+  // eye) are not taken; the centre is the same bits.
+  void to_centre(double& x, double& z, double b) const {
+    if (offset_ == 0) return;
+    x -= offset_ * std::sin(b);
+    z -= offset_ * std::cos(b);
+  }
+
   const Surface& design_;
   double R_, stand_off_, offset_;
   bool b_follows_;
