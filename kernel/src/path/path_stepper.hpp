@@ -251,11 +251,18 @@ double segment_error(const Path& path, const Segment& segment, Interpolation mod
     grid_line[j].sin = last.sin * unit.cos + last.cos * unit.sin;
   }
   const bool linear = mode == Interpolation::kLinear;
+  // The line at any other angle (a sample between the grid's, or a cubic's C), by rotation
+  // from the grid's nearest line, within half a grid step of it on a linear segment.
+  const auto line_at = [&](double angle) {
+    const double u = b.c != a.c ? (angle - a.c) / (b.c - a.c) : 0.0;
+    const int j = static_cast<int>(std::lround(std::clamp(u, 0.0, 1.0) * kGrid));
+    return grid_line[j].turned_to(angle);
+  };
   const auto gap_at = [&](double t, int j, double& x, double& c, double& z, double& bb) {
     motion.at(t, x, c, z, bb);
     const double hint = a.contact_r + t * (b.contact_r - a.contact_r);
     const double d = linear && j >= 0 ? path.deviation(x, grid_line[j], z, bb, hint)
-                                      : path.deviation(x, RadialLine(c), z, bb, hint);
+                                      : path.deviation(x, line_at(c), z, bb, hint);
     return d - path.stand_off();
   };
   // Linear motion: every peak searched on a creased surface. PVT keeps the parabola's
@@ -286,7 +293,7 @@ double segment_error(const Path& path, const Segment& segment, Interpolation mod
     }
     const double tau = a.tau + t * (b.tau - a.tau);
     if (j >= 0) path.at(tau, grid_line[j], ideal);
-    else path.at(tau, ideal);
+    else path.at(tau, line_at(tau), ideal);
     const double above = std::max(d, path.slide(x, c, z, bb, ideal));
     return above >= -d ? above : d;
   }, always_search, target);

@@ -25,6 +25,24 @@ struct RadialLine {
   double theta = 0, cos = 1, sin = 0;
   RadialLine() = default;
   RadialLine(double angle) : theta(angle), cos(std::cos(angle)), sin(std::sin(angle)) {}  // NOLINT
+
+  // The line at `angle`, by rotating this one through δ = angle − θ: within 1/16 rad, δ's
+  // sine and cosine by their Taylor series (to δ⁹ and δ⁸: the next terms are below 1e-19
+  // of them), a few multiplications where a sine-cosine pair costs about 20 ns; farther,
+  // the pair. The result is the rotation of this line's cosine and sine, so it carries their
+  // rounding (a few ulp where they came from a recurrence).
+  RadialLine turned_to(double angle) const {
+    const double d = angle - theta;
+    if (!(std::abs(d) <= 0.0625)) return RadialLine(angle);
+    const double d2 = d * d;
+    const double sin_d = d * (1 - d2 / 6 * (1 - d2 / 20 * (1 - d2 / 42 * (1 - d2 / 72))));
+    const double cos_d = 1 - d2 / 2 * (1 - d2 / 12 * (1 - d2 / 30 * (1 - d2 / 56)));
+    RadialLine line;
+    line.theta = angle;
+    line.cos = cos * cos_d - sin * sin_d;
+    line.sin = sin * cos_d + cos * sin_d;
+    return line;
+  }
 };
 
 class Surface {
