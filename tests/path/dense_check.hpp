@@ -5,6 +5,7 @@
 #include <algorithm>
 #include <array>
 #include <cmath>
+#include <limits>
 #include <numbers>
 #include <vector>
 
@@ -48,15 +49,21 @@ namespace freeturn::test {
 // pivot swinging the nose on an arc). With `pvt`, the controller's cubics instead of lines:
 // each block's velocity the central difference of its neighbours over their times (Δθ on a
 // spiral at one speed, the X-Z chord at one feed in profile mode), one-sided at the ends,
-// and a cubic Hermite in time through each block, for every coordinate.
+// and a cubic Hermite in time through each block, for every coordinate. With
+// `only_segment` = k > 0, the segment that ends at block k alone, its cubics' velocities
+// still from the whole path.
 struct DenseNoseFigures {
   double worst = 0;  // the largest |overlap| (mm, normal): the chord error
   double gouge = 0;  // the largest overlap > 0 (mm, normal): how deep the nose cuts into the design
+  // The nose's distance above the design (mm, normal; < 0 below it), least and largest.
+  double lowest = std::numeric_limits<double>::infinity();
+  double highest = -std::numeric_limits<double>::infinity();
 };
 
 inline DenseNoseFigures dense_nose_figures(const Surface& s, const std::vector<CutterLocation>& path,
                                            double R, int samples = 50, int grid = 400,
-                                           const CompensationOptions* axes = nullptr, bool pvt = false) {
+                                           const CompensationOptions* axes = nullptr, bool pvt = false,
+                                           std::size_t only_segment = 0) {
   DenseNoseFigures figures;
   const auto radial = [](const Eigen::Vector3d& p, double c) { return p.x() * std::cos(c) + p.y() * std::sin(c); };
   // Per block: the coordinates that move (C, the centre's radial position and z, and the
@@ -86,6 +93,7 @@ inline DenseNoseFigures dense_nose_figures(const Surface& s, const std::vector<C
            (t3 - t2) * h * v[k][i];
   };
   for (std::size_t k = 1; k < path.size(); ++k) {
+    if (only_segment != 0 && k != only_segment) continue;  // the one ending at block k
     // The blocks themselves too (j = 0, and the last block): the nose must clear the
     // design there as well as between them.
     const int last = k + 1 == path.size() ? samples : samples - 1;
@@ -121,6 +129,8 @@ inline DenseNoseFigures dense_nose_figures(const Surface& s, const std::vector<C
       const double normal = overlap(rho) / std::sqrt(1 + fx * fx + fy * fy);
       figures.worst = std::max(figures.worst, std::abs(normal));
       figures.gouge = std::max(figures.gouge, normal);
+      figures.lowest = std::min(figures.lowest, -normal);
+      figures.highest = std::max(figures.highest, -normal);
     }
   }
   return figures;

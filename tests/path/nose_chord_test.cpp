@@ -170,6 +170,51 @@ TEST_SUITE("path") {
       CHECK(planned <= eps);
       CHECK(planned >= 0.99 * f.worst);
     }
+    for (const CutterPointRule rule : {CutterPointRule::kEqualAngle, CutterPointRule::kEqualArcLength}) {
+      // Equal angles and equal arc lengths under PVT, in bands of a turn (19 seams): the
+      // blocks do not depend on the errors, and each segment's error, the seams' included,
+      // is the one on the cubics through the blocks as placed. Checked segment by segment
+      // against the dense sampler. The planner's figure is the band's: the stand-off s plus
+      // the largest departure from the band's centre either way, so from the sampled
+      // distances above the design, max(highest, 2s − lowest). Equal angles this coarse
+      // (40 a turn) leave the design by up to 18 µm either way: the verdict's business,
+      // not this test's.
+      const TransformedSurface& sphere = decentred_sphere;
+      const double eps = 5e-4, R = 0.5;
+      SpiralOptions o = sphere_spiral(0.0, eps, R, Interpolation::kCubic);
+      o.points.rule = rule;
+      o.points.points_per_revolution = 40;
+      o.points.arc_length = 0.05;
+      const auto cls = compensated(sphere, R, [&](ContactSink& sink) {
+        plan_spiral(sphere, BaseSurface::plane(1.0), o, sink);
+      });
+      o.threads = 2;
+      ContactCollector on_two;
+      plan_spiral(sphere, BaseSurface::plane(1.0), o, on_two);
+      REQUIRE(on_two.points.size() == cls.size());
+      bool same = true;
+      for (std::size_t i = 0; i < cls.size(); ++i)
+        same = same && on_two.points[i].point == cls[i].contact.point &&
+               on_two.points[i].chord_error == cls[i].contact.chord_error;
+      CHECK(same);
+      double lowest_ratio = 1e300, highest_ratio = 0;
+      for (std::size_t k = 1; k < cls.size(); ++k) {
+        const test::DenseNoseFigures f =
+            test::dense_nose_figures(sphere, cls, R, 40, 200, nullptr, true, k);
+        const double s = cls[k].contact.stand_off;
+        const double band = std::max(f.highest, 2 * s - f.lowest);
+        lowest_ratio = std::min(lowest_ratio, cls[k].contact.chord_error / band);
+        highest_ratio = std::max(highest_ratio, cls[k].contact.chord_error / band);
+      }
+      MESSAGE(std::string(rule == CutterPointRule::kEqualAngle ? "equal angles" : "equal arc lengths")
+              << ", PVT in bands: " << cls.size() << " points, planned/sampled per segment in ["
+              << lowest_ratio << ", " << highest_ratio << "]");
+      CHECK(lowest_ratio >= 0.99);
+      // The planner measures along the normal of the radial section, the sampler along
+      // the surface's: the two differ by √(1 + f_t²), f_t the slope across the section,
+      // here up to 8/√(30² − 9²) = 0.2795 (a factor of 1.038).
+      CHECK(highest_ratio <= 1.01 * std::sqrt(1 + 0.2795 * 0.2795));
+    }
   }
 
   TEST_CASE(

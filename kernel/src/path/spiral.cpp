@@ -169,9 +169,8 @@ class SpiralPath {
 // exactly at its last, so that bands can be planned at once on several threads and the
 // points stay the same on any number (docs/path.md, "Bands"). About 64 bands over the
 // path, each one to four turns and a radian: a band is held whole until its turn to be
-// consumed, so its length, not the path's, bounds the memory. Chord-controlled PVT
-// programs are banded likewise, their seams judged once both bands are known (plan_spiral);
-// equal angles or arc lengths under PVT are one band. Equal angles are banded by whole
+// consumed, so its length, not the path's, bounds the memory. PVT programs are banded
+// likewise, their seams judged once both bands are known (plan_spiral). Equal angles are banded by whole
 // turns, seams on the steps' own angles; equal arc lengths at points of one walk of the
 // rule (equal_arc_seams below), so that no step is cut short at a seam. A path of one
 // band streams to the sink.
@@ -180,8 +179,7 @@ std::vector<double> band_bounds(double end, const CutterPointOptions& points) {
   std::vector<double> bounds{0.0};
   const double turns = std::clamp(std::ceil(end / kTurn / 64), 1.0, 4.0);
   if ((points.rule == CutterPointRule::kChordError ||
-       (points.interpolation != Interpolation::kCubic &&
-        points.rule == CutterPointRule::kEqualArcLength)) &&
+       points.rule == CutterPointRule::kEqualArcLength) &&
       end > kTurn) {
     // n turns and about a radian: a seam's block stays off the round angles θ = 2πk, where
     // a sampler that brackets C by whole turns can miss the block by rounding. Chord
@@ -204,8 +202,7 @@ std::vector<double> band_bounds(double end, const CutterPointOptions& points) {
     } else {
       for (int k = 1; k * width < end - 1e-9 * width; ++k) bounds.push_back(k * width);
     }
-  } else if (points.interpolation != Interpolation::kCubic &&
-             points.rule == CutterPointRule::kEqualAngle && end > kTurn) {
+  } else if (points.rule == CutterPointRule::kEqualAngle && end > kTurn) {
     // Equal angles: bands of whole turns, each seam the j-th step's angle j·(2π/n), so the
     // steps stay equal across it (to rounding, as they are along one band).
     const double step = kTurn / points.points_per_revolution;
@@ -304,7 +301,7 @@ PathSummary plan_spiral(const Surface& design, const BaseSurface& base,
     out.push(p);
   };
   if (bands == 1) {
-    // One band (PVT, or a path of a turn or so): there is nothing to put in
+    // One band (a path of a turn or so): there is nothing to put in
     // order, so its points go straight to the sink and memory stays flat however long
     // the path is.
     forget_thread_warm_starts();  // as a band would: the path's set-up used them
@@ -351,7 +348,10 @@ PathSummary plan_spiral(const Surface& design, const BaseSurface& base,
   // are known they are judged as they are: a seam whose segments miss the target (the
   // ranges' judgement is at their ends and the band's step only) has the later band
   // planned again, from the blocks before the seam, on this thread. The band's first and
-  // the seam's own block then report their segments' true errors.
+  // the seam's own block then report their segments' true errors. Equal angles and arc
+  // lengths place their blocks whatever the errors: planned again, a band would place the
+  // same ones, so their seams are judged and reported, not planned again.
+  const bool steps_fixed = o.points.rule != CutterPointRule::kChordError;
   const double target = detail::chord_target(o.points, path.stand_off());
   std::vector<detail::AxisState> last_blocks;  // the path's last three blocks so far
   ContactPoint seam_point;                      // the last band's last point, held back
@@ -375,8 +375,8 @@ PathSummary plan_spiral(const Surface& design, const BaseSurface& base,
       out_of = segment(&before, seam, band.head[0], after2);
     };
     judge_seam();
-    if (std::max(std::abs(into), std::abs(out_of)) > target || band.head.size() < 2 ||
-        o.replan_every_seam) {
+    if ((!steps_fixed && std::max(std::abs(into), std::abs(out_of)) > target) ||
+        band.head.size() < 2 || o.replan_every_seam) {
       detail::PieceJoints joints;
       joints.before2 = before2;
       joints.before = &before;
