@@ -60,10 +60,11 @@ struct DenseNoseFigures {
   double highest = -std::numeric_limits<double>::infinity();
 };
 
-inline DenseNoseFigures dense_nose_figures(const Surface& s, const std::vector<CutterLocation>& path,
-                                           double R, int samples = 50, int grid = 400,
-                                           const CompensationOptions* axes = nullptr, bool pvt = false,
-                                           std::size_t only_segment = 0) {
+inline DenseNoseFigures dense_nose_figures(const Surface& s,
+                                           const std::vector<CutterLocation>& path, double R,
+                                           int samples = 50, int grid = 400,
+                                           const CompensationOptions* axes = nullptr,
+                                           bool pvt = false, std::size_t only_segment = 0) {
   DenseNoseFigures figures;
   const auto radial = [](const Eigen::Vector3d& p, double c) { return p.x() * std::cos(c) + p.y() * std::sin(c); };
   // Per block: the coordinates that move (C, the centre's radial position and z, and the

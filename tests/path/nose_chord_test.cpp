@@ -159,7 +159,8 @@ TEST_SUITE("path") {
       // (stand-off plus the dip below the band's centre), more than its distance from the
       // design, which is what the sampler measures: so no more than ε, and no less than
       // the sampler's worst.
-      const test::DenseNoseFigures f = test::dense_nose_figures(sphere, cls, R, 100, 400, nullptr, true);
+      const test::DenseNoseFigures f =
+          test::dense_nose_figures(sphere, cls, R, 100, 400, nullptr, true);
       double planned = 0;
       for (const CutterLocation& cl : cls) planned = std::max(planned, cl.contact.chord_error);
       MESSAGE("every seam planned again: ε " << eps * 1e6 << " nm, PVT motion " << f.worst * 1e6
@@ -170,7 +171,8 @@ TEST_SUITE("path") {
       CHECK(planned <= eps);
       CHECK(planned >= 0.99 * f.worst);
     }
-    for (const CutterPointRule rule : {CutterPointRule::kEqualAngle, CutterPointRule::kEqualArcLength}) {
+    for (const CutterPointRule rule :
+         {CutterPointRule::kEqualAngle, CutterPointRule::kEqualArcLength}) {
       // Equal angles and equal arc lengths under PVT, in bands of a turn (19 seams): the
       // blocks do not depend on the errors, and each segment's error, the seams' included,
       // is the one on the cubics through the blocks as placed. Checked segment by segment
@@ -206,9 +208,10 @@ TEST_SUITE("path") {
         lowest_ratio = std::min(lowest_ratio, cls[k].contact.chord_error / band);
         highest_ratio = std::max(highest_ratio, cls[k].contact.chord_error / band);
       }
-      MESSAGE(std::string(rule == CutterPointRule::kEqualAngle ? "equal angles" : "equal arc lengths")
-              << ", PVT in bands: " << cls.size() << " points, planned/sampled per segment in ["
-              << lowest_ratio << ", " << highest_ratio << "]");
+      MESSAGE(
+          std::string(rule == CutterPointRule::kEqualAngle ? "equal angles" : "equal arc lengths")
+          << ", PVT in bands: " << cls.size() << " points, planned/sampled per segment in ["
+          << lowest_ratio << ", " << highest_ratio << "]");
       CHECK(lowest_ratio >= 0.99);
       // The planner measures along the normal of the radial section, the sampler along
       // the surface's: the two differ by √(1 + f_t²), f_t the slope across the section,

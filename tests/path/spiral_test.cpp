@@ -127,7 +127,8 @@ TEST_SUITE("path") {
                                                std::asin(path[k60 + n].r / radius)))
                          .epsilon(1e-9)
                          .scale(0));
-    CHECK(spacing == doctest::Approx(pitch / std::cos(std::asin(mid / radius))).epsilon(1e-4).scale(0));
+    CHECK(spacing ==
+          doctest::Approx(pitch / std::cos(std::asin(mid / radius))).epsilon(1e-4).scale(0));
     CHECK(spacing == doctest::Approx(2 * pitch).epsilon(2e-3));
     CHECK(path[k60].pass_spacing == doctest::Approx(pitch / std::cos(std::asin(path[k60].r / radius)))
                                         .epsilon(1e-12));

@@ -33,14 +33,17 @@ std::vector<ContactPoint> points(int n, double seed) {
   return out;
 }
 
-bool same_bits(double a, double b) { return std::memcmp(&a, &b, sizeof a) == 0; }
+bool same_bits(double a, double b) {
+  return std::memcmp(&a, &b, sizeof a) == 0;
+}
 
 bool same_bits(const ContactPoint& a, const ContactPoint& b) {
   bool same = same_bits(a.theta, b.theta) && same_bits(a.r, b.r) &&
               same_bits(a.chord_error, b.chord_error) && a.chord_below == b.chord_below &&
               a.chord_jump == b.chord_jump && same_bits(a.uncut_residual, b.uncut_residual) &&
               same_bits(a.stand_off, b.stand_off) && same_bits(a.pass_spacing, b.pass_spacing) &&
-              same_bits(a.section_curvature, b.section_curvature) && same_bits(a.scallop, b.scallop);
+              same_bits(a.section_curvature, b.section_curvature) &&
+              same_bits(a.scallop, b.scallop);
   for (int k = 0; k < 3; ++k)
     same = same && same_bits(a.point[k], b.point[k]) && same_bits(a.normal[k], b.normal[k]);
   return same;
@@ -49,15 +52,17 @@ bool same_bits(const ContactPoint& a, const ContactPoint& b) {
 // Keeps every chunk as it came.
 struct ChunkLog final : ContactSink {
   std::vector<std::vector<ContactPoint>> chunks;
-  void write(std::span<const ContactPoint> chunk) override { chunks.emplace_back(chunk.begin(), chunk.end()); }
+  void write(std::span<const ContactPoint> chunk) override {
+    chunks.emplace_back(chunk.begin(), chunk.end());
+  }
 };
 
 }  // namespace
 
 TEST_SUITE("pipeline") {
   TEST_CASE("a contact tape passes its chunks on and replays them bit for bit, as they came") {
-    const std::vector<std::vector<ContactPoint>> sent = {points(3, 0.1), points(4096, 7.0), {},
-                                                         points(1, -2.0)};
+    const std::vector<std::vector<ContactPoint>> sent = {
+        points(3, 0.1), points(4096, 7.0), {}, points(1, -2.0)};
     ContactTape tape(std::size_t{1} << 30);
     ChunkLog passed, replayed;
     RecordingSink recorder(passed, tape);

@@ -119,7 +119,9 @@ TEST_SUITE("pipeline") {
                         std::filesystem::directory_iterator()) == 3);
   }
 
-  TEST_CASE("a constant-rpm run written from the probe's kept path is the same bytes as one planned twice") {
+  TEST_CASE(
+      "a constant-rpm run written from the probe's kept path is the same bytes as one planned "
+      "twice") {
     // The Precitech's dialect keeps one block time: the run finds the highest rpm every
     // block allows, then writes at it. With a roughing pass, two paths are kept.
     const PluginPaths paths;

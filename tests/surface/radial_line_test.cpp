@@ -14,11 +14,13 @@ TEST_SUITE("surface") {
     double worst = 0;
     for (int i = 0; i < 64; ++i) {
       const RadialLine base(-7.0 + 0.37 * i);
-      for (const double delta : {0.0, 1e-12, -3e-7, 1e-3, -0.02, 0.0625, -0.0625, 0.07, -1.5, 4.0}) {
+      for (const double delta :
+           {0.0, 1e-12, -3e-7, 1e-3, -0.02, 0.0625, -0.0625, 0.07, -1.5, 4.0}) {
         const double angle = base.theta + delta;
         const RadialLine turned = base.turned_to(angle);
         CHECK(turned.theta == angle);
-        worst = std::max({worst, std::abs(turned.cos - std::cos(angle)), std::abs(turned.sin - std::sin(angle))});
+        worst = std::max({worst, std::abs(turned.cos - std::cos(angle)),
+                          std::abs(turned.sin - std::sin(angle))});
       }
     }
     MESSAGE("largest difference from libm: " << worst);

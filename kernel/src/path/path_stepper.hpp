@@ -292,8 +292,11 @@ double segment_error(const Path& path, const Segment& segment, Interpolation mod
       d = gap_at(t, j, x, c, z, bb);
     }
     const double tau = a.tau + t * (b.tau - a.tau);
-    if (j >= 0) path.at(tau, grid_line[j], ideal);
-    else path.at(tau, line_at(tau), ideal);
+    if (j >= 0) {
+      path.at(tau, grid_line[j], ideal);
+    } else {
+      path.at(tau, line_at(tau), ideal);
+    }
     const double above = std::max(d, path.slide(x, c, z, bb, ideal));
     return above >= -d ? above : d;
   }, always_search, target);

@@ -170,10 +170,10 @@ class SpiralPath {
 // points stay the same on any number (docs/path.md, "Bands"). About 64 bands over the
 // path, each one to four turns and a radian: a band is held whole until its turn to be
 // consumed, so its length, not the path's, bounds the memory. PVT programs are banded
-// likewise, their seams judged once both bands are known (plan_spiral). Equal angles are banded by whole
-// turns, seams on the steps' own angles; equal arc lengths at points of one walk of the
-// rule (equal_arc_seams below), so that no step is cut short at a seam. A path of one
-// band streams to the sink.
+// likewise, their seams judged once both bands are known (plan_spiral). Equal angles are
+// banded by whole turns, seams on the steps' own angles; equal arc lengths at points of
+// one walk of the rule (equal_arc_seams below), so that no step is cut short at a seam. A
+// path of one band streams to the sink.
 std::vector<double> band_bounds(double end, const CutterPointOptions& points) {
   constexpr double kTurn = 2 * std::numbers::pi;
   std::vector<double> bounds{0.0};
@@ -301,9 +301,8 @@ PathSummary plan_spiral(const Surface& design, const BaseSurface& base,
     out.push(p);
   };
   if (bands == 1) {
-    // One band (a path of a turn or so): there is nothing to put in
-    // order, so its points go straight to the sink and memory stays flat however long
-    // the path is.
+    // One band (a path of a turn or so): there is nothing to put in order, so its points
+    // go straight to the sink and memory stays flat however long the path is.
     forget_thread_warm_starts();  // as a band would: the path's set-up used them
     SpiralPath piece = path;
     detail::distribute(
