@@ -130,9 +130,11 @@ std::vector<CutterLocation> plan_with_nose(const Surface& s, const BaseSurface& 
 // base, with a 0.2 mm nose, ε = 0.2 µm, 4° angle cap.
 std::vector<CutterLocation> plan_compound_eye(const LensletArray& eye, double pitch,
                                               std::vector<ContactPoint>* contacts,
-                                              PathSummary* summary = nullptr) {
+                                              PathSummary* summary = nullptr,
+                                              bool measure_every_crease = false) {
   SpiralOptions o = spiral_options(1.6, pitch, 2e-4, 0.2);
   o.points.max_angle_step = 4 * std::numbers::pi / 180;
+  o.measure_every_crease = measure_every_crease;
   return plan_with_nose(eye, fit_base_least_squares(sample_aperture(eye, 0, 1.6)), o, contacts,
                         summary);
 }
@@ -371,18 +373,131 @@ TEST_SUITE("path") {
     CHECK(o.height == doctest::Approx(brute).epsilon(1e-7));
   }
 
+  TEST_CASE("compound eye: a touch clear of creases touches nowhere else and is not held") {
+    // Random contacts on the compound eye (0.9 mm lenslets on a 20 mm base), a 0.2 mm nose
+    // placed at each contact's plain offset. Where touch_clear_of_creases holds with a
+    // 10 µm margin, the nose at that contact, and at contacts up to 10 µm either way along
+    // the radial line, overhangs the section nowhere (brute force over 20 000 radii),
+    // nose_touch does not hold it, and a nose 1 µm across and 0.1 µm above it finds the
+    // same overlap with and without the crease search, to 10 pm. The envelope is not empty either:
+    // a third of the contacts are clear, none within 10 µm of a rim (lenslet_at along
+    // the line), and some that are not clear do overhang.
+    const LensletArray eye(test::compound_eye_options(3.0));
+    const double R = 0.2, margin = 10e-3;
+    std::mt19937 rng(11);
+    std::uniform_real_distribution<double> unit(0, 1);
+    const auto centre_of = [&](const RadialLine& line, double rho, double& cx, double& cz) {
+      double z, zx, zy;
+      eye.sag_gradient(rho * line.cos, rho * line.sin, z, zx, zy);
+      const double slope = zx * line.cos + zy * line.sin, l = std::sqrt(1 + slope * slope);
+      cx = rho - R * slope / l;
+      cz = z + R / l;
+      return slope;
+    };
+    int clear = 0, overhanging_unclear = 0, near_rim_clear = 0;
+    double worst_difference = 0;
+    const int n = 400;
+    for (int k = 0; k < n; ++k) {
+      const double theta = 2 * std::numbers::pi * unit(rng), rho = 0.05 + 2.2 * unit(rng);
+      const RadialLine line(theta);
+      double cx, cz;
+      centre_of(line, rho, cx, cz);
+      const bool is_clear = touch_clear_of_creases(eye, rho * line.cos, rho * line.sin, R, margin);
+      if (!is_clear) {
+        overhanging_unclear += brute_overlap(eye, cx, cz, R, theta, 4000) > 1e-9;
+        continue;
+      }
+      ++clear;
+      const int own = eye.lenslet_at(rho * line.cos, rho * line.sin);
+      for (double d = -margin; d <= margin + 1e-12; d += 1e-4)
+        near_rim_clear += eye.lenslet_at((rho + d) * line.cos, (rho + d) * line.sin) != own;
+      for (const double d : {-margin, -0.5 * margin, 0.0, 0.5 * margin, margin}) {
+        CAPTURE(theta);
+        CAPTURE(rho + d);
+        double x, z;
+        const double slope = centre_of(line, rho + d, x, z);
+        CHECK(brute_overlap(eye, x, z, R, theta) <= 1e-10);
+        double sz, zx, zy;
+        eye.sag_gradient((rho + d) * line.cos, (rho + d) * line.sin, sz, zx, zy);
+        CHECK_FALSE(nose_touch(eye, line, R, rho + d, sz, slope).held);
+        const NoseOverlap full = nose_overlap(eye, line, x + 1e-3, z + 1e-4, R, rho + d);
+        const NoseOverlap near = nose_overlap_near(eye, line, x + 1e-3, z + 1e-4, R, rho + d);
+        // The same but for the Newton steps' shortfall: the hint lies 1 µm from the touch
+        // here (the planner's within nanometres), and the full search's crease searches on
+        // the touch's own piece can only add steps toward its top.
+        CHECK(full.height >= near.height);
+        CHECK(full.height - near.height <= 1e-8);
+        worst_difference = std::max(worst_difference, full.height - near.height);
+      }
+    }
+    MESSAGE("clear ", clear, " of ", n, ", not clear and overhanging ", overhanging_unclear,
+            ", overlap with the crease search over without, at most ", worst_difference * 1e9,
+            " pm");
+    CHECK(clear > n / 3);
+    CHECK(near_rim_clear == 0);
+    CHECK(overhanging_unclear > 0);
+  }
+
   TEST_CASE("compound eye, space spiral with a nose: no point of the nose below the design") {
+    // Planned as it is (segments clear of creases measured as on a smooth design) and with
+    // every segment measured in full: both must pass the dense sampler.
     const LensletArray eye(test::compound_eye_options(2.2));
     const double R = 0.2;
-    std::vector<ContactPoint> contacts;
-    PathSummary summary;
-    const std::vector<CutterLocation> cls = plan_compound_eye(eye, 0.05, &contacts, &summary);
-    const double worst_uncut = check_held_spiral(eye, cls, contacts, summary, R, 2e-4);
-    // The rims' angle in the radial section is at most the 3D crease angle (about 6.5°):
-    // under the real nose the residual stays below (R + ε/2)/cos(δ/2) − R for δ = 7°, the
-    // nose standing off ε/2.
-    const double lifted = R + 0.5 * 2e-4;  // the nose stands off ε/2 (plan_compound_eye)
-    CHECK(worst_uncut < lifted / std::cos(3.5 * std::numbers::pi / 180) - R);
+    for (const bool every : {false, true}) {
+      CAPTURE(every);
+      std::vector<ContactPoint> contacts;
+      PathSummary summary;
+      const std::vector<CutterLocation> cls =
+          plan_compound_eye(eye, 0.05, &contacts, &summary, every);
+      const double worst_uncut = check_held_spiral(eye, cls, contacts, summary, R, 2e-4);
+      // The rims' angle in the radial section is at most the 3D crease angle (about 6.5°):
+      // under the real nose the residual stays below (R + ε/2)/cos(δ/2) − R for δ = 7°, the
+      // nose standing off ε/2.
+      const double lifted = R + 0.5 * 2e-4;  // the nose stands off ε/2 (plan_compound_eye)
+      CHECK(worst_uncut < lifted / std::cos(3.5 * std::numbers::pi / 180) - R);
+    }
+  }
+
+  TEST_CASE("compound eye at 50 nm: segments clear of creases measured as smooth, as safe") {
+    // At ε = 50 nm beyond the first ring of lenslets the steps away from the rims are set
+    // by the chord, not the angle cap (inside it the central lenslet is turned true),
+    // so measuring the segments clear of creases (path_stepper.hpp) as on a smooth design
+    // (8 intervals, no crease search, no slide) moves blocks: the plan differs from the one
+    // with every segment measured in full. Both must pass the dense sampler (no gouge over
+    // 10 nm, the chord within ε and 2 %) and the brute-force cut (what is left within the
+    // planner's own bound), and cost about as many points.
+    const LensletArray eye(test::compound_eye_options(3.0));
+    const double R = 0.2, tolerance = 5e-5, outer = 2.2;
+    SpiralOptions o = spiral_options(outer, 0.04, tolerance, R);
+    o.points.max_angle_step = 4 * std::numbers::pi / 180;
+    const BaseSurface base = fit_base_least_squares(sample_aperture(eye, 0, outer));
+    std::size_t points[2] = {0, 0};
+    std::vector<ContactPoint> plans[2];
+    for (const bool every : {false, true}) {
+      CAPTURE(every);
+      o.measure_every_crease = every;
+      std::vector<ContactPoint>& contacts = plans[every];
+      PathSummary summary;
+      const std::vector<CutterLocation> cls = plan_with_nose(eye, base, o, &contacts, &summary);
+      points[every] = cls.size();
+      check_held_spiral(eye, cls, contacts, summary, R, tolerance);
+      double chord_above = 0, scallop = 0, uncut = 0;
+      for (const ContactPoint& p : contacts) {
+        if (!p.chord_below) chord_above = std::max(chord_above, p.chord_error);
+        scallop = std::max(scallop, p.scallop);
+        uncut = std::max(uncut, p.uncut_residual);
+      }
+      const double bound = chord_above + std::max(scallop, uncut);
+      const double left = test::dense_spiral_residual(eye, cls, R, 360, 0.1, 2.15, 0.0025);
+      MESSAGE("left ", left * 1e6, " nm, bound ", bound * 1e6, " nm");
+      CHECK(left <= bound);
+    }
+    bool same = plans[0].size() == plans[1].size();
+    for (std::size_t k = 0; same && k < plans[0].size(); ++k)
+      same = plans[0][k].theta == plans[1][k].theta;
+    CHECK_FALSE(same);
+    CHECK(static_cast<double>(points[0]) <= 1.02 * static_cast<double>(points[1]));
+    CHECK(static_cast<double>(points[0]) >= 0.98 * static_cast<double>(points[1]));
   }
 
   TEST_CASE("a spiral across a crease: a block where each hold begins and ends") {
@@ -437,22 +552,28 @@ TEST_SUITE("path") {
     // demo job against 0.62 µm predicted, before the planner measured the slide). Cut here
     // by brute force and compared with the planner's own bound: the largest chord error
     // above the design plus the larger of the scallop and the uncut residual.
+    // Segments whose nose stays clear of every crease are measured without the slide (as
+    // on a smooth design); with every segment measured in full as well.
     const LensletArray eye(test::compound_eye_options(2.2));
     const double R = 0.2;
-    std::vector<ContactPoint> contacts;
-    const std::vector<CutterLocation> cls = plan_compound_eye(eye, 0.02, &contacts);
-    double chord_above = 0, scallop = 0, uncut = 0;
-    for (const ContactPoint& p : contacts) {
-      if (!p.chord_below) chord_above = std::max(chord_above, p.chord_error);
-      scallop = std::max(scallop, p.scallop);
-      uncut = std::max(uncut, p.uncut_residual);
+    for (const bool every : {false, true}) {
+      CAPTURE(every);
+      std::vector<ContactPoint> contacts;
+      const std::vector<CutterLocation> cls =
+          plan_compound_eye(eye, 0.02, &contacts, nullptr, every);
+      double chord_above = 0, scallop = 0, uncut = 0;
+      for (const ContactPoint& p : contacts) {
+        if (!p.chord_below) chord_above = std::max(chord_above, p.chord_error);
+        scallop = std::max(scallop, p.scallop);
+        uncut = std::max(uncut, p.uncut_residual);
+      }
+      const double bound = chord_above + std::max(scallop, uncut);
+      // Inside the outermost and innermost turns, where two passes bracket every radius.
+      const double left = test::dense_spiral_residual(eye, cls, R, 360, 0.1, 1.55, 0.0025);
+      MESSAGE("points ", cls.size(), ", left ", left * 1e6, " nm, bound ", bound * 1e6, " nm");
+      CHECK(left > 0);
+      CHECK(left <= bound);
     }
-    const double bound = chord_above + std::max(scallop, uncut);
-    // Inside the outermost and innermost turns, where two passes bracket every radius.
-    const double left = test::dense_spiral_residual(eye, cls, R, 360, 0.1, 1.55, 0.0025);
-    MESSAGE("points ", cls.size(), ", left ", left * 1e6, " nm, bound ", bound * 1e6, " nm");
-    CHECK(left > 0);
-    CHECK(left <= bound);
   }
 
   TEST_CASE("microlens array on a plane, traditional spiral with a nose: no gouge at the rims") {

@@ -4,6 +4,8 @@
 #include <cmath>
 #include <numbers>
 #include <random>
+#include <span>
+#include <vector>
 
 #include "freeturn/core/error.hpp"
 #include "freeturn/surface/lenslet_array.hpp"
@@ -272,6 +274,114 @@ TEST_SUITE("surface") {
       if (c.lens_radius > 0 || c.base_curvature > 0) CHECK(largest >= 0.8 * bound);
       else CHECK(bound == 0.0);
     }
+  }
+
+  TEST_CASE("lenslet arrays: creases_near bounds every rim a half-line from the point meets") {
+    // Brute force apart from the bounds' geometry: from random points, 180 half-lines are
+    // marched in 2 µm steps up to the radius, each change of lenslet (lenslet_at) bisected
+    // to 1e-12 mm. Every crossing must belong to a reported crease (the lenslet entered or
+    // left) no nearer than its reported distance, with a slope jump along the half-line (the
+    // gradient either side, 1e-8 mm off) within the reported bound, and a half-line must
+    // cross no rim more often than reported. The nearest distance is also not loose: within
+    // 5 % of the nearest crossing found, where one is found. Domes and bowls on convex and
+    // concave bases, and a plane base.
+    struct Case {
+      double base_curvature, lens_radius;
+    };
+    for (const Case c :
+         {Case{1 / 20.0, -5.0}, Case{1 / 20.0, 1.5}, Case{-1 / 20.0, -1.5}, Case{0.0, 1.5}}) {
+      CAPTURE(c.base_curvature);
+      CAPTURE(c.lens_radius);
+      LensletArrayOptions o = eye(Pattern::kRings);
+      o.base_curvature = c.base_curvature;
+      o.lens_radius = c.lens_radius;
+      o.extent = 3.0;
+      const LensletArray s(o);
+      const double radius = 0.4;
+      std::mt19937 rng(5);
+      std::uniform_real_distribution<double> unit(0, 1);
+      int crossings = 0, points_near = 0, over = 0;
+      double loosest = 1;
+      for (int k = 0; k < 60; ++k) {
+        const double r = 2.4 * std::sqrt(unit(rng)), phi = 2 * std::numbers::pi * unit(rng);
+        const double x = r * std::cos(phi), y = r * std::sin(phi);
+        std::array<NearbyCrease, 16> near;
+        const int count = s.creases_near(x, y, radius, near);
+        REQUIRE(count >= 0);
+        // A report does not say which lenslet it is: each crossing is matched with any
+        // report that covers it.
+        double nearest = 1e300;
+        for (int d = 0; d < 180; ++d) {
+          const double angle = 2 * std::numbers::pi * d / 180;
+          const double ux = std::cos(angle), uy = std::sin(angle);
+          const auto at = [&](double t) { return s.lenslet_at(x + t * ux, y + t * uy); };
+          std::vector<int> times(static_cast<std::size_t>(s.lenslet_count()), 0);
+          int before = at(0);
+          for (double t = 2e-3; t <= radius + 1e-12; t += 2e-3) {
+            const int now = at(t);
+            if (now == before) continue;
+            double lo = t - 2e-3, hi = t;
+            while (hi - lo > 1e-12) {
+              const double mid = 0.5 * (lo + hi);
+              (at(mid) == before ? lo : hi) = mid;
+            }
+            const double slope_jump = [&] {
+              double z, zx, zy, z2, zx2, zy2;
+              s.sag_gradient(x + (lo - 1e-8) * ux, y + (lo - 1e-8) * uy, z, zx, zy);
+              s.sag_gradient(x + (hi + 1e-8) * ux, y + (hi + 1e-8) * uy, z2, zx2, zy2);
+              return std::abs((zx2 - zx) * ux + (zy2 - zy) * uy);
+            }();
+            ++crossings;
+            nearest = std::min(nearest, hi);
+            // The rim crossed is the lenslet left (before ≥ 0) or entered (now ≥ 0).
+            for (const int lenslet : {before, now})
+              if (lenslet >= 0) ++times[static_cast<std::size_t>(lenslet)];
+            bool covered = false;
+            for (int q = 0; q < count; ++q)
+              covered = covered ||
+                        (near[q].distance <= hi + 1e-9 && near[q].slope_jump >= slope_jump - 1e-6);
+            over += !covered;
+            before = now;
+          }
+          // No report allows fewer crossings than a rim showed.
+          int most = 0;
+          for (const int n : times) most = std::max(most, n);
+          int allowed = 0;
+          for (int q = 0; q < count; ++q) allowed = std::max(allowed, near[q].crossings);
+          over += most > allowed;
+        }
+        if (nearest < radius) {
+          ++points_near;
+          double reported = 1e300;
+          for (int q = 0; q < count; ++q) reported = std::min(reported, near[q].distance);
+          CHECK(reported <= nearest + 1e-9);
+          loosest = std::min(loosest, reported / nearest);
+        }
+      }
+      MESSAGE("crossings ", crossings, ", points with a rim near ", points_near,
+              ", nearest reported / found at worst ", loosest);
+      CHECK(over == 0);
+      CHECK(crossings > 200);
+      CHECK(points_near > 30);
+      CHECK(loosest >= 0.95);
+    }
+  }
+
+  TEST_CASE("lenslet arrays: creases_near knows nothing where footprints touch, or off the base") {
+    // On a plane, footprints of the pitch's diameter touch: a rim there meets two lenses,
+    // whose slopes the bound does not cover, so nothing is claimed (−1).
+    LensletArrayOptions o = eye(Pattern::kHexagonal);
+    o.base_curvature = 0;
+    o.lens_diameter = o.pitch;
+    std::array<NearbyCrease, 16> near;
+    CHECK(LensletArray(o).creases_near(0.3, 0.2, 0.4, near) == -1);
+    o.lens_diameter = 0.9 * o.pitch;
+    CHECK(LensletArray(o).creases_near(0.3, 0.2, 0.4, near) >= 1);
+    // Past the base sphere's rim (R_b = 20 mm) nothing is known.
+    CHECK(LensletArray(eye(Pattern::kRings)).creases_near(25.0, 0.0, 0.4, near) == -1);
+    // Too many creases for the buffer: −1, not a short list.
+    CHECK(LensletArray(eye(Pattern::kRings))
+              .creases_near(0.0, 0.0, 2.0, std::span<NearbyCrease>(near.data(), 2)) == -1);
   }
 
   TEST_CASE("microlens array on a plane: square lattice count and sag") {

@@ -92,6 +92,25 @@ class NoseSection {
     return -o.height / std::sqrt(1 + o.slope * o.slope);
   }
 
+  // `deviation` searched from the hint alone, with no crease search, and where the nose
+  // touches (touch_rho): the same value wherever touch_clear holds at that touch.
+  double deviation_near_hint(double x_axis, const RadialLine& c, double z_axis, double b,
+                             double hint_r, double& touch_rho) const {
+    to_centre(x_axis, z_axis, b);
+    const NoseOverlap o = nose_overlap_near(design_, c, x_axis, z_axis, R_, hint_r);
+    touch_rho = o.rho;
+    return -o.height / std::sqrt(1 + o.slope * o.slope);
+  }
+
+  // Whether a nose touching the design at signed radius rho on the radial line c, or
+  // anywhere within `margin` of it, is clear of every crease (touch_clear_of_creases): not
+  // held, and touching nowhere else. Measured with the placed nose's radius R + stand-off,
+  // the larger. False without a nose, or with B following (no envelope is placed then).
+  bool touch_clear(const RadialLine& c, double rho, double margin) const {
+    if (R_ == 0 || b_follows_) return false;
+    return touch_clear_of_creases(design_, rho * c.cos, rho * c.sin, R_ + stand_off_, margin);
+  }
+
   // How far the nose at the axes (x_axis, z_axis, b) rises above the nose the path places
   // at the same τ (its axes ideal_x, ideal_z, ideal_b, touching the design at ideal_rho
   // with section slope ideal_slope), across the stretch of ±half_width about that touch

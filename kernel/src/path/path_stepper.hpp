@@ -144,16 +144,21 @@ bool peak_within_secant_bound(const double* e, int best, int intervals, double f
 }
 
 // The largest deviation (described above kCreasedIntervals). Its samples are taken coarse
-// to fine (every eighth, then the fourths between, ...). Where a level's largest sample already passes `cutoff`, the segment is over it whatever
-// the finer samples show, and the search stops there: it returns that level's estimate
-// (its largest sample, raised to the parabola's vertex through it and its neighbours when
-// that is higher), which is enough for the step search to predict its next step from. A
-// rejected trial then costs 3 to 7 samples instead of 33.
+// to fine (every eighth, then the fourths between, ...). Where a level's largest sample already
+// passes `cutoff`, the segment is over it whatever the finer samples show, and the search stops
+// there: it returns that level's estimate (its largest sample, raised to the parabola's vertex
+// through it and its neighbours when that is higher), which is enough for the step search to
+// predict its next step from. A rejected trial then costs 3 to 7 samples instead of 33.
+//
+// `as_smooth`: the segment is known to stay clear of the design's creases (segment_error),
+// and is sampled as on a smooth design.
 template <class Path, class Deviation>
 double largest_deviation(const Path& path, Deviation&& deviation, bool always_search = false,
-                         double cutoff = std::numeric_limits<double>::infinity()) {
+                         double cutoff = std::numeric_limits<double>::infinity(),
+                         bool as_smooth = false) {
   constexpr int kMaxIntervals = kCreasedIntervals;
-  const int intervals = path.creased() ? kMaxIntervals : 8;
+  const bool creased = path.creased() && !as_smooth;
+  const int intervals = creased ? kMaxIntervals : 8;
   double signed_worst = 0;
   const auto deviation_at = [&](double t) {
     const double d = deviation(t);
@@ -184,8 +189,8 @@ double largest_deviation(const Path& path, Deviation&& deviation, bool always_se
   const double shift = std::clamp(0.5 * (e[best - 1] - e[best + 1]) / denominator, -1.0, 1.0);
   const double predicted = e[best] - 0.25 * (e[best - 1] - e[best + 1]) * shift;
   const double at_vertex = deviation_at((best + shift) / intervals);
-  if (!(path.creased() && always_search) &&
-      std::abs(at_vertex - predicted) <= (path.creased() ? 1e-3 : 1e-2) * predicted)
+  if (!(creased && always_search) &&
+      std::abs(at_vertex - predicted) <= (creased ? 1e-3 : 1e-2) * predicted)
     return signed_worst;
   if (peak_within_secant_bound(e, best, intervals, std::abs(signed_worst), deviation_at))
     return signed_worst;
@@ -265,6 +270,62 @@ double segment_error(const Path& path, const Segment& segment, Interpolation mod
                                       : path.deviation(x, line_at(c), z, bb, hint);
     return d - path.stand_off();
   };
+  // Segments clear of creases (docs/path.md): where the nose touches nowhere near a crease
+  // throughout, neither the interpolated nose nor the path's can meet one (the envelope of
+  // touch_clear_of_creases), and the segment is measured as on a smooth design: 8
+  // intervals, no crease search, no slide. Known only after the samples, from their
+  // touches: those of the interpolated nose at the 9 samples, and the path's own at the
+  // blocks and halfway, each clear by a margin for what lies between (the largest step
+  // between neighbouring touches, and twice how far the path's touch halfway lies from the
+  // interpolated one; the path's own touches are at the blocks). Where that fails, the
+  // segment is measured in full below. A segment rejected on these samples needs no
+  // certificate: a crease the search left out could only raise the section toward the
+  // nose, which is rejected either way or would have been, at worst, a step too short.
+  if (linear && path.creased() && !a.held && !b.held) {
+    const auto point_on = [&](int j, double rho) {
+      return Eigen::Vector2d(rho * grid_line[j].cos, rho * grid_line[j].sin);
+    };
+    const double half_step = 0.5 * (point_on(kGrid, b.contact_r) - point_on(0, a.contact_r)).norm();
+    if (path.touch_clear(grid_line[0], a.contact_r, half_step) &&
+        path.touch_clear(grid_line[kGrid], b.contact_r, half_step)) {
+      constexpr int kSmooth = 8, kEvery = kGrid / kSmooth;
+      double touch[kSmooth + 1];
+      std::fill(touch, touch + kSmooth + 1, std::numeric_limits<double>::quiet_NaN());
+      touch[0] = a.contact_r;
+      touch[kSmooth] = b.contact_r;
+      const double smooth_gap = largest_deviation(
+          path,
+          [&](double t) {
+            double x, c, z, bb, rho;
+            motion.at(t, x, c, z, bb);
+            const int j = grid_index(t);
+            const double hint = a.contact_r + t * (b.contact_r - a.contact_r);
+            const double d =
+                path.deviation_near_hint(x, j >= 0 ? grid_line[j] : line_at(c), z, bb, hint, rho);
+            if (j >= 0 && j % kEvery == 0) touch[j / kEvery] = rho;
+            return d - path.stand_off();
+          },
+          false, target, true);
+      if (std::abs(smooth_gap) > target) return smooth_gap;
+      AxisState mid;
+      path.at(a.tau + 0.5 * (b.tau - a.tau), grid_line[kGrid / 2], mid);
+      if (!mid.held && std::isfinite(mid.contact_r)) {
+        const Eigen::Vector2d mid_touch = point_on(kGrid / 2, mid.contact_r);
+        double margin = 2 * (mid_touch - point_on(kGrid / 2, touch[kSmooth / 2])).norm();
+        double widest = 0;
+        for (int j = 0; j < kSmooth; ++j) {
+          const Eigen::Vector2d from = point_on(j * kEvery, touch[j]);
+          widest = std::max(widest, (point_on((j + 1) * kEvery, touch[j + 1]) - from).norm());
+        }
+        margin += widest;
+        bool clear =
+            std::isfinite(margin) && path.touch_clear(grid_line[kGrid / 2], mid.contact_r, margin);
+        for (int j = 0; j <= kSmooth && clear; ++j)
+          clear = path.touch_clear(grid_line[j * kEvery], touch[j], margin);
+        if (clear) return smooth_gap;
+      }
+    }
+  }
   // Linear motion: every peak searched on a creased surface. PVT keeps the parabola's
   // test: there a still held nose (a profile's trough narrower than the nose) would make
   // the searched step end where it began, a block of no time (docs/path.md).

@@ -32,6 +32,12 @@ class ProfilePath {
   double deviation(double x_axis, const RadialLine&, double z, double b, double hint_r) const {
     return nose_.deviation(x_axis, RadialLine{}, z, b, hint_r);
   }
+  double deviation_near_hint(double x_axis, const RadialLine&, double z, double b, double hint_r,
+                             double& touch_rho) const {
+    return nose_.deviation_near_hint(x_axis, RadialLine{}, z, b, hint_r, touch_rho);
+  }
+  // A profile is one short pass: every segment on a creased design is measured in full.
+  bool touch_clear(const RadialLine&, double, double) const { return false; }
   // A single pass: only its own touch counts.
   double slide(double x_axis, double, double z, double b, const detail::AxisState& ideal) const {
     return nose_.slide(x_axis, z, b, ideal.x_axis, ideal.z, ideal.b, ideal.contact_r, ideal.slope,

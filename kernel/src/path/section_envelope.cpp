@@ -152,6 +152,46 @@ NoseOverlap nose_overlap(const Surface& design, const RadialLine& line, double x
   return best;
 }
 
+NoseOverlap nose_overlap_near(const Surface& design, const RadialLine& line, double x_c, double z_c,
+                              double R, double hint_rho) {
+  const double reach = 0.999 * R;
+  NoseOverlap best;
+  search(Section(design, line), x_c, z_c, R, hint_rho, x_c - reach, x_c + reach, 2, best);
+  return best;
+}
+
+bool touch_clear_of_creases(const Surface& design, double x, double y, double R, double margin) {
+  const double reach = 2 * R;  // the arc's footprint, from any touch under it
+  std::array<NearbyCrease, 16> near;
+  const int count = design.creases_near(x, y, reach + margin, near);
+  if (count < 0) return false;
+  if (count == 0) return true;
+  const double m = concavity(design, R, std::hypot(x, y) + reach);
+  if (!(m > 0)) return false;
+  std::sort(near.begin(), near.begin() + count,
+            [](const NearbyCrease& a, const NearbyCrease& b) { return a.distance < b.distance; });
+  // Past the k-th crease E(t) = −m t²/2 + rise·t − offset, rise = Σ n J and offset =
+  // Σ n J d over the creases passed: its largest value on [d_k, d_{k+1}] is at rise/m,
+  // clamped there.
+  double rise = 0, offset = 0;
+  for (int k = 0; k < count; ++k) {
+    const NearbyCrease& crease = near[static_cast<std::size_t>(k)];
+    const double d = crease.distance - margin;
+    if (!(d > 0)) return false;  // the touch may reach the crease
+    if (d >= reach) break;
+    const double jump = crease.crossings * crease.slope_jump;
+    if (!(jump >= 0) || !std::isfinite(jump)) return false;
+    rise += jump;
+    offset += jump * d;
+    const double next =
+        k + 1 < count ? std::min(reach, near[static_cast<std::size_t>(k + 1)].distance - margin)
+                      : reach;
+    const double t = std::clamp(rise / m, d, std::max(d, next));
+    if (!(-0.5 * m * t * t + rise * t - offset < 0)) return false;
+  }
+  return true;
+}
+
 NoseTouch nose_touch(const Surface& design, const RadialLine& line, double nose_radius, double rho_p,
                      double z_p, double slope_p, double stand_off, double tolerance) {
   const double R = nose_radius + stand_off;  // the envelope's radius

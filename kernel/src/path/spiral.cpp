@@ -56,6 +56,13 @@ class SpiralPath {
   double deviation(double x_axis, const RadialLine& c, double z, double b, double hint_r) const {
     return nose_.deviation(x_axis, c, z, b, hint_r);
   }
+  double deviation_near_hint(double x_axis, const RadialLine& c, double z, double b, double hint_r,
+                             double& touch_rho) const {
+    return nose_.deviation_near_hint(x_axis, c, z, b, hint_r, touch_rho);
+  }
+  bool touch_clear(const RadialLine& c, double rho, double margin) const {
+    return !o_.measure_every_crease && nose_.touch_clear(c, rho, margin);
+  }
   // The next turns lie a pitch away on either side: each turn cuts half a pitch either way.
   double slide(double x_axis, double, double z, double b, const detail::AxisState& ideal) const {
     return nose_.slide(x_axis, z, b, ideal.x_axis, ideal.z, ideal.b, ideal.contact_r, ideal.slope,

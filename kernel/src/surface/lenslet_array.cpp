@@ -45,6 +45,15 @@ struct CreaseCandidates {
 };
 thread_local CreaseCandidates crease_candidates;
 
+// This thread's candidates for creases_near: every lenslet whose rim can come within
+// `radius` of (x, y). A later query whose disc lies inside that one is answered from it.
+struct NearbyCandidates {
+  std::uint64_t owner = 0;  // the array's instance id; 0: none yet
+  double x = 0, y = 0, radius = -1;
+  std::vector<int> lenslets;
+};
+thread_local NearbyCandidates nearby_candidates;
+
 }  // namespace
 
 LensletArray::LensletArray(const LensletArrayOptions& options) : o_(options) {
@@ -149,6 +158,26 @@ LensletArray::LensletArray(const LensletArrayOptions& options) : o_(options) {
       const Eigen::Vector3d& c = l.base_point;
       rim_height_.push_back(std::sqrt(std::max(0.0, rb * rb - (c.x() * c.x() + c.y() * c.y()))));
     }
+  }
+  // creases_near's bounds. At a rim the lens's and the base's normals lie in one plane with
+  // the lenslet's axis, at α_L = asin(D/2|r|) and α_B = asin(D/2 R_b) from it, so at most
+  // β = α_L + α_B apart. The slope's jump along a unit direction t in (x, y) is
+  // (∇z_L − ∇z_B)·t, and with ∇z = −n_xy/n_z, |∇z_L − ∇z_B| = |n_L,xy n_B,z − n_B,xy n_L,z|
+  // / (n_L,z n_B,z) ≤ |n_L × n_B| / (n_L,z n_B,z) = sin β / (n_L,z n_B,z). The axis leans
+  // at most τ = asin(|c_xy|/R_b) from +z, so n_L,z ≥ cos(τ + α_L), n_B,z ≥ cos(τ + α_B).
+  {
+    double farthest = 0;
+    for (const Lenslet& l : lenslets_)
+      farthest = std::max(farthest, std::hypot(l.base_point.x(), l.base_point.y()));
+    const double lean = cb != 0 ? std::asin(std::min(1.0, farthest * std::abs(cb))) : 0.0;
+    const double alpha_l = std::asin(std::min(1.0, 0.5 * d / std::abs(r)));
+    const double alpha_b = cb != 0 ? std::asin(std::min(1.0, 0.5 * d * std::abs(cb))) : 0.0;
+    const double right = 0.5 * std::numbers::pi;
+    crease_jump_ = lean + std::max(alpha_l, alpha_b) < right
+                       ? std::sin(std::min(alpha_l + alpha_b, right)) /
+                             (std::cos(lean + alpha_l) * std::cos(lean + alpha_b))
+                       : std::numeric_limits<double>::infinity();
+    rim_reach_ = farthest + crease_reach_;
   }
   // The footprint test's constants (lenslet_at).
   const double sign = cb > 0 ? 1.0 : -1.0;
@@ -394,6 +423,79 @@ int LensletArray::section_creases(const RadialLine& line, double rho_lo, double 
     if (q * sin_beta - root * cos_beta >= 0) add(rb * (q * cos_beta + root * sin_beta));
   }
   std::sort(out.begin(), out.begin() + count);
+  return count;
+}
+
+int LensletArray::creases_near(double x, double y, double radius,
+                               std::span<NearbyCrease> out) const {
+  if (!disjoint_ || !std::isfinite(crease_jump_)) return -1;
+  if (!(radius >= 0) || !std::isfinite(radius) || !std::isfinite(x) || !std::isfinite(y)) return -1;
+  const double cb = o_.base_curvature, s = x * x + y * y;
+  // On a sphere: the base's slope is at most ρ_m/√(R_b² − ρ_m²) on the stretch in (x, y)
+  // from the point to any rim (both within ρ_m of the axis).
+  double to_plane = 1, depth = 0;  // 1/√(1 + slope²); S = √(R_b² − s)
+  if (cb != 0) {
+    const double rho_m = std::max(std::sqrt(s), rim_reach_);
+    const double q = rb_squared_ - rho_m * rho_m;
+    if (!(q > 0)) return -1;
+    to_plane = std::sqrt(q / rb_squared_);  // 1/√(1 + ρ_m²/q)
+    depth = std::sqrt(rb_squared_ - s);
+  }
+  NearbyCandidates& c = nearby_candidates;
+  if (c.owner != id_.value || !(std::hypot(x - c.x, y - c.y) + radius <= c.radius)) {
+    c.owner = id_.value;
+    c.x = x, c.y = y;
+    c.radius = radius + 0.25 * o_.pitch;
+    c.lenslets.clear();
+    // A rim lies within crease_reach_ of its base point in (x, y), and a base point lies in
+    // the cell that lists its lenslet (its footprint's square holds it).
+    const double keep = c.radius + crease_reach_;
+    const auto cell_of = [&](double v) {
+      return std::clamp(static_cast<int>(std::floor((v + o_.extent) / cell_)), 0,
+                        cells_per_side_ - 1);
+    };
+    for (int b = cell_of(y - keep); b <= cell_of(y + keep); ++b)
+      for (int a = cell_of(x - keep); a <= cell_of(x + keep); ++a) {
+        const int k = b * cells_per_side_ + a;
+        for (int idx = cell_start_[k]; idx < cell_start_[k + 1]; ++idx) {
+          const int i = cell_items_[static_cast<std::size_t>(idx)];
+          const LookupEntry& l = by_lenslet_[static_cast<std::size_t>(i)];
+          if ((l.px - x) * (l.px - x) + (l.py - y) * (l.py - y) <= keep * keep)
+            c.lenslets.push_back(i);
+        }
+      }
+    std::sort(c.lenslets.begin(), c.lenslets.end());
+    c.lenslets.erase(std::unique(c.lenslets.begin(), c.lenslets.end()), c.lenslets.end());
+  }
+  const double half = 0.5 * o_.lens_diameter;
+  const double rb = cb != 0 ? 1 / std::abs(cb) : 0.0;
+  const double cos_alpha = cb != 0 ? rim_cosine_ / rb : 1.0, sin_alpha = half * std::abs(cb);
+  int count = 0;
+  for (const int i : c.lenslets) {
+    const LookupEntry& l = by_lenslet_[static_cast<std::size_t>(i)];
+    double distance;
+    bool inside;
+    if (cb == 0) {
+      const double from_centre = std::hypot(x - l.px, y - l.py);
+      distance = std::abs(from_centre - half);
+      inside = from_centre < half;
+    } else {
+      // φ, the angle at the sphere's centre between the point's base point and the axis:
+      // R_b cos φ = a_z S − sgn(c)(a_x x + a_y y) (lenslet_at). The rim is φ = α; along the
+      // sphere a rim point is at least R_b|φ − α| away, so at least 2R_b sin(|φ − α|/2) ≥
+      // R_b|sin(φ − α)| in space, and at least that times 1/√(1 + slope²) in (x, y).
+      const double cos_phi =
+          std::clamp((std::sqrt(l.w2) * depth - (l.ux * x + l.uy * y)) / rb, -1.0, 1.0);
+      const double sin_phi = std::sqrt(1 - cos_phi * cos_phi);
+      distance = rb * std::abs(sin_phi * cos_alpha - cos_phi * sin_alpha) * to_plane;
+      inside = cos_phi > cos_alpha;
+    }
+    if (!(distance <= radius)) continue;
+    if (count == static_cast<int>(out.size())) return -1;
+    // A footprint is convex in (x, y) (a disc, or a spherical cap's projection): a
+    // half-line from inside leaves it once, one from outside crosses its rim twice at most.
+    out[static_cast<std::size_t>(count++)] = {distance, crease_jump_, inside ? 1 : 2};
+  }
   return count;
 }
 

@@ -26,4 +26,8 @@ int Surface::section_creases(const RadialLine&, double rho_lo, double rho_hi, st
 
 double Surface::max_bend(double) const { return std::numeric_limits<double>::infinity(); }
 
+int Surface::creases_near(double, double, double, std::span<NearbyCrease>) const {
+  return has_creases() ? -1 : 0;
+}
+
 }  // namespace freeturn

@@ -48,6 +48,25 @@ struct NoseOverlap {
 NoseOverlap nose_overlap(const Surface& design, const RadialLine& line, double x_c, double z_c, double R,
                          double hint_rho);
 
+// The same search from hint_rho alone, with no crease search: the overlap nose_overlap
+// finds wherever touch_clear_of_creases holds at the touch (NoseOverlap::rho).
+NoseOverlap nose_overlap_near(const Surface& design, const RadialLine& line, double x_c, double z_c,
+                              double R, double hint_rho);
+
+// Whether a nose of radius R (or less) whose lower arc is highest over the section at the
+// point (x, y) of the design, on a smooth piece, can be sure to be highest there over every
+// piece: no crease within its reach lets the section rise to it elsewhere. The creases'
+// bounds (Surface::creases_near), each distance less `margin` (mm: how far the touch may
+// move from (x, y) while this answer stands), against the envelope
+//   h(t) − h(0) ≤ −m t²/2 + Σ_k n_k J_k (t − d_k)₊,  0 < t ≤ 2R,
+// along the section either way from the touch, h the section's height over the arc
+// (h'(0) = 0 at the touch), m = 1/R − max_bend how strongly concave h is on a smooth piece,
+// and crease k at least d_k away with a slope jump of at most J_k, crossed at most n_k
+// times. The right side is piecewise a concave parabola; true when it stays below 0
+// throughout. On such a touch no crease search can find more (nose_overlap), and a nose
+// touching there is not held (nose_touch). False where the surface cannot say.
+bool touch_clear_of_creases(const Surface& design, double x, double y, double R, double margin);
+
 // Where the nose touches the section for the contact at signed radius rho_p.
 struct NoseTouch {
   double rho = 0, z = 0, slope = 0;   // the touch on the contact's own flank, and dg/dρ there

@@ -30,6 +30,10 @@ struct SpiralOptions {
   // a seam whose segments miss the target does (spiral.cpp). No natural case was found to
   // miss, so this is how that path is run.
   bool replan_every_seam = false;
+  // Tests only: every segment on a creased design measured with the crease searches and
+  // the slide, including those whose nose stays clear of every crease (path_stepper.hpp,
+  // "Segments clear of creases"), which are otherwise measured as on a smooth design.
+  bool measure_every_crease = false;
 };
 
 // Streams the contact points into `sink` and returns the summary. Throws InputError

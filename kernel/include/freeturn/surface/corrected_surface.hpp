@@ -54,6 +54,10 @@ class CorrectedSurface final : public Surface {
   int section_creases(const RadialLine& line, double lo, double hi, std::span<double> out) const override {
     return design_->section_creases(line, lo, hi, out);
   }
+  // Smooth corrections move no crease and change no slope's jump across one.
+  int creases_near(double x, double y, double radius, std::span<NearbyCrease> out) const override {
+    return design_->creases_near(x, y, radius, out);
+  }
 
  private:
   std::unique_ptr<Surface> design_;

@@ -46,6 +46,11 @@ class LensletArray final : public Surface {
   // base; on a sphere, a cone about the lenslet's axis through the sphere's centre).
   int section_creases(const RadialLine& line, double rho_lo, double rho_hi,
                       std::span<double> out) const override;
+  // Each lenslet's rim within `radius`: its distance from the angle at the base sphere's
+  // centre between the point and the lenslet's axis (exact on a plane), the slope's jump
+  // from the angle between the lens's and the base's normals there. −1 where footprints
+  // overlap (a rim inside another footprint meets two lenses, not a lens and the base).
+  int creases_near(double x, double y, double radius, std::span<NearbyCrease> out) const override;
 
   int lenslet_count() const { return static_cast<int>(lenslets_.size()); }
   // Index of the lenslet whose footprint holds (x, y), or −1 on the base.
@@ -98,6 +103,10 @@ class LensletArray final : public Surface {
   // The largest bend of any lenslet's sphere over its footprint (max_bend).
   double lenslet_bend_ = 0;
   double rb_squared_ = 0;  // R_b² on a sphere (lenslet_at)
+  // creases_near: the slope's largest jump across a rim, and how far from the axis in
+  // (x, y) a rim reaches.
+  double crease_jump_ = 0;
+  double rim_reach_ = 0;
 };
 
 }  // namespace freeturn

@@ -27,6 +27,9 @@ class RaisedSurface final : public Surface {
     return s_.section_creases(line, lo, hi, out);
   }
   double max_bend(double radius) const override { return s_.max_bend(radius); }
+  int creases_near(double x, double y, double radius, std::span<NearbyCrease> out) const override {
+    return s_.creases_near(x, y, radius, out);
+  }
 
  private:
   const Surface& s_;

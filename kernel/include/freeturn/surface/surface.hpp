@@ -45,6 +45,14 @@ struct RadialLine {
   }
 };
 
+// A crease near a point (Surface::creases_near): one curve of the design's creases in (x, y),
+// bounded as the nose's envelope needs (path/section_envelope.hpp, touch_clear_of_creases).
+struct NearbyCrease {
+  double distance = 0;    // mm: at most its distance in (x, y) from the point
+  double slope_jump = 0;  // at least the jump of dz/dt across it, t along any unit direction
+  int crossings = 0;      // at least how often a half-line from the point can cross it
+};
+
 class Surface {
  public:
   virtual ~Surface() = default;
@@ -81,6 +89,14 @@ class Surface {
   // leave out a flank that cannot reach the nose (path/section_envelope.cpp); a bound
   // below the truth would hide an overlap, so it must hold everywhere it is asked.
   virtual double max_bend(double radius) const;
+
+  // The creases within `radius` of (x, y) in (x, y), bounded (NearbyCrease): writes at most
+  // out.size() of them and returns how many, or −1 when they are not known (the default for
+  // a surface with creases) or do not fit: then nothing may be assumed of the creases
+  // there. A surface without creases has none (0). A crease left out, or a distance or jump
+  // below the truth, would let the planner measure a segment as smooth where a crease lies
+  // under the nose: each bound must hold everywhere it is asked.
+  virtual int creases_near(double x, double y, double radius, std::span<NearbyCrease> out) const;
 
   double sag(double x, double y) const;
   // (x, y, z(x, y)).
