@@ -217,6 +217,104 @@ double largest_deviation(const Path& path, Deviation&& deviation, bool always_se
   return signed_worst;
 }
 
+// Segments clear of creases (docs/path.md): where the nose touches nowhere near a crease
+// throughout, neither the interpolated nose nor the path's can meet one (the envelope of
+// touch_clear_of_creases), and the segment is measured as on a smooth design: 8 intervals,
+// no crease search, no slide. Known only after the samples, from their touches: those of
+// the interpolated nose at the 9 samples, and the path's own at the blocks and at the middle
+// sample's angle, each clear by a margin for what lies between (the largest step between
+// neighbouring touches, and twice how far the path's touch there lies from the interpolated
+// one; the path's touches are the blocks' at the ends). A segment rejected on these samples
+// needs no certificate: a crease the search left out could only raise the section toward
+// the nose, which is rejected either way or would have been, at worst, a step too short.
+// True when the segment is measured so, its deviation (or a rejection's estimate) in `gap`;
+// false, having measured nothing that counts, where it cannot be shown clear.
+//
+// grid_line: the radial lines at the segment's `grid` + 1 equal steps of C (C at the ends is
+// the blocks'); line_at(C): the line at any other angle. Linear motion's samples lie on the
+// grid's lines; a cubic's C is not affine in the fraction, and its samples take their own.
+template <class Path, class LineAt>
+bool measure_clear_of_creases(const Path& path, const SegmentMotion& motion, const AxisState& a,
+                              const AxisState& b, const RadialLine* grid_line, int grid,
+                              bool linear, LineAt&& line_at, double target, double& gap) {
+  const auto point_on = [](const RadialLine& line, double rho) {
+    return Eigen::Vector2d(rho * line.cos, rho * line.sin);
+  };
+  const Eigen::Vector2d ends[2] = {point_on(grid_line[0], a.contact_r),
+                                   point_on(grid_line[grid], b.contact_r)};
+  const double half_step = 0.5 * (ends[1] - ends[0]).norm();
+  if (!path.touch_clear(grid_line[0], a.contact_r, half_step) ||
+      !path.touch_clear(grid_line[grid], b.contact_r, half_step))
+    return false;
+  constexpr int kSmooth = 8;
+  const int every = grid / kSmooth;
+  RadialLine line[kSmooth + 1];
+  double touch[kSmooth + 1];
+  std::fill(touch, touch + kSmooth + 1, std::numeric_limits<double>::quiet_NaN());
+  line[0] = grid_line[0];
+  touch[0] = a.contact_r;
+  line[kSmooth] = grid_line[grid];
+  touch[kSmooth] = b.contact_r;
+  gap = largest_deviation(
+      path,
+      [&](double t) {
+        double x, c, z, bb, rho;
+        motion.at(t, x, c, z, bb);
+        const int j = static_cast<int>(std::lround(t * grid));
+        const bool on_grid = static_cast<double>(j) / grid == t;
+        const RadialLine sample_line = linear && on_grid ? grid_line[j] : line_at(c);
+        const double hint = a.contact_r + t * (b.contact_r - a.contact_r);
+        const double d = path.deviation_near_hint(x, sample_line, z, bb, hint, rho);
+        if (on_grid && j % every == 0) {
+          line[j / every] = sample_line;
+          touch[j / every] = rho;
+        }
+        return d - path.stand_off();
+      },
+      false, target, true);
+  if (std::abs(gap) > target) return true;
+  for (const double rho : touch)
+    if (!std::isfinite(rho)) return false;
+  // The path's own state at the middle sample's angle (C is affine in τ on every path).
+  const RadialLine& mid_line = line[kSmooth / 2];
+  const double tau_mid = linear || b.c == a.c
+                             ? a.tau + 0.5 * (b.tau - a.tau)
+                             : a.tau + (mid_line.theta - a.c) / (b.c - a.c) * (b.tau - a.tau);
+  AxisState mid;
+  path.at(tau_mid, mid_line, mid);
+  if (mid.held || !std::isfinite(mid.contact_r)) return false;
+  const Eigen::Vector2d middle = point_on(mid_line, touch[kSmooth / 2]);
+  double margin = 2 * (point_on(mid_line, mid.contact_r) - middle).norm();
+  double widest = 0;
+  for (int j = 0; j < kSmooth; ++j)
+    widest = std::max(widest,
+                      (point_on(line[j + 1], touch[j + 1]) - point_on(line[j], touch[j])).norm());
+  margin += widest;
+  if (!std::isfinite(margin)) return false;
+  // One check covers many: a touch clear by W covers every touch within W − margin of it (a
+  // crease's distance changes no faster than the point). The blocks' touches were checked
+  // by half a step; the others are checked from the middle sample's touch, and one by one
+  // only where that fails: the same answer, fewer queries.
+  const RadialLine* open_line[kSmooth + 2];
+  double open_rho[kSmooth + 2];
+  int open_count = 0;
+  double reach = 0;  // from the middle sample's touch to the farthest open one
+  const auto needs = [&](const RadialLine& on, double rho) {
+    const Eigen::Vector2d p = point_on(on, rho);
+    if (std::min((p - ends[0]).norm(), (p - ends[1]).norm()) + margin <= half_step) return;
+    open_line[open_count] = &on;
+    open_rho[open_count++] = rho;
+    reach = std::max(reach, (p - middle).norm());
+  };
+  for (int j = 0; j <= kSmooth; ++j) needs(line[j], touch[j]);
+  needs(mid_line, mid.contact_r);
+  if (open_count == 0 || path.touch_clear(mid_line, touch[kSmooth / 2], margin + reach))
+    return true;
+  for (int k = 0; k < open_count; ++k)
+    if (!path.touch_clear(*open_line[k], open_rho[k], margin)) return false;
+  return true;
+}
+
 // The largest distance of the interpolated motion from the band's centre (the design
 // raised by the path's stand-off) over one segment, signed (> 0: above it; < 0: below,
 // and below the design itself where it passes the stand-off).
@@ -270,61 +368,12 @@ double segment_error(const Path& path, const Segment& segment, Interpolation mod
                                       : path.deviation(x, line_at(c), z, bb, hint);
     return d - path.stand_off();
   };
-  // Segments clear of creases (docs/path.md): where the nose touches nowhere near a crease
-  // throughout, neither the interpolated nose nor the path's can meet one (the envelope of
-  // touch_clear_of_creases), and the segment is measured as on a smooth design: 8
-  // intervals, no crease search, no slide. Known only after the samples, from their
-  // touches: those of the interpolated nose at the 9 samples, and the path's own at the
-  // blocks and halfway, each clear by a margin for what lies between (the largest step
-  // between neighbouring touches, and twice how far the path's touch halfway lies from the
-  // interpolated one; the path's own touches are at the blocks). Where that fails, the
-  // segment is measured in full below. A segment rejected on these samples needs no
-  // certificate: a crease the search left out could only raise the section toward the
-  // nose, which is rejected either way or would have been, at worst, a step too short.
-  if (linear && path.creased() && !a.held && !b.held) {
-    const auto point_on = [&](int j, double rho) {
-      return Eigen::Vector2d(rho * grid_line[j].cos, rho * grid_line[j].sin);
-    };
-    const double half_step = 0.5 * (point_on(kGrid, b.contact_r) - point_on(0, a.contact_r)).norm();
-    if (path.touch_clear(grid_line[0], a.contact_r, half_step) &&
-        path.touch_clear(grid_line[kGrid], b.contact_r, half_step)) {
-      constexpr int kSmooth = 8, kEvery = kGrid / kSmooth;
-      double touch[kSmooth + 1];
-      std::fill(touch, touch + kSmooth + 1, std::numeric_limits<double>::quiet_NaN());
-      touch[0] = a.contact_r;
-      touch[kSmooth] = b.contact_r;
-      const double smooth_gap = largest_deviation(
-          path,
-          [&](double t) {
-            double x, c, z, bb, rho;
-            motion.at(t, x, c, z, bb);
-            const int j = grid_index(t);
-            const double hint = a.contact_r + t * (b.contact_r - a.contact_r);
-            const double d =
-                path.deviation_near_hint(x, j >= 0 ? grid_line[j] : line_at(c), z, bb, hint, rho);
-            if (j >= 0 && j % kEvery == 0) touch[j / kEvery] = rho;
-            return d - path.stand_off();
-          },
-          false, target, true);
-      if (std::abs(smooth_gap) > target) return smooth_gap;
-      AxisState mid;
-      path.at(a.tau + 0.5 * (b.tau - a.tau), grid_line[kGrid / 2], mid);
-      if (!mid.held && std::isfinite(mid.contact_r)) {
-        const Eigen::Vector2d mid_touch = point_on(kGrid / 2, mid.contact_r);
-        double margin = 2 * (mid_touch - point_on(kGrid / 2, touch[kSmooth / 2])).norm();
-        double widest = 0;
-        for (int j = 0; j < kSmooth; ++j) {
-          const Eigen::Vector2d from = point_on(j * kEvery, touch[j]);
-          widest = std::max(widest, (point_on((j + 1) * kEvery, touch[j + 1]) - from).norm());
-        }
-        margin += widest;
-        bool clear =
-            std::isfinite(margin) && path.touch_clear(grid_line[kGrid / 2], mid.contact_r, margin);
-        for (int j = 0; j <= kSmooth && clear; ++j)
-          clear = path.touch_clear(grid_line[j * kEvery], touch[j], margin);
-        if (clear) return smooth_gap;
-      }
-    }
+  // Segments clear of creases: measured as on a smooth design.
+  if (path.creased() && !a.held && !b.held) {
+    double smooth_gap;
+    if (measure_clear_of_creases(path, motion, a, b, grid_line, kGrid, linear, line_at, target,
+                                 smooth_gap))
+      return smooth_gap;
   }
   // Linear motion: every peak searched on a creased surface. PVT keeps the parabola's
   // test: there a still held nose (a profile's trough narrower than the nose) would make
