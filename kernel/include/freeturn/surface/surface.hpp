@@ -50,7 +50,7 @@ struct RadialLine {
 struct NearbyCrease {
   double distance = 0;    // mm: at most its distance in (x, y) from the point
   double slope_jump = 0;  // at least the jump of dz/dt across it, t along any unit direction
-  int crossings = 0;      // at least how often a half-line from the point can cross it
+  int crossings = 0;      // a half-line from the point crosses it at most this often
 };
 
 class Surface {
