@@ -167,6 +167,26 @@ double check_held_spiral(const Surface& s, const std::vector<CutterLocation>& cl
   return worst_uncut;
 }
 
+// The planner's own bound on the material a spiral leaves: its largest chord error above
+// the design plus the larger of the scallop and the uncut residual.
+double residual_bound(const std::vector<ContactPoint>& contacts) {
+  double chord_above = 0, scallop = 0, uncut = 0;
+  for (const ContactPoint& p : contacts) {
+    if (!p.chord_below) chord_above = std::max(chord_above, p.chord_error);
+    scallop = std::max(scallop, p.scallop);
+    uncut = std::max(uncut, p.uncut_residual);
+  }
+  return chord_above + std::max(scallop, uncut);
+}
+
+// Two plans with their blocks at the same angles.
+bool same_blocks(const std::vector<ContactPoint>& a, const std::vector<ContactPoint>& b) {
+  if (a.size() != b.size()) return false;
+  for (std::size_t k = 0; k < a.size(); ++k)
+    if (a[k].theta != b[k].theta) return false;
+  return true;
+}
+
 }  // namespace
 
 TEST_SUITE("path") {
@@ -481,21 +501,12 @@ TEST_SUITE("path") {
       const std::vector<CutterLocation> cls = plan_with_nose(eye, base, o, &contacts, &summary);
       points[every] = cls.size();
       check_held_spiral(eye, cls, contacts, summary, R, tolerance);
-      double chord_above = 0, scallop = 0, uncut = 0;
-      for (const ContactPoint& p : contacts) {
-        if (!p.chord_below) chord_above = std::max(chord_above, p.chord_error);
-        scallop = std::max(scallop, p.scallop);
-        uncut = std::max(uncut, p.uncut_residual);
-      }
-      const double bound = chord_above + std::max(scallop, uncut);
+      const double bound = residual_bound(contacts);
       const double left = test::dense_spiral_residual(eye, cls, R, 360, 0.1, 2.15, 0.0025);
       MESSAGE("left ", left * 1e6, " nm, bound ", bound * 1e6, " nm");
       CHECK(left <= bound);
     }
-    bool same = plans[0].size() == plans[1].size();
-    for (std::size_t k = 0; same && k < plans[0].size(); ++k)
-      same = plans[0][k].theta == plans[1][k].theta;
-    CHECK_FALSE(same);
+    CHECK_FALSE(same_blocks(plans[0], plans[1]));
     CHECK(static_cast<double>(points[0]) <= 1.02 * static_cast<double>(points[1]));
     CHECK(static_cast<double>(points[0]) >= 0.98 * static_cast<double>(points[1]));
   }
@@ -525,10 +536,7 @@ TEST_SUITE("path") {
       CHECK(f.gouge <= 10e-6);
       CHECK(f.worst <= tolerance * 1.03);
     }
-    bool same = plans[0].size() == plans[1].size();
-    for (std::size_t k = 0; same && k < plans[0].size(); ++k)
-      same = plans[0][k].theta == plans[1][k].theta;
-    CHECK_FALSE(same);
+    CHECK_FALSE(same_blocks(plans[0], plans[1]));
   }
 
   TEST_CASE("a spiral across a crease: a block where each hold begins and ends") {
@@ -592,13 +600,7 @@ TEST_SUITE("path") {
       std::vector<ContactPoint> contacts;
       const std::vector<CutterLocation> cls =
           plan_compound_eye(eye, 0.02, &contacts, nullptr, every);
-      double chord_above = 0, scallop = 0, uncut = 0;
-      for (const ContactPoint& p : contacts) {
-        if (!p.chord_below) chord_above = std::max(chord_above, p.chord_error);
-        scallop = std::max(scallop, p.scallop);
-        uncut = std::max(uncut, p.uncut_residual);
-      }
-      const double bound = chord_above + std::max(scallop, uncut);
+      const double bound = residual_bound(contacts);
       // Inside the outermost and innermost turns, where two passes bracket every radius.
       const double left = test::dense_spiral_residual(eye, cls, R, 360, 0.1, 1.55, 0.0025);
       MESSAGE("points ", cls.size(), ", left ", left * 1e6, " nm, bound ", bound * 1e6, " nm");
