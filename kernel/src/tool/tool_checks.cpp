@@ -112,9 +112,12 @@ double ToolChecker::global_gouge_depth(const CutterLocation& cl) const {
   // the arc, z_s(ρ) ≤ c_z − √(R² − (ρ − c_r)²), everywhere under it.
   const double R = compensation_.tool.nose_radius;
   const double half = 0.5 * compensation_.tool.included_angle;
-  const double ct = std::cos(cl.contact.theta), st = std::sin(cl.contact.theta);
+  const RadialLine line(cl.contact.theta);
+  const double ct = line.cos, st = line.sin;
   const double c_r = cl.nose_centre.x() * ct + cl.nose_centre.y() * st;
   const double c_z = cl.nose_centre.z();
+  double depth;
+  if (one_touch_depth(line, c_r, c_z, cl.contact.r, std::abs(cl.b) + half, depth)) return depth;
   double deepest = -1e300;
   const int n = options_.gouge_samples;
   for (int k = 0; k <= n; ++k) {
@@ -129,8 +132,33 @@ double ToolChecker::global_gouge_depth(const CutterLocation& cl) const {
   }
   // The sampled arc can step over the sharp peak a crease makes; the envelope's search
   // evaluates the section at every crease under the nose and refines near the contact.
-  const NoseOverlap exact = nose_overlap(design_, cl.contact.theta, c_r, c_z, R, cl.contact.r);
+  const NoseOverlap exact = nose_overlap(design_, line, c_r, c_z, R, cl.contact.r);
   return std::max(deepest, exact.height);
+}
+
+bool ToolChecker::one_touch_depth(const RadialLine& line, double c_r, double c_z, double hint_r,
+                                  double edge_reach, double& depth) const {
+  // Where the section bends less than the nose (m = 1/R − max_bend > 0), the height h(ρ) of
+  // the section over the lower arc is m-strongly concave on every smooth piece under it, and
+  // where no crease can raise it elsewhere (touch_clear_of_creases) its one maximum is the
+  // deepest point: a search from the contact finds it, and the samples along the edge, values
+  // of the same h, cannot exceed it. The search's last point ρ lies within |h'(ρ)|/m of the
+  // maximum, which exceeds h(ρ) by at most h'(ρ)²/(2m): the depth returned includes that.
+  // Only for an edge within the lower half of the nose (|B| + half the included angle below
+  // 90°): the envelope bounds the lower arc.
+  const double R = compensation_.tool.nose_radius;
+  if (!(R > 0) || !(edge_reach < 0.5 * std::numbers::pi)) return false;
+  const double m = 1 / R - design_.max_bend(std::abs(c_r) + R);
+  if (!(m > 0)) return false;
+  const NoseOverlap near = nose_overlap_near(design_, line, c_r, c_z, R, hint_r);
+  const double d = near.rho - c_r, s = std::sqrt(R * R - d * d);
+  const double rise = near.slope - d / s;  // h'(ρ)
+  if (!std::isfinite(near.height) || !std::isfinite(rise) || !(s > 0)) return false;
+  const double margin = std::abs(rise) / m + 1e-9;
+  if (!touch_clear_of_creases(design_, near.rho * line.cos, near.rho * line.sin, R, margin))
+    return false;
+  depth = near.height + rise * rise / (2 * m);
+  return true;
 }
 
 void ToolChecker::check(const CutterLocation& cl) {

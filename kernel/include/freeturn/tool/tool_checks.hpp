@@ -67,6 +67,10 @@ class ToolChecker {
  private:
   void found(ToolCheck check, double value, double limit, const CutterLocation& cl);
   double global_gouge_depth(const CutterLocation& cl) const;
+  // The depth where the section under the nose's edge has one maximum, from the contact's
+  // search alone (tool_checks.cpp); false where that cannot be shown.
+  bool one_touch_depth(const RadialLine& line, double c_r, double c_z, double hint_r,
+                       double edge_reach, double& depth) const;
 
   const Surface& design_;
   CompensationOptions compensation_;
