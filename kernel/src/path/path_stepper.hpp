@@ -242,10 +242,17 @@ bool measure_clear_of_creases(const Path& path, const SegmentMotion& motion, con
   };
   const Eigen::Vector2d ends[2] = {point_on(grid_line[0], a.contact_r),
                                    point_on(grid_line[grid], b.contact_r)};
-  const double half_step = 0.5 * (ends[1] - ends[0]).norm();
-  if (!path.touch_clear(grid_line[0], a.contact_r, half_step) ||
-      !path.touch_clear(grid_line[grid], b.contact_r, half_step))
-    return false;
+  // How far from each block's touch every touch is known clear: half the step where both
+  // are clear by that (a filter: the touches between lie mostly within it), else none,
+  // and each touch is checked below on its own.
+  double cover = 0.5 * (ends[1] - ends[0]).norm();
+  if (!path.touch_clear(grid_line[0], a.contact_r, cover) ||
+      !path.touch_clear(grid_line[grid], b.contact_r, cover)) {
+    if (!path.touch_clear(grid_line[0], a.contact_r, 0) ||
+        !path.touch_clear(grid_line[grid], b.contact_r, 0))
+      return false;
+    cover = 0;
+  }
   constexpr int kSmooth = 8;
   const int every = grid / kSmooth;
   RadialLine line[kSmooth + 1];
@@ -301,7 +308,7 @@ bool measure_clear_of_creases(const Path& path, const SegmentMotion& motion, con
   double reach = 0;  // from the middle sample's touch to the farthest open one
   const auto needs = [&](const RadialLine& on, double rho) {
     const Eigen::Vector2d p = point_on(on, rho);
-    if (std::min((p - ends[0]).norm(), (p - ends[1]).norm()) + margin <= half_step) return;
+    if (std::min((p - ends[0]).norm(), (p - ends[1]).norm()) + margin <= cover) return;
     open_line[open_count] = &on;
     open_rho[open_count++] = rho;
     reach = std::max(reach, (p - middle).norm());
