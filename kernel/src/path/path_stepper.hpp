@@ -600,6 +600,11 @@ void distribute(Path& path, const CutterPointOptions& o, Emit&& emit, double beg
   const double target = chord_target(o, path.stand_off());
   const double min_step = 1e-12 * std::max(1.0, end);
   double step = std::min(path.cap(), end - begin);
+  // The chord rule's last step that nothing but the error set (not cut short at a hold
+  // change, a jump or the end): the next search starts from it. A step that ends on a kink
+  // says nothing of the error beyond it, and starting from such a sliver cost two or three
+  // trials of growth, each measured in full near a rim.
+  double natural_step = step;
   // A trial block's errors: of the new segment (current, trial) and, in PVT mode, of the
   // one before it as `trial` finalises it. The larger in size decides.
   double new_error = 0, previous_error = 0;
@@ -683,7 +688,7 @@ void distribute(Path& path, const CutterPointOptions& o, Emit&& emit, double beg
     } else {
       // The largest step whose error is at most the target: e ∝ step^order locally, so
       // the secant-like update converges in a few evaluations.
-      step = std::min(step, limit);
+      step = std::min(std::max(step, natural_step), limit);
       double accepted = 0;
       AxisState best;
       double best_new = 0, best_previous = 0;
@@ -769,9 +774,9 @@ void distribute(Path& path, const CutterPointOptions& o, Emit&& emit, double beg
               local_order = std::log(error / grown_error) / std::log(step / grown_step);
             next = local_order < 0.5
                        ? 4 * step
-                       : step * std::min(4.0, std::pow(target / error,
-                                                       1 / std::min(local_order, order)) *
-                                                  0.995);
+                       : step * std::min(16.0, std::pow(target / error,
+                                                        1 / std::min(local_order, order)) *
+                                                   0.995);
           } else {
             next = limit;  // no measurable error: the cap, or the bracket's middle
           }
@@ -836,6 +841,7 @@ void distribute(Path& path, const CutterPointOptions& o, Emit&& emit, double beg
       new_error = best_new;
       previous_error = best_previous;
       step = accepted;
+      if (!jump && !on_kink && accepted < limit) natural_step = accepted;
       // Taken over the target (a jump, or PVT's least error): its gap alone was measured.
       if (std::max(std::abs(new_error), std::abs(previous_error)) > target) {
         measure(trial, kFull);
