@@ -721,16 +721,11 @@ void distribute(Path& path, const CutterPointOptions& o, Emit&& emit, double beg
       double kink_step = -1;  // to `transition`, the hold change found (once a search)
       for (int it = 0; it < 80; ++it) {
         path.at(advance(step), trial);
-        error = measure(trial, target);
-        if (pvt && error < least_error) {
-          least = trial;
-          least_error = error;
-          least_step = step;
-          least_new = new_error;
-          least_previous = previous_error;
-        }
-        if (!pvt && !kink_measured && trial.held != current.held &&
-            (error > target || error < 0.9 * target)) {
+        // The kink is tried before the trial itself: where it meets the target the block
+        // goes there whatever the trial's error (below the target, it would move there
+        // after the search; above it, the kink answers it), and the trial is not measured.
+        bool kink_failed = false;
+        if (!pvt && !kink_measured && trial.held != current.held) {
           // Found once; a later, shorter trial that still holds it past its first tenth
           // tries it then.
           if (kink_step < 0) {
@@ -740,7 +735,6 @@ void distribute(Path& path, const CutterPointOptions& o, Emit&& emit, double beg
           if (kink_step > 0.1 * step && kink_step < step && kink_step > accepted &&
               apart(transition, current) && apart(transition, trial)) {
             kink_measured = true;
-            const double trial_new = new_error, trial_previous = previous_error;
             if (measure(transition, target) <= target) {
               accepted = kink_step;
               best = transition;
@@ -749,13 +743,20 @@ void distribute(Path& path, const CutterPointOptions& o, Emit&& emit, double beg
               on_kink = true;
               break;
             }
-            new_error = trial_new;
-            previous_error = trial_previous;
-            // Past the kink fails too (the longer trial is either rejected or, the
-            // error not monotonic there, left to the search as it stands).
-            if (error > target) rejected = std::min(rejected, kink_step);
+            kink_failed = true;
           }
         }
+        error = measure(trial, target);
+        if (pvt && error < least_error) {
+          least = trial;
+          least_error = error;
+          least_step = step;
+          least_new = new_error;
+          least_previous = previous_error;
+        }
+        // Past a kink that fails fails too (the longer trial is either rejected or, the
+        // error not monotonic there, left to the search as it stands).
+        if (kink_failed && error > target) rejected = std::min(rejected, kink_step);
         double next;
         if (error <= target) {
           if (step > accepted) {
@@ -845,7 +846,7 @@ void distribute(Path& path, const CutterPointOptions& o, Emit&& emit, double beg
       // Taken over the target (a jump, or PVT's least error): its gap alone was measured.
       if (std::max(std::abs(new_error), std::abs(previous_error)) > target) {
         measure(trial, kFull);
-      } else if (trial.held != current.held && !jump && !on_kink) {
+      } else if (trial.held != current.held && !jump && !on_kink && !kink_measured) {
         end_at_hold_change(path, current, trial, transition);
         // Not within a tenth of the step of its start: a block there would leave a sliver
         // of a segment, which only demands more of the axes at one speed. Anywhere later
