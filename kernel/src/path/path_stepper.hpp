@@ -601,7 +601,7 @@ void distribute(Path& path, const CutterPointOptions& o, Emit&& emit, double beg
   const double min_step = 1e-12 * std::max(1.0, end);
   double step = std::min(path.cap(), end - begin);
   // The chord rule's last step that nothing but the error set (not cut short at a hold
-  // change, a jump or the end): the next search starts from it. A step that ends on a kink
+  // change, a jump, the cap or the end): the next search starts from it. A step that ends on a kink
   // says nothing of the error beyond it, and starting from such a sliver cost two or three
   // trials of growth, each measured in full near a rim.
   double natural_step = step;
@@ -754,8 +754,9 @@ void distribute(Path& path, const CutterPointOptions& o, Emit&& emit, double beg
           least_new = new_error;
           least_previous = previous_error;
         }
-        // Past a kink that fails fails too (the longer trial is either rejected or, the
-        // error not monotonic there, left to the search as it stands).
+        // A trial past a kink whose step missed the target, and missing it too: the kink
+        // bounds the bracket (where the trial meets it, the error is not monotonic there,
+        // and the search goes on as it stands).
         if (kink_failed && error > target) rejected = std::min(rejected, kink_step);
         double next;
         if (error <= target) {

@@ -143,7 +143,8 @@ bool ToolChecker::one_touch_depth(const RadialLine& line, double c_r, double c_z
   // where no crease can raise it elsewhere (touch_clear_of_creases) its one maximum is the
   // deepest point: a search from the contact finds it, and the samples along the edge, values
   // of the same h, cannot exceed it. The search's last point ρ lies within |h'(ρ)|/m of the
-  // maximum, which exceeds h(ρ) by at most h'(ρ)²/(2m): the depth returned includes that.
+  // maximum, which exceeds h(ρ) by at most h'(ρ)²/(2m): the depth returned includes that
+  // (the margin 1 pm more, for rounding).
   // Only for an edge within the lower half of the nose (|B| + half the included angle below
   // 90°): the envelope bounds the lower arc.
   const double R = compensation_.tool.nose_radius;
