@@ -11,6 +11,7 @@
 #include "freeturn/surface/sinusoidal.hpp"
 #include "freeturn/surface/xy_polynomial.hpp"
 #include "freeturn/tool/tool_compensator.hpp"
+#include "path/fixtures.hpp"
 
 using namespace freeturn;
 
@@ -124,14 +125,7 @@ TEST_SUITE("tool") {
     // arc, walked in 20 000 steps: never below it by more than the searches' Newton
     // shortfall (6 pm at worst here, with the nose 3 µm deep), and above it only by the
     // walk's miss at a crease's peak (its spacing, 14 nm, times the flanks' slopes).
-    LensletArrayOptions lo;
-    lo.base_curvature = 1 / 20.0;
-    lo.lens_radius = -5.0;
-    lo.lens_diameter = 0.9;
-    lo.pitch = 1.0;
-    lo.pattern = LensletArrayOptions::Pattern::kRings;
-    lo.extent = 3.0;
-    const LensletArray eye(lo);
+    const LensletArray eye(test::compound_eye_options(3.0));
     const double R = 0.2, half = std::numbers::pi / 4;
     CompensationOptions c;
     c.tool.nose_radius = R;
