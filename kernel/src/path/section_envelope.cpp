@@ -71,20 +71,12 @@ bool offsets_meet(const Section& section, double R, double a_lo, double a_hi, do
   return false;
 }
 
-// How strongly h(ρ) = g(ρ) − z_c + √(R² − (ρ − x_c)²) is concave on a smooth piece of
-// the section within `radius` of the axis: h'' = g'' − R²/s³ ≤ max_bend − 1/R (s ≤ R).
-// 0 where that bound is not negative (or not known): nothing is left out then.
-double concavity(const Surface& design, double R, double radius) {
-  const double m = 1 / R - design.max_bend(radius);
-  return m > 0 ? m : 0.0;
-}
-
 // Newton steps on h(ρ) = g(ρ) − z_c + √(R² − (ρ − x_c)²) within [lo, hi], keeping the
 // largest h met in `best`.
 //
 // A search from a crease (start at the end of its piece on the crease's side, the piece
 // reaching `side` (±1) from there) stops after its first value where the piece cannot
-// rise to `floor`: h is m-strongly concave on it (`m`, concavity()), so nowhere on it
+// rise to `floor`: h is m-strongly concave on it (`m`, section_concavity()), so nowhere on it
 // does h exceed h₀ + max(0, side·h'₀)²/(2m). Such a search could only have kept values
 // below `floor`, which the caller compares with a larger one; leaving it out changes no
 // answer (a margin of 1e-12 mm covers the rounding of both).
@@ -124,6 +116,11 @@ void piece_bounds(const SectionCreases& c, int k, int side, double lo, double hi
 
 }  // namespace
 
+double section_concavity(const Surface& design, double R, double radius) {
+  const double m = 1 / R - design.max_bend(radius);
+  return m > 0 ? m : 0.0;
+}
+
 NoseOverlap nose_overlap(const Surface& design, const RadialLine& line, double x_c, double z_c, double R,
                          double hint_rho) {
   const Section section(design, line);
@@ -142,7 +139,7 @@ NoseOverlap nose_overlap(const Surface& design, const RadialLine& line, double x
   }
   search(section, x_c, z_c, R, hint_rho, a, b, 2, best);
   if (creases.count == 0) return best;
-  const double m = concavity(design, R, std::max(std::abs(lo), std::abs(hi)));
+  const double m = section_concavity(design, R, std::max(std::abs(lo), std::abs(hi)));
   for (int k = 0; k < creases.count; ++k)
     for (const int side : {-1, 1}) {
       piece_bounds(creases, k, side, lo, hi, a, b);
@@ -166,7 +163,7 @@ bool touch_clear_of_creases(const Surface& design, double x, double y, double R,
   const int count = design.creases_near(x, y, reach + margin, near);
   if (count < 0) return false;
   if (count == 0) return true;
-  const double m = concavity(design, R, std::hypot(x, y) + reach);
+  const double m = section_concavity(design, R, std::hypot(x, y) + reach);
   if (!(m > 0)) return false;
   std::sort(near.begin(), near.begin() + count,
             [](const NearbyCrease& a, const NearbyCrease& b) { return a.distance < b.distance; });
@@ -214,7 +211,8 @@ NoseTouch nose_touch(const Surface& design, const RadialLine& line, double nose_
   int held_at = -1, far = 0;
   NoseOverlap worst;
   worst.height = tolerance;
-  const double m = concavity(design, R, std::max(std::abs(t.centre_x - reach), std::abs(t.centre_x + reach)));
+  const double m = section_concavity(
+      design, R, std::max(std::abs(t.centre_x - reach), std::abs(t.centre_x + reach)));
   for (int k = 0; k < creases.count; ++k) {
     if (!(std::abs(creases.rho[k] - t.centre_x) < reach) &&
         !(std::abs(creases.rho[k] - rho_p) <= kOffCrease))

@@ -149,7 +149,7 @@ bool ToolChecker::one_touch_depth(const RadialLine& line, double c_r, double c_z
   // 90°): the envelope bounds the lower arc.
   const double R = compensation_.tool.nose_radius;
   if (!(R > 0) || !(edge_reach < 0.5 * std::numbers::pi)) return false;
-  const double m = 1 / R - design_.max_bend(std::abs(c_r) + R);
+  const double m = section_concavity(design_, R, std::abs(c_r) + R);
   if (!(m > 0)) return false;
   const NoseOverlap near = nose_overlap_near(design_, line, c_r, c_z, R, hint_r);
   const double d = near.rho - c_r, s = std::sqrt(R * R - d * d);

@@ -32,6 +32,12 @@ struct SectionCreases {
   }
 };
 
+// How strongly h(ρ) = g(ρ) − z_c + √(R² − (ρ − x_c)²), the section's height over the lower
+// arc of a nose of radius R, is concave on a smooth piece of the section within `radius`
+// of the axis: h'' = g'' − R²/s³ ≤ max_bend − 1/R (s ≤ R), so m = 1/R − max_bend (1/mm).
+// 0 where that is not positive or not known: nothing may be assumed of h then.
+double section_concavity(const Surface& design, double R, double radius);
+
 // How far the section reaches above the nose's lower arc.
 struct NoseOverlap {
   double height = -1e300;  // mm, vertical: > 0 the nose is below the design (a gouge)
