@@ -338,11 +338,8 @@ double segment_error(const Path& path, const Segment& segment, Interpolation mod
                      double target) {
   const SegmentMotion motion(path, segment, mode);
   const AxisState &a = segment.a, &b = segment.b;
-  // The second search (with the slide) samples the same grid first: the gaps there are
-  // kept from the first, not computed again (each is a search of the nose's section).
-  constexpr int kGrid = kCreasedIntervals;  // the second search runs on creased designs only
-  double grid_gap[kGrid + 1];
-  bool grid_known[kGrid + 1] = {};
+  // The grid of the creased design's samples (the slide's search runs on those only).
+  constexpr int kGrid = kCreasedIntervals;
   const auto grid_index = [&](double t) {
     const int j = static_cast<int>(std::lround(t * kGrid));
     return j >= 0 && j <= kGrid && static_cast<double>(j) / kGrid == t ? j : -1;
@@ -390,34 +387,30 @@ double segment_error(const Path& path, const Segment& segment, Interpolation mod
       path,
       [&](double t) {
         double x, c, z, bb;
-        const int j = grid_index(t);
-        const double d = gap_at(t, j, x, c, z, bb);
-        if (j >= 0) grid_gap[j] = d, grid_known[j] = true;
-        return d;
+        return gap_at(t, grid_index(t), x, c, z, bb);
       },
       always_search, target);
   if (!path.creased() || std::abs(gap) > target) return gap;
+  // The size of the distance above is max(|gap|, slide) at every sample, so its largest
+  // value over the segment is the larger of the gap's (found above) and the slide's: the
+  // slide is searched on its own, without the gap at its samples off the grid.
   AxisState ideal;
-  const double with_slide = largest_deviation(path, [&](double t) {
-    double x, c, z, bb;
-    const int j = grid_index(t);
-    double d;
-    if (j >= 0 && grid_known[j]) {
-      d = grid_gap[j];
-      motion.at(t, x, c, z, bb);
-    } else {
-      d = gap_at(t, j, x, c, z, bb);
-    }
-    const double tau = a.tau + t * (b.tau - a.tau);
-    if (j >= 0) {
-      path.at(tau, grid_line[j], ideal);
-    } else {
-      path.at(tau, line_at(tau), ideal);
-    }
-    const double above = std::max(d, path.slide(x, c, z, bb, ideal));
-    return above >= -d ? above : d;
-  }, always_search, target);
-  return std::abs(with_slide) >= std::abs(gap) ? with_slide : gap;
+  const double slide = largest_deviation(
+      path,
+      [&](double t) {
+        double x, c, z, bb;
+        motion.at(t, x, c, z, bb);
+        const int j = grid_index(t);
+        const double tau = a.tau + t * (b.tau - a.tau);
+        if (j >= 0) {
+          path.at(tau, grid_line[j], ideal);
+        } else {
+          path.at(tau, line_at(tau), ideal);
+        }
+        return std::max(path.slide(x, c, z, bb, ideal), 0.0);  // a nose below rises nowhere
+      },
+      always_search, target);
+  return slide > std::abs(gap) ? slide : gap;
 }
 
 // The chord fields of the point that ends a segment, from its error as distribute()
