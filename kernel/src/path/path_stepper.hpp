@@ -20,6 +20,8 @@
 //                                           // the time from block a to b, up to a constant
 //                                           // factor (pvt_rule.hpp)
 //   bool creased() const;                   // the design has creases (Surface::has_creases)
+//   bool holds_still() const;               // a nose held at a crease may stay still while
+//                                           // τ advances (a profile: C stays fixed)
 //   double slide(double x_axis, double c, double z, double b, const AxisState& ideal) const;
 //                                           // how far the tool at these axes rises above
 //                                           // the path's own nose `ideal` (nose_section.hpp)
@@ -379,10 +381,11 @@ double segment_error(const Path& path, const Segment& segment, Interpolation mod
                                  smooth_gap))
       return smooth_gap;
   }
-  // Linear motion: every peak searched on a creased surface. PVT keeps the parabola's
-  // test: there a still held nose (a profile's trough narrower than the nose) would make
-  // the searched step end where it began, a block of no time (docs/path.md).
-  const bool always_search = mode == Interpolation::kLinear;
+  // Every peak searched on a creased surface, but PVT's on a path where a held nose can
+  // stay still (a profile's trough narrower than the nose): there the searched step would
+  // end where it began, a block of no time that PVT cannot drop (docs/path.md), and the
+  // parabola's test stands.
+  const bool always_search = mode == Interpolation::kLinear || !path.holds_still();
   const double gap = largest_deviation(
       path,
       [&](double t) {

@@ -27,6 +27,7 @@ class ProfilePath {
     return std::hypot(b.x_axis - a.x_axis, b.z - a.z);
   }
   bool creased() const { return design_.has_creases(); }
+  bool holds_still() const { return true; }  // C is fixed: a held nose may not move
   double stand_off() const { return nose_.stand_off(); }
 
   double deviation(double x_axis, const RadialLine&, double z, double b, double hint_r) const {

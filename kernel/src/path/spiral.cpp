@@ -50,6 +50,7 @@ class SpiralPath {
     return b.tau - a.tau;
   }
   bool creased() const { return design_.has_creases(); }
+  bool holds_still() const { return false; }  // C advances with τ: a held nose moves too
   double stand_off() const { return nose_.stand_off(); }
   double pitch() const { return o_.pitch; }
 
