@@ -458,6 +458,99 @@ TEST_SUITE("path") {
     CHECK(overhanging_unclear > 0);
   }
 
+  TEST_CASE(
+      "lenslet arrays: touches near a rim that the rims' directions clear touch nowhere else") {
+    // Random touches within 40 µm of a rim (a change of lenslet_at on a 40 µm circle about
+    // them), margins of 0, 3 and 10 µm. Where touch_clear_of_creases holds, the nose placed at
+    // the plain offset of the touch and of eight touches on the margin's circle about it,
+    // each on its own radial line, overhangs the section nowhere (brute force over 20 000
+    // radii) and is not held. The same array with the rims' directions withheld (each
+    // crease bounded along any direction, as before they were told) must clear no touch the
+    // full one does not, and the full one must clear more: domes on a concave base, bowls
+    // on a convex one, domes on a plane.
+    struct WithoutDirections final : Surface {
+      const Surface& s;
+      explicit WithoutDirections(const Surface& surface) : s(surface) {}
+      const char* type() const override { return s.type(); }
+      void sag_gradient(double x, double y, double& z, double& zx, double& zy) const override {
+        s.sag_gradient(x, y, z, zx, zy);
+      }
+      HeightDerivatives height_derivatives(double x, double y) const override {
+        return s.height_derivatives(x, y);
+      }
+      double defined_radius() const override { return s.defined_radius(); }
+      bool has_creases() const override { return s.has_creases(); }
+      double max_bend(double radius) const override { return s.max_bend(radius); }
+      int section_creases(const RadialLine& line, double lo, double hi,
+                          std::span<double> out) const override {
+        return s.section_creases(line, lo, hi, out);
+      }
+      int creases_near(double x, double y, double radius,
+                       std::span<NearbyCrease> out) const override {
+        const int count = s.creases_near(x, y, radius, out);
+        for (int k = 0; k < count; ++k) out[static_cast<std::size_t>(k)].centre_distance = 0;
+        return count;
+      }
+    };
+    struct Case {
+      double base_curvature, lens_radius;
+    };
+    for (const Case c : {Case{1 / 20.0, -5.0}, Case{1 / 20.0, 1.5}, Case{0.0, -1.5}}) {
+      CAPTURE(c.base_curvature);
+      CAPTURE(c.lens_radius);
+      LensletArrayOptions o = test::compound_eye_options(3.0);
+      o.base_curvature = c.base_curvature;
+      o.lens_radius = c.lens_radius;
+      const LensletArray array(o);
+      const WithoutDirections plain(array);
+      const double R = 0.2;
+      std::mt19937 rng(17);
+      std::uniform_real_distribution<double> unit(0, 1);
+      int tried = 0, cleared = 0, cleared_plain = 0, only_plain = 0, checked = 0;
+      for (int k = 0; tried < 600 && k < 200000; ++k) {
+        const double r = 2.3 * std::sqrt(unit(rng)), phi = 2 * std::numbers::pi * unit(rng);
+        const double x = r * std::cos(phi), y = r * std::sin(phi);
+        const int own = array.lenslet_at(x, y);
+        bool near_rim = false;
+        for (int j = 0; j < 16 && !near_rim; ++j) {
+          const double a = 2 * std::numbers::pi * j / 16;
+          near_rim = array.lenslet_at(x + 0.04 * std::cos(a), y + 0.04 * std::sin(a)) != own;
+        }
+        if (!near_rim) continue;
+        const double margin = std::array<double, 3>{0.0, 3e-3, 10e-3}[tried % 3];
+        ++tried;
+        const bool clear = touch_clear_of_creases(array, x, y, R, margin);
+        const bool clear_plain = touch_clear_of_creases(plain, x, y, R, margin);
+        cleared += clear;
+        cleared_plain += clear_plain;
+        only_plain += clear_plain && !clear;
+        if (!clear) continue;
+        for (int j = -1; j < 8; ++j) {
+          const double a = 2 * std::numbers::pi * j / 8;
+          const double tx = j < 0 ? x : x + margin * std::cos(a);
+          const double ty = j < 0 ? y : y + margin * std::sin(a);
+          const double theta = std::atan2(ty, tx), rho = std::hypot(tx, ty);
+          const RadialLine line(theta);
+          double z, zx, zy;
+          array.sag_gradient(tx, ty, z, zx, zy);
+          const double slope = zx * line.cos + zy * line.sin, l = std::sqrt(1 + slope * slope);
+          const double cx = rho - R * slope / l, cz = z + R / l;
+          CAPTURE(tx);
+          CAPTURE(ty);
+          CAPTURE(margin);
+          CHECK(brute_overlap(array, cx, cz, R, theta) <= 1e-10);
+          CHECK_FALSE(nose_touch(array, line, R, rho, z, slope).held);
+          ++checked;
+        }
+      }
+      MESSAGE("near a rim: ", tried, " touches, cleared ", cleared, " (", cleared_plain,
+              " with the rims' directions withheld), noses checked ", checked);
+      CHECK(tried == 600);
+      CHECK(only_plain == 0);
+      CHECK(cleared >= cleared_plain + 15);
+    }
+  }
+
   TEST_CASE("compound eye, space spiral with a nose: no point of the nose below the design") {
     // Planned as it is (segments clear of creases measured as on a smooth design) and with
     // every segment measured in full: both must pass the dense sampler.

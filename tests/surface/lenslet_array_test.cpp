@@ -325,21 +325,40 @@ TEST_SUITE("surface") {
               const double mid = 0.5 * (lo + hi);
               (at(mid) == before ? lo : hi) = mid;
             }
-            const double slope_jump = [&] {
+            // The gradient's jump: along the half-line, and its direction in (x, y) (the
+            // rim's normal, up to sign).
+            double jump_x, jump_y;
+            {
               double z, zx, zy, z2, zx2, zy2;
               s.sag_gradient(x + (lo - 1e-8) * ux, y + (lo - 1e-8) * uy, z, zx, zy);
               s.sag_gradient(x + (hi + 1e-8) * ux, y + (hi + 1e-8) * uy, z2, zx2, zy2);
-              return std::abs((zx2 - zx) * ux + (zy2 - zy) * uy);
-            }();
+              jump_x = zx2 - zx;
+              jump_y = zy2 - zy;
+            }
+            const double slope_jump = std::abs(jump_x * ux + jump_y * uy);
+            const double jump_norm = std::hypot(jump_x, jump_y);
             ++crossings;
             nearest = std::min(nearest, hi);
             // The rim crossed is the lenslet left (before ≥ 0) or entered (now ≥ 0).
             for (const int lenslet : {before, now})
               if (lenslet >= 0) ++times[static_cast<std::size_t>(lenslet)];
+            // A report that tells its rim's directions must hold the rim's normal here
+            // within asin(|q − T|/|T − e|) + its slack of its direction from the centre e
+            // to the point (the normal leans from the direction from e to q by the slack
+            // at most, and q is seen from e within that arcsine of T).
+            const auto direction_holds = [&](const NearbyCrease& c) {
+              if (!(c.centre_distance > 0)) return true;
+              const double seen = hi < c.centre_distance ? std::asin(hi / c.centre_distance)
+                                                         : 0.5 * std::numbers::pi;
+              const double cosine = std::abs(jump_x * c.normal_x + jump_y * c.normal_y) / jump_norm;
+              const double angle = std::acos(std::min(1.0, cosine));
+              return angle <= seen + c.normal_slack + 1e-6;
+            };
             bool covered = false;
             for (int q = 0; q < count; ++q)
-              covered = covered ||
-                        (near[q].distance <= hi + 1e-9 && near[q].slope_jump >= slope_jump - 1e-6);
+              covered =
+                  covered || (near[q].distance <= hi + 1e-9 &&
+                              near[q].slope_jump >= slope_jump - 1e-6 && direction_holds(near[q]));
             over += !covered;
             before = now;
           }
@@ -360,6 +379,52 @@ TEST_SUITE("surface") {
       }
       MESSAGE("crossings ", crossings, ", points with a rim near ", points_near,
               ", nearest reported / found at worst ", loosest);
+      // The rims' curvature against the reported bound: rims found by bisection along 720
+      // rays from the centre each report names (the point less centre_distance along its
+      // direction), and the circle through each three neighbours.
+      double tightest = 0;
+      int rims = 0;
+      for (int k = 0; k < 8; ++k) {
+        const double r = 2.2 * std::sqrt(unit(rng)), phi = 2 * std::numbers::pi * unit(rng);
+        const double x = r * std::cos(phi), y = r * std::sin(phi);
+        std::array<NearbyCrease, 16> near;
+        const int count = s.creases_near(x, y, 0.3, near);
+        REQUIRE(count >= 0);
+        for (int q = 0; q < count; ++q) {
+          const NearbyCrease& c = near[q];
+          REQUIRE(c.centre_distance > 0);
+          const double ex = x - c.centre_distance * c.normal_x;
+          const double ey = y - c.centre_distance * c.normal_y;
+          const int own = s.lenslet_at(ex, ey);
+          REQUIRE(own >= 0);
+          constexpr int kRays = 720;
+          std::vector<Eigen::Vector2d> rim;
+          for (int j = 0; j < kRays; ++j) {
+            const double a = 2 * std::numbers::pi * j / kRays;
+            double lo = 0, hi = 0.6;
+            while (hi - lo > 1e-13) {
+              const double mid = 0.5 * (lo + hi);
+              (s.lenslet_at(ex + mid * std::cos(a), ey + mid * std::sin(a)) == own ? lo : hi) = mid;
+            }
+            rim.emplace_back(ex + lo * std::cos(a), ey + lo * std::sin(a));
+          }
+          for (int j = 0; j < kRays; ++j) {
+            const Eigen::Vector2d &p0 = rim[static_cast<std::size_t>((j + kRays - 1) % kRays)],
+                                  &p1 = rim[static_cast<std::size_t>(j)],
+                                  &p2 = rim[static_cast<std::size_t>((j + 1) % kRays)];
+            const double a = (p1 - p0).norm(), b = (p2 - p1).norm(), e = (p2 - p0).norm();
+            const Eigen::Vector2d u = p1 - p0, v = p2 - p0;
+            const double cross = std::abs(u.x() * v.y() - u.y() * v.x());
+            const double curvature = 2 * cross / (a * b * e);  // 1 / circumradius
+            tightest = std::max(tightest, curvature / c.curvature);
+          }
+          ++rims;
+        }
+      }
+      MESSAGE("rims traced ", rims, ", curvature / bound at most ", tightest);
+      CHECK(rims > 3);
+      CHECK(tightest <= 1 + 1e-4);
+      CHECK(tightest > 0.9);
       CHECK(over == 0);
       CHECK(crossings > 200);
       CHECK(points_near > 30);

@@ -1,6 +1,7 @@
 #include "freeturn/path/section_envelope.hpp"
 
 #include <algorithm>
+#include <array>
 #include <cmath>
 
 namespace freeturn {
@@ -114,6 +115,104 @@ void piece_bounds(const SectionCreases& c, int k, int side, double lo, double hi
   }
 }
 
+// One crease's part of the envelope below: a slope `rise` gained past the distance `from`.
+struct EnvelopeTerm {
+  double from = 0;
+  double rise = 0;
+};
+
+// Whether E(t) = −m t²/2 + Σ_k rise_k (t − from_k)₊ < 0 for lo < t ≤ hi (lo ≥ 0); the
+// terms sorted by `from`, each from > 0 (below the first, E < 0). Past the k-th term
+// E(t) = −m t²/2 + rise·t − offset, rise = Σ rise_k and offset = Σ rise_k from_k over the
+// terms passed: its largest value on [from_k, from_{k+1}] is at rise/m, clamped there.
+bool envelope_below_zero(const EnvelopeTerm* terms, int count, double m, double lo, double hi) {
+  double rise = 0, offset = 0;
+  for (int k = 0; k < count; ++k) {
+    const double d = terms[k].from;
+    if (d >= hi) break;
+    rise += terms[k].rise;
+    offset += terms[k].rise * d;
+    const double next = k + 1 < count ? std::min(hi, terms[k + 1].from) : hi;
+    if (next < lo) continue;
+    const double t = std::clamp(rise / m, std::max(d, lo), std::max(d, next));
+    if (!(-0.5 * m * t * t + rise * t - offset < 0)) return false;
+  }
+  return true;
+}
+
+// The envelope again where the creases say how their rims lie (NearbyCrease's normal), for
+// the sections of touches within `margin` of (x, y): the radial lines through them, within
+// δ = asin(margin/|(x, y)|) of this one's direction u. The terms `plain` (the creases within
+// reach, d_k = distance − margin > 0, in near's order) already failed.
+//
+// A section crosses a rim at q, s along it from the touch T', at the angle ψ between the
+// line and the rim's normal ν(q): the slope rises there by J|cos ψ| at most, so the section
+// gains J c (t − s)₊, c = |cos ψ|, and c·s = p is T''s distance from the rim's tangent at q.
+// - From inside the convex footprint the line leaves it once, and p ≥ T''s distance from the
+//   rim ≥ d (the tangent supports the footprint): J c (t − s)₊ ≤ J c (t − d/c)₊.
+// - From outside it enters at q₁ and may leave at q₂. The footprint holds the disc of
+//   radius 1/κ that touches its rim at q₁ from inside (Blaschke's rolling theorem; κ the
+//   rim's largest curvature), and T' lies at least d from that disc: p₁ ≥ d − κ s₁²/2, so
+//   J c₁ (t − s₁)₊ ≤ J c (t − d/c)₊ + J κ t²/2 (the last term taken into m). The exit,
+//   farther than d, adds J c (t − d)₊.
+// Only t ≤ t_max = 2ΣJ_k n_k/m can matter: past it the plain envelope is below 0 whatever the
+// angles. On (lo, hi] within it only rim points within L = hi + margin of (x, y) count;
+// seen from the footprint's centre e they lie within asin(L/|T − e|) of T's direction, and
+// their normals within the crease's normal_slack more. With the line's own δ, c ≤ cos(ψ₀ −
+// all three), ψ₀ the angle between u and T's direction from e (1 where that is not past
+// them). The nearer the stretch, the tighter the angles: (0, t_max] is taken in halves from
+// the far end, down to the nearest crease (E < 0 before it).
+bool directed_envelope_below_zero(const NearbyCrease* near, const EnvelopeTerm* plain, int within,
+                                  double m, double reach, double x, double y, double margin) {
+  const double rho = std::hypot(x, y);
+  if (!(rho > margin) || within == 0) return false;
+  const double line_spread = std::asin(margin / rho), ux = x / rho, uy = y / rho;
+  double total = 0;
+  for (int k = 0; k < within; ++k) total += plain[k].rise;
+  const double t_max = std::min(reach, 2 * total / m);
+  const double nearest = plain[0].from;
+  constexpr double kRight = 0.5 * 3.14159265358979323846;
+  for (double hi = t_max; hi > nearest;) {
+    const double lo = std::max(nearest, 0.5 * hi);
+    const double L = hi + margin;
+    std::array<EnvelopeTerm, 32> terms;
+    int n = 0;
+    double m_directed = m;
+    for (int k = 0; k < within; ++k) {
+      const NearbyCrease& crease = near[k];
+      const double d = plain[k].from;
+      double c = 1;
+      const bool known = crease.centre_distance > 0 && crease.normal_slack >= 0 &&
+                         (crease.crossings == 1 || (crease.crossings == 2 && crease.curvature > 0 &&
+                                                    std::isfinite(crease.curvature)));
+      if (known) {
+        const double spread =
+            (L < crease.centre_distance ? std::asin(L / crease.centre_distance) : kRight) +
+            crease.normal_slack + line_spread;
+        const double psi =
+            std::acos(std::min(1.0, std::abs(ux * crease.normal_x + uy * crease.normal_y)));
+        if (psi > spread) c = std::cos(psi - spread);
+      }
+      if (!(c < 1)) {
+        terms[static_cast<std::size_t>(n++)] = plain[k];
+        continue;
+      }
+      const double jump = crease.slope_jump * c;
+      terms[static_cast<std::size_t>(n++)] = {d / c, jump};
+      if (crease.crossings == 2) {
+        terms[static_cast<std::size_t>(n++)] = {d, jump};
+        if (d < hi) m_directed -= crease.slope_jump * crease.curvature;
+      }
+    }
+    if (!(m_directed > 0)) return false;
+    std::sort(terms.begin(), terms.begin() + n,
+              [](const EnvelopeTerm& a, const EnvelopeTerm& b) { return a.from < b.from; });
+    if (!envelope_below_zero(terms.data(), n, m_directed, lo, hi)) return false;
+    hi = lo;
+  }
+  return true;
+}
+
 }  // namespace
 
 double section_concavity(const Surface& design, double R, double radius) {
@@ -167,10 +266,10 @@ bool touch_clear_of_creases(const Surface& design, double x, double y, double R,
   if (!(m > 0)) return false;
   std::sort(near.begin(), near.begin() + count,
             [](const NearbyCrease& a, const NearbyCrease& b) { return a.distance < b.distance; });
-  // Past the k-th crease E(t) = −m t²/2 + rise·t − offset, rise = Σ n J and offset =
-  // Σ n J d over the creases passed: its largest value on [d_k, d_{k+1}] is at rise/m,
-  // clamped there.
-  double rise = 0, offset = 0;
+  // The creases within reach: each d_k = distance − margin, crossed n_k times with a jump
+  // of at most J_k along any direction.
+  std::array<EnvelopeTerm, 16> plain;
+  int within = 0;
   for (int k = 0; k < count; ++k) {
     const NearbyCrease& crease = near[static_cast<std::size_t>(k)];
     const double d = crease.distance - margin;
@@ -178,15 +277,10 @@ bool touch_clear_of_creases(const Surface& design, double x, double y, double R,
     if (d >= reach) break;
     const double jump = crease.crossings * crease.slope_jump;
     if (!(jump >= 0) || !std::isfinite(jump)) return false;
-    rise += jump;
-    offset += jump * d;
-    const double next =
-        k + 1 < count ? std::min(reach, near[static_cast<std::size_t>(k + 1)].distance - margin)
-                      : reach;
-    const double t = std::clamp(rise / m, d, std::max(d, next));
-    if (!(-0.5 * m * t * t + rise * t - offset < 0)) return false;
+    plain[static_cast<std::size_t>(within++)] = {d, jump};
   }
-  return true;
+  if (envelope_below_zero(plain.data(), within, m, 0, reach)) return true;
+  return directed_envelope_below_zero(near.data(), plain.data(), within, m, reach, x, y, margin);
 }
 
 NoseTouch nose_touch(const Surface& design, const RadialLine& line, double nose_radius, double rho_p,

@@ -494,7 +494,24 @@ int LensletArray::creases_near(double x, double y, double radius,
     if (count == static_cast<int>(out.size())) return -1;
     // A footprint is convex in (x, y) (a disc, or a spherical cap's projection): a
     // half-line from inside leaves it once, one from outside crosses its rim twice at most.
-    out[static_cast<std::size_t>(count++)] = {distance, crease_jump_, inside ? 1 : 2};
+    NearbyCrease& crease = out[static_cast<std::size_t>(count++)];
+    crease = {distance, crease_jump_, inside ? 1 : 2};
+    // The rim is a circle of radius D/2 about the lenslet's axis a, in the plane normal to
+    // it, centred cos α · c_xy in (x, y) (on a plane, c_xy): seen along z, an ellipse of
+    // semi-axes D/2 and (D/2)·a_z. An ellipse's normal at a point leans from the
+    // direction from its centre by at most atan((p² − q²)/(2pq)) (semi-axes p ≥ q), and it
+    // bends at most p/q². The slope's jump lies along the normal: z_L − z_B is 0 along the rim.
+    const double centre_x = cos_alpha * l.px, centre_y = cos_alpha * l.py;
+    const double from_x = x - centre_x, from_y = y - centre_y;
+    const double from = std::hypot(from_x, from_y);
+    const double a_z = cb != 0 ? std::sqrt(l.w2) : 1.0;
+    if (from > 0 && a_z > 0) {
+      crease.normal_x = from_x / from;
+      crease.normal_y = from_y / from;
+      crease.centre_distance = from;
+      crease.normal_slack = std::atan((1 - a_z * a_z) / (2 * a_z));
+      crease.curvature = 1 / (half * a_z * a_z);
+    }
   }
   return count;
 }

@@ -69,8 +69,12 @@ NoseOverlap nose_overlap_near(const Surface& design, const RadialLine& line, dou
 // (h'(0) = 0 at the touch), m = 1/R − max_bend how strongly concave h is on a smooth piece,
 // and crease k at least d_k away with a slope jump of at most J_k, crossed at most n_k
 // times. The right side is piecewise a concave parabola; true when it stays below 0
-// throughout. On such a touch no crease search can find more (nose_overlap), and a nose
-// touching there is not held (nose_touch). False where the surface cannot say.
+// throughout. Where that fails and the creases say how their rims lie (NearbyCrease's
+// normal), it is tried again with each jump J_k scaled by a bound of |cos ψ|, ψ the angle
+// between the sections and the rim's normal where they may cross it (docs/path.md, "The
+// rims' directions"): the plain test first, so this only adds touches. On such a touch no
+// crease search can find more (nose_overlap), and a nose touching there is not held
+// (nose_touch). False where the surface cannot say.
 bool touch_clear_of_creases(const Surface& design, double x, double y, double R, double margin);
 
 // Where the nose touches the section for the contact at signed radius rho_p.

@@ -51,6 +51,17 @@ struct NearbyCrease {
   double distance = 0;    // mm: at most its distance in (x, y) from the point
   double slope_jump = 0;  // at least the jump of dz/dt across it, t along any unit direction
   int crossings = 0;      // a half-line from the point crosses it at most this often
+  // Optional, for a sharper envelope (touch_clear_of_creases): where the crease is the rim
+  // of a convex region (a footprint) about a centre e, with the slope's jump at each rim
+  // point q along the rim's normal ν(q) in (x, y). Then ν(q) lies within normal_slack of
+  // the direction from e to q, (normal_x, normal_y) is the unit direction from e to the
+  // point, centre_distance its distance from e (0: nothing of this is known), and the rim
+  // bends at most `curvature` (1/mm). A slack or curvature below the truth, like a
+  // distance above it, would let the planner miss a crease.
+  double normal_x = 0, normal_y = 0;
+  double centre_distance = 0;
+  double normal_slack = 0;  // rad
+  double curvature = 0;
 };
 
 class Surface {
