@@ -172,6 +172,14 @@ bool directed_envelope_below_zero(const NearbyCrease* near, const EnvelopeTerm* 
   const double t_max = std::min(reach, 2 * total / m);
   const double nearest = plain[0].from;
   constexpr double kRight = 0.5 * 3.14159265358979323846;
+  // Per crease, what the tiers share: ψ₀, and the spread less its part that depends on L.
+  std::array<double, 16> psi, fixed_spread;
+  for (int k = 0; k < within; ++k) {
+    const NearbyCrease& crease = near[k];
+    psi[static_cast<std::size_t>(k)] =
+        std::acos(std::min(1.0, std::abs(ux * crease.normal_x + uy * crease.normal_y)));
+    fixed_spread[static_cast<std::size_t>(k)] = crease.normal_slack + line_spread;
+  }
   for (double hi = t_max; hi > nearest;) {
     const double lo = std::max(nearest, 0.5 * hi);
     const double L = hi + margin;
@@ -188,10 +196,9 @@ bool directed_envelope_below_zero(const NearbyCrease* near, const EnvelopeTerm* 
       if (known) {
         const double spread =
             (L < crease.centre_distance ? std::asin(L / crease.centre_distance) : kRight) +
-            crease.normal_slack + line_spread;
-        const double psi =
-            std::acos(std::min(1.0, std::abs(ux * crease.normal_x + uy * crease.normal_y)));
-        if (psi > spread) c = std::cos(psi - spread);
+            fixed_spread[static_cast<std::size_t>(k)];
+        const double angle = psi[static_cast<std::size_t>(k)];
+        if (angle > spread) c = std::cos(angle - spread);
       }
       if (!(c < 1)) {
         terms[static_cast<std::size_t>(n++)] = plain[k];

@@ -179,6 +179,19 @@ LensletArray::LensletArray(const LensletArrayOptions& options) : o_(options) {
                        : std::numeric_limits<double>::infinity();
     rim_reach_ = farthest + crease_reach_;
   }
+  // creases_near's rim shapes. The rim is a circle of radius D/2 about the lenslet's axis
+  // a, in the plane normal to it, centred cos α · c_xy in (x, y) (on a plane, c_xy): seen
+  // along z, an ellipse of semi-axes D/2 and (D/2)·a_z. An ellipse's normal at a point
+  // leans from the direction from its centre by at most atan((p² − q²)/(2pq)) (semi-axes
+  // p ≥ q), and it bends at most p/q².
+  {
+    const double cos_alpha = cb != 0 ? rim_cosine_ * std::abs(cb) : 1.0, half = 0.5 * d;
+    for (const Lenslet& l : lenslets_) {
+      const double a_z = cb != 0 ? std::abs(l.axis.z()) : 1.0;
+      rim_shape_.push_back({cos_alpha * l.base_point.x(), cos_alpha * l.base_point.y(),
+                            std::atan((1 - a_z * a_z) / (2 * a_z)), 1 / (half * a_z * a_z)});
+    }
+  }
   // The footprint test's constants (lenslet_at).
   const double sign = cb > 0 ? 1.0 : -1.0;
   if (cb != 0) rb_squared_ = 1 / (cb * cb);
@@ -496,21 +509,17 @@ int LensletArray::creases_near(double x, double y, double radius,
     // half-line from inside leaves it once, one from outside crosses its rim twice at most.
     NearbyCrease& crease = out[static_cast<std::size_t>(count++)];
     crease = {distance, crease_jump_, inside ? 1 : 2};
-    // The rim is a circle of radius D/2 about the lenslet's axis a, in the plane normal to
-    // it, centred cos α · c_xy in (x, y) (on a plane, c_xy): seen along z, an ellipse of
-    // semi-axes D/2 and (D/2)·a_z. An ellipse's normal at a point leans from the
-    // direction from its centre by at most atan((p² − q²)/(2pq)) (semi-axes p ≥ q), and it
-    // bends at most p/q². The slope's jump lies along the normal: z_L − z_B is 0 along the rim.
-    const double centre_x = cos_alpha * l.px, centre_y = cos_alpha * l.py;
-    const double from_x = x - centre_x, from_y = y - centre_y;
+    // How the rim lies (rim_shape_; the slope's jump is along its normal: z_L − z_B is 0
+    // along the rim).
+    const RimShape& rim = rim_shape_[static_cast<std::size_t>(l.lenslet)];
+    const double from_x = x - rim.centre_x, from_y = y - rim.centre_y;
     const double from = std::hypot(from_x, from_y);
-    const double a_z = cb != 0 ? std::sqrt(l.w2) : 1.0;
-    if (from > 0 && a_z > 0) {
+    if (from > 0 && std::isfinite(rim.curvature)) {
       crease.normal_x = from_x / from;
       crease.normal_y = from_y / from;
       crease.centre_distance = from;
-      crease.normal_slack = std::atan((1 - a_z * a_z) / (2 * a_z));
-      crease.curvature = 1 / (half * a_z * a_z);
+      crease.normal_slack = rim.normal_slack;
+      crease.curvature = rim.curvature;
     }
   }
   return count;

@@ -107,6 +107,12 @@ class LensletArray final : public Surface {
   // (x, y) a rim reaches.
   double crease_jump_ = 0;
   double rim_reach_ = 0;
+  // creases_near's rim directions, per lenslet: the rim ellipse's centre in (x, y), how far
+  // its normal leans from the direction from that centre, and its largest bend.
+  struct RimShape {
+    double centre_x = 0, centre_y = 0, normal_slack = 0, curvature = 0;
+  };
+  std::vector<RimShape> rim_shape_;
 };
 
 }  // namespace freeturn
