@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <array>
 #include <cmath>
+#include <numbers>
 
 namespace freeturn {
 namespace {
@@ -171,7 +172,7 @@ bool directed_envelope_below_zero(const NearbyCrease* near, const EnvelopeTerm* 
   for (int k = 0; k < within; ++k) total += plain[k].rise;
   const double t_max = std::min(reach, 2 * total / m);
   const double nearest = plain[0].from;
-  constexpr double kRight = 0.5 * 3.14159265358979323846;
+  constexpr double kRight = 0.5 * std::numbers::pi;
   // Per crease, what the tiers share: ψ₀, and the spread less its part that depends on L.
   std::array<double, 16> psi, fixed_spread;
   for (int k = 0; k < within; ++k) {
