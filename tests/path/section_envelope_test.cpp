@@ -78,6 +78,26 @@ Eigen::Vector2d upper_intersection(Eigen::Vector2d a, double ra, Eigen::Vector2d
 
 // The largest height of the section g(ρ) at θ above the lower arc of the nose at
 // (x, z), by brute force: n values of ρ across the nose, then ternary search.
+// A view of another surface: its shape and section creases, and the defaults for the
+// bounds (no max_bend, no creases_near) unless a view below gives them.
+struct SurfaceView : Surface {
+  const Surface& s;
+  explicit SurfaceView(const Surface& surface) : s(surface) {}
+  const char* type() const override { return s.type(); }
+  void sag_gradient(double x, double y, double& z, double& zx, double& zy) const override {
+    s.sag_gradient(x, y, z, zx, zy);
+  }
+  HeightDerivatives height_derivatives(double x, double y) const override {
+    return s.height_derivatives(x, y);
+  }
+  double defined_radius() const override { return s.defined_radius(); }
+  bool has_creases() const override { return s.has_creases(); }
+  int section_creases(const RadialLine& line, double lo, double hi,
+                      std::span<double> out) const override {
+    return s.section_creases(line, lo, hi, out);
+  }
+};
+
 double brute_overlap(const Surface& s, double x, double z, double R, double theta = 0,
                      int n = 20000) {
   const double ct = std::cos(theta), st = std::sin(theta);
@@ -303,22 +323,8 @@ TEST_SUITE("path") {
     // that gives no bound (max_bend = +inf: every flank searched in full) must return the
     // same bits: for noses placed at random a few micrometres about the design near the
     // rims, on domes and on bowls.
-    struct Unbounded final : Surface {
-      const Surface& s;
-      explicit Unbounded(const Surface& surface) : s(surface) {}
-      const char* type() const override { return s.type(); }
-      void sag_gradient(double x, double y, double& z, double& zx, double& zy) const override {
-        s.sag_gradient(x, y, z, zx, zy);
-      }
-      HeightDerivatives height_derivatives(double x, double y) const override {
-        return s.height_derivatives(x, y);
-      }
-      double defined_radius() const override { return s.defined_radius(); }
-      bool has_creases() const override { return s.has_creases(); }
-      int section_creases(const RadialLine& line, double lo, double hi,
-                          std::span<double> out) const override {
-        return s.section_creases(line, lo, hi, out);
-      }
+    struct Unbounded final : SurfaceView {
+      using SurfaceView::SurfaceView;
     };
     for (const double lens_radius : {-5.0, 1.5}) {
       LensletArrayOptions options = test::compound_eye_options(3.0);
@@ -468,23 +474,9 @@ TEST_SUITE("path") {
     // crease bounded along any direction, as before they were told) must clear no touch the
     // full one does not, and the full one must clear more: domes on a concave base, bowls
     // on a convex one, domes on a plane.
-    struct WithoutDirections final : Surface {
-      const Surface& s;
-      explicit WithoutDirections(const Surface& surface) : s(surface) {}
-      const char* type() const override { return s.type(); }
-      void sag_gradient(double x, double y, double& z, double& zx, double& zy) const override {
-        s.sag_gradient(x, y, z, zx, zy);
-      }
-      HeightDerivatives height_derivatives(double x, double y) const override {
-        return s.height_derivatives(x, y);
-      }
-      double defined_radius() const override { return s.defined_radius(); }
-      bool has_creases() const override { return s.has_creases(); }
+    struct WithoutDirections final : SurfaceView {
+      using SurfaceView::SurfaceView;
       double max_bend(double radius) const override { return s.max_bend(radius); }
-      int section_creases(const RadialLine& line, double lo, double hi,
-                          std::span<double> out) const override {
-        return s.section_creases(line, lo, hi, out);
-      }
       int creases_near(double x, double y, double radius,
                        std::span<NearbyCrease> out) const override {
         const int count = s.creases_near(x, y, radius, out);
