@@ -8,6 +8,8 @@
 #include <vector>
 
 #include "freeturn/core/error.hpp"
+#include "freeturn/surface/conic.hpp"
+#include "freeturn/surface/jet.hpp"
 #include "freeturn/surface/lenslet_array.hpp"
 
 using namespace freeturn;
@@ -223,6 +225,51 @@ TEST_SUITE("surface") {
         CHECK(d.zyy == doctest::Approx((py.zy - my.zy) / (2 * h)).epsilon(1e-5).scale(1e-4));
       }
       CHECK(checked == 100);
+    }
+  }
+
+  TEST_CASE("lenslet surfaces: the Hessian's closed form gives the bits of the jets' formula") {
+    // height_derivatives writes the chain rule out by hand; the same spheres written once
+    // with Jet<2> (the lens sphere about vertex + R·axis, the base conic) must give the same
+    // doubles, on lenslets, on the base, on domes and bowls, on a sphere and on a plane.
+    std::vector<LensletArrayOptions> arrays = {eye(Pattern::kRings), eye(Pattern::kHexagonal)};
+    arrays.push_back(eye(Pattern::kSquare));
+    arrays.back().base_curvature = 0;
+    arrays.push_back(eye(Pattern::kRings));
+    arrays.back().lens_radius = 2.0;  // bowls
+    arrays.push_back(eye(Pattern::kHexagonal));
+    arrays.back().base_curvature = -1 / 15.0;
+    for (const LensletArrayOptions& o : arrays) {
+      const LensletArray s(o);
+      std::mt19937 rng(17);
+      std::uniform_real_distribution<double> u(-6.0, 6.0);
+      int on_lenslets = 0, on_base = 0;
+      for (int k = 0; k < 4000; ++k) {
+        const double x = u(rng), y = u(rng);
+        using J = Jet<2>;
+        const J X = J::variable_x(x), Y = J::variable_y(y);
+        const int i = s.lenslet_at(x, y);
+        J z;
+        if (i < 0) {
+          z = conic_sag(o.base_curvature, 0.0, X * X + Y * Y);
+          ++on_base;
+        } else {
+          const Eigen::Vector3d c = s.lenslet_vertex(i) + o.lens_radius * s.lenslet_axis(i);
+          const J dx = X - c.x(), dy = Y - c.y();
+          const double r = o.lens_radius;
+          z = c.z() - (r > 0 ? 1.0 : -1.0) * sqrt(r * r - dx * dx - dy * dy);
+          ++on_lenslets;
+        }
+        const HeightDerivatives h = s.height_derivatives(x, y);
+        const double expected[6] = {z.v, z.dx, z.dy, z.dxx, z.dxy, z.dyy};
+        const double got[6] = {h.z, h.zx, h.zy, h.zxx, h.zxy, h.zyy};
+        for (int j = 0; j < 6; ++j) {
+          INFO("x = ", x, ", y = ", y, ", component ", j);
+          CHECK((got[j] == expected[j] || (std::isnan(got[j]) && std::isnan(expected[j]))));
+        }
+      }
+      CHECK(on_lenslets > 1000);
+      CHECK(on_base > 1000);
     }
   }
 

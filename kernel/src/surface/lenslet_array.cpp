@@ -336,26 +336,6 @@ int LensletArray::lenslet_at(double x, double y) const {
   return -1;
 }
 
-template <int N>
-HeightDerivatives LensletArray::evaluate(double x, double y) const {
-  const int i = lenslet_at(x, y);
-  using J = Jet<N>;
-  const J X = J::variable_x(x), Y = J::variable_y(y);
-  J z;
-  if (i < 0) {
-    const double c = o_.base_curvature;
-    const J r2 = X * X + Y * Y;
-    z = conic_sag(c, 0.0, r2);
-  } else {
-    // The lens sphere along the vertical line: z = C_z − sgn(R) √(R² − (x − C_x)² − (y − C_y)²).
-    const Eigen::Vector3d& c = lenslets_[i].centre;
-    const double r = o_.lens_radius;
-    const J dx = X - c.x(), dy = Y - c.y();
-    z = c.z() - (r > 0 ? 1.0 : -1.0) * sqrt(r * r - dx * dx - dy * dy);
-  }
-  return {z.v, z.dx, z.dy, z.dxx, z.dxy, z.dyy};
-}
-
 int LensletArray::section_creases(const RadialLine& line, double rho_lo, double rho_hi,
                                   std::span<double> out) const {
   if (!(rho_lo <= rho_hi) || !std::isfinite(rho_lo) || !std::isfinite(rho_hi)) return 0;
@@ -550,8 +530,46 @@ void LensletArray::sag_gradient(double x, double y, double& z, double& zx, doubl
   zy = g * dy;
 }
 
+// The same spheres with their Hessians: the chain rule through the square roots written
+// out, operation for operation and in the same order as the Jet<2> formulas they replace
+// (z = C_z − sgn(R)·√(R² − (x − C_x)² − (y − C_y)²) on a lenslet, conic_sag on the base),
+// so the bits are the jets' (tests/surface/lenslet_array_test.cpp compares them) without
+// the jets' products of zero components. A held nose's Newton solve asks this twice a step.
 HeightDerivatives LensletArray::height_derivatives(double x, double y) const {
-  return evaluate<2>(x, y);
+  const int i = lenslet_at(x, y);
+  if (i < 0) {
+    // c·s/(1 + √(1 − c²s)), s = x² + y²: ∇s = (2x, 2y), ∇²s = 2I.
+    const double c = o_.base_curvature, cc = c * c;
+    const double r2 = x * x + y * y, r2x = x + x, r2y = y + y;
+    // w = 1 − c²s and q = √w.
+    const double w = 1.0 - cc * r2, wx = -(cc * r2x), wy = -(cc * r2y), wxx = -(cc * 2.0);
+    const double q = std::sqrt(w), f1 = 0.5 / q, f2 = -0.25 / (q * w);
+    const double qx = f1 * wx, qy = f1 * wy;
+    const double qxx = f1 * wxx + f2 * wx * wx, qxy = f2 * wx * wy, qyy = f1 * wxx + f2 * wy * wy;
+    // 1/(1 + q), the denominator's reciprocal.
+    const double v = 1.0 / (q + 1.0), g1 = -v * v, g2 = 2 * v * v * v;
+    const double vx = g1 * qx, vy = g1 * qy;
+    const double vxx = g1 * qxx + g2 * qx * qx, vxy = g1 * qxy + g2 * qx * qy,
+                 vyy = g1 * qyy + g2 * qy * qy;
+    // The numerator c·s times it.
+    const double n = c * r2, nx = c * r2x, ny = c * r2y, nxx = c * 2.0;
+    return {n * v,
+            nx * v + n * vx,
+            ny * v + n * vy,
+            nxx * v + 2 * nx * vx + n * vxx,
+            nx * vy + ny * vx + n * vxy,
+            nxx * v + 2 * ny * vy + n * vyy};
+  }
+  const Eigen::Vector3d& centre = lenslets_[static_cast<std::size_t>(i)].centre;
+  const double r = o_.lens_radius, sign = r > 0 ? 1.0 : -1.0;
+  const double ex = x - centre.x(), ey = y - centre.y();
+  // u = R² − ex² − ey² (∇u = −2(ex, ey), ∇²u = −2I) and s = √u.
+  const double u = r * r - ex * ex - ey * ey, ux = -(ex + ex), uy = -(ey + ey);
+  const double s = std::sqrt(u), f1 = 0.5 / s, f2 = -0.25 / (s * u);
+  const double sx = f1 * ux, sy = f1 * uy;
+  const double sxx = f1 * -2.0 + f2 * ux * ux, sxy = f2 * ux * uy, syy = f1 * -2.0 + f2 * uy * uy;
+  return {centre.z() - sign * s, -(sign * sx),  -(sign * sy),
+          -(sign * sxx),         -(sign * sxy), -(sign * syy)};
 }
 
 }  // namespace freeturn

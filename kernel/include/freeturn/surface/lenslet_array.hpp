@@ -66,8 +66,6 @@ class LensletArray final : public Surface {
     Eigen::Vector3d vertex;      // c_i + h n_i
     Eigen::Vector3d centre;      // of the lens sphere: vertex + R n_i
   };
-  template <int N>  // 1: value and gradient; 2: and the Hessian
-  HeightDerivatives evaluate(double x, double y) const;
   void add_lenslet(double x, double y);
 
   InstanceId id_;  // the key of each thread's crease candidates (section_creases)
