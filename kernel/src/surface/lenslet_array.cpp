@@ -320,8 +320,12 @@ int LensletArray::lenslet_at(double x, double y) const {
   // The lenslet this thread found last: a path's consecutive queries mostly stay in one.
   // Where no two footprints overlap (disjoint_), the lenslet that holds the point is the
   // only one, so trying it first changes no answer; any array's index is only a guess,
-  // checked against this one's own data.
-  thread_local int last_found = -1;
+  // checked against this one's own data. In the initial-exec model: read at a fixed offset
+  // from the thread pointer, not through __tls_get_addr, whose call was about a twentieth
+  // of a compound eye's planning (this is asked for every evaluation of the design). It
+  // takes 4 bytes of the static TLS block that the C library keeps for libraries loaded
+  // later (the Python module loads this one with dlopen).
+  [[gnu::tls_model("initial-exec")]] static thread_local int last_found = -1;
   if (disjoint_ && last_found >= 0 && last_found < lenslet_count() &&
       holds(by_lenslet_[static_cast<std::size_t>(last_found)]))
     return last_found;
