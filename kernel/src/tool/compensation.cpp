@@ -20,9 +20,14 @@ ToolMotion tool_motion(const CompensationOptions& o) {
 }
 
 CutterLocation compensate(const ContactPoint& contact, const CompensationOptions& o) {
+  return compensate(contact, o, RadialLine(contact.theta));
+}
+
+CutterLocation compensate(const ContactPoint& contact, const CompensationOptions& o,
+                          const RadialLine& line) {
   CutterLocation cl;
   cl.contact = contact;
-  const double ct = std::cos(contact.theta), st = std::sin(contact.theta);
+  const double ct = line.cos, st = line.sin;
   const Eigen::Vector3d& n = contact.normal;
   const double n_r = n.x() * ct + n.y() * st, n_z = n.z();
   const double length = std::hypot(n_r, n_z);

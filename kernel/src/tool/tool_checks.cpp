@@ -106,13 +106,12 @@ void ToolChecker::found(ToolCheck check, double value, double limit, const Cutte
   }
 }
 
-double ToolChecker::global_gouge_depth(const CutterLocation& cl) const {
+double ToolChecker::global_gouge_depth(const CutterLocation& cl, const RadialLine& line) const {
   // The edge arc: angles within half the included angle of the tool axis a(B). Its
   // lowest points face the part; the section z_s(ρ) = f(ρ cos θ, ρ sin θ) must stay below
   // the arc, z_s(ρ) ≤ c_z − √(R² − (ρ − c_r)²), everywhere under it.
   const double R = compensation_.tool.nose_radius;
   const double half = 0.5 * compensation_.tool.included_angle;
-  const RadialLine line(cl.contact.theta);
   const double ct = line.cos, st = line.sin;
   const double c_r = cl.nose_centre.x() * ct + cl.nose_centre.y() * st;
   const double c_z = cl.nose_centre.z();
@@ -163,6 +162,10 @@ bool ToolChecker::one_touch_depth(const RadialLine& line, double c_r, double c_z
 }
 
 void ToolChecker::check(const CutterLocation& cl) {
+  check(cl, RadialLine(cl.contact.theta));
+}
+
+void ToolChecker::check(const CutterLocation& cl, const RadialLine& line) {
   const ToolGeometry& tool = compensation_.tool;
   const auto enabled = [&](ToolCheck c) {
     return options_.policy[static_cast<int>(c)] != CheckPolicy::kOff;
@@ -177,14 +180,14 @@ void ToolChecker::check(const CutterLocation& cl) {
   const ContactPoint& p = cl.contact;
   if (enabled(ToolCheck::kClearance)) {
     // |∂z/∂θ| / r = |∇z · e_θ| = |n · e_θ| / n_z.
-    const double n_theta = -p.normal.x() * std::sin(p.theta) + p.normal.y() * std::cos(p.theta);
+    const double n_theta = -p.normal.x() * line.sin + p.normal.y() * line.cos;
     const double slope = std::atan(std::abs(n_theta) / p.normal.z());
     if (slope >= tool.clearance_angle) found(ToolCheck::kClearance, slope, tool.clearance_angle, cl);
   }
   if (enabled(ToolCheck::kLocalGouge) && p.section_curvature * tool.nose_radius > 1.0)
     found(ToolCheck::kLocalGouge, p.section_curvature, 1 / tool.nose_radius, cl);
   if (enabled(ToolCheck::kGlobalGouge)) {
-    const double depth = global_gouge_depth(cl);
+    const double depth = global_gouge_depth(cl, line);
     if (depth > options_.gouge_tolerance)
       found(ToolCheck::kGlobalGouge, depth, options_.gouge_tolerance, cl);
   }

@@ -13,6 +13,7 @@
 // the programmed radial position x becomes √(x² − h²) and the spindle angle θ − atan2(h, ·).
 
 #include "freeturn/path/cutter_points.hpp"
+#include "freeturn/surface/surface.hpp"
 #include "freeturn/tool/cutter_location.hpp"
 #include "freeturn/tool/tool_geometry.hpp"
 
@@ -41,6 +42,10 @@ ToolMotion tool_motion(const CompensationOptions& options);
 
 // The cutter location for one contact point. No checks (tool_checks.hpp); no allocation.
 CutterLocation compensate(const ContactPoint& contact, const CompensationOptions& options);
+// The same, given the radial line at contact.theta (RadialLine(contact.theta), the same
+// bits): the stage after the planner computes it once a point for this and the checks.
+CutterLocation compensate(const ContactPoint& contact, const CompensationOptions& options,
+                          const RadialLine& line);
 
 // The inverse for tests and verification: from programmed axes (x, z, B) back to the nose
 // centre in the radial plane (ρ, z) — x, z being the point `options` programs.

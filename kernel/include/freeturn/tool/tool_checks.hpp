@@ -62,11 +62,13 @@ class ToolChecker {
   ToolChecker(const Surface& design, const CompensationOptions& compensation,
               ToolCheckOptions options);
   void check(const CutterLocation& cl);
+  // The same, given the radial line at cl.contact.theta (RadialLine of it, the same bits).
+  void check(const CutterLocation& cl, const RadialLine& line);
   const ToolCheckReport& report() const { return report_; }
 
  private:
   void found(ToolCheck check, double value, double limit, const CutterLocation& cl);
-  double global_gouge_depth(const CutterLocation& cl) const;
+  double global_gouge_depth(const CutterLocation& cl, const RadialLine& line) const;
   // The depth where the section under the nose's edge has one maximum, from the contact's
   // search alone (tool_checks.cpp); false where that cannot be shown.
   bool one_touch_depth(const RadialLine& line, double c_r, double c_z, double hint_r,
