@@ -654,11 +654,14 @@ TEST_SUITE("path") {
         const double mid = 0.5 * (lo + hi);
         (held_at(mid) == held_a ? lo : hi) = mid;
       }
-      // The block is there, or the change lies within a tenth of the step after the block
-      // before it, where the planner leaves it: a block there would be a sliver
-      // (path_stepper.hpp, end_at_hold_change).
+      // The block is there to the program's resolution (end_at_hold_change stops within
+      // 1 nm of axis travel of the change, of which the arc of C at the nose centre's
+      // radius, at least ρ − R − ε/2, is a part), or the change lies within a tenth of the
+      // step after the block before it, where the planner leaves it: a block there would be
+      // a sliver (path_stepper.hpp).
       const double at = (hi - ta) / (tb - ta);
-      if (std::abs(tb - hi) <= 1e-9) {
+      const double centre_radius = outer - o.pitch * hi / (2 * std::numbers::pi) - lifted;
+      if (std::abs(tb - hi) * std::max(centre_radius, 0.0) <= 1e-6 + 1e-12) {
         ++on_block;
       } else {
         CHECK(at <= 0.1 + 1e-6);
