@@ -132,6 +132,10 @@ sed -e 's/amplitude: 0.005 /amplitude: 0.05 /' -e 's/period: 2.5 /period: 1.0 /'
 contains "run says UNSAFE at the gouge" "$tmp/err" "UNSAFE: finish: gouge: "
 contains "run names where" "$tmp/err" "at θ = "
 [[ -f "$tmp/gouge/sinusoidal_ring.precitech-nanoform-250.nc" ]] || { echo "FAIL: a warning-only job wrote no program"; fail=1; }
+# Its 0.6 mm nose is held still on the cone point at the centre: a PVT block there that
+# repeats the last one's place would have no time (a profile's block time is its X-Z chord).
+repeated="$(grep '^X' "$tmp/gouge/sinusoidal_ring.precitech-nanoform-250.nc" | uniq -d)"
+[[ -z "$repeated" ]] || { echo "FAIL: the PVT program repeats a block in place: $repeated"; fail=1; }
 contains "the report says UNSAFE" "$tmp/gouge/sinusoidal_ring.report.json" '"status": "UNSAFE"'
 contains "the gouge is a structured warning" "$tmp/gouge/sinusoidal_ring.report.json" '"kind": "local_gouge"'
 "$freeturn" check "$tmp/gouge.yaml" > "$tmp/stdout"; expect "check with a downgraded gouge" 1 $?

@@ -21,7 +21,9 @@
 //                                           // factor (pvt_rule.hpp)
 //   bool creased() const;                   // the design has creases (Surface::has_creases)
 //   bool holds_still() const;               // a nose held at a crease may stay still while
-//                                           // τ advances (a profile: C stays fixed)
+//                                           // τ advances, and a block of no length then
+//                                           // has no time (a profile: C stays fixed, and
+//                                           // its block time is the X-Z chord)
 //   double slide(double x_axis, double c, double z, double b, const AxisState& ideal) const;
 //                                           // how far the tool at these axes rises above
 //                                           // the path's own nose `ideal` (nose_section.hpp)
@@ -409,18 +411,14 @@ double segment_error(const Path& path, const Segment& segment, Interpolation mod
                                  smooth_gap))
       return smooth_gap;
   }
-  // Every peak searched on a creased surface, but PVT's on a path where a held nose can
-  // stay still (a profile's trough narrower than the nose): there the searched step would
-  // end where it began, a block of no time that PVT cannot drop (docs/path.md), and the
-  // parabola's test stands.
-  const bool always_search = mode == Interpolation::kLinear || !path.holds_still();
+  // Every peak searched on a creased surface (the peak there can be a tent at a crease).
   const double gap = largest_deviation(
       path,
       [&](double t) {
         double x, c, z, bb;
         return gap_at(t, grid_index(t), x, c, z, bb);
       },
-      always_search, target);
+      true, target);
   if (!path.creased() || std::abs(gap) > target) return gap;
   // The size of the distance above is max(|gap|, slide) at every sample, so its largest
   // value over the segment is the larger of the gap's (found above) and the slide's: the
@@ -440,7 +438,7 @@ double segment_error(const Path& path, const Segment& segment, Interpolation mod
         }
         return std::max(path.slide(x, c, z, bb, ideal), 0.0);  // a nose below rises nowhere
       },
-      always_search, target);
+      true, target);
   return slide > std::abs(gap) ? slide : gap;
 }
 
@@ -694,6 +692,8 @@ void distribute(Path& path, const CutterPointOptions& o, Emit&& emit, double beg
     return std::max(worst, std::abs(previous_error));
   };
   bool pending_jump = false;  // PVT: the jump flag of the segment that ends at `current`
+  // PVT: `current` is the piece's first block and another piece emits it.
+  bool first_left_to_other = !emit_begin;
   // Equal angles: the step, and the index of the path's point at `begin`.
   const double angle_step = 2 * std::numbers::pi / std::max(1, o.points_per_revolution);
   const long long first_step = std::llround(begin / angle_step);
@@ -906,18 +906,32 @@ void distribute(Path& path, const CutterPointOptions& o, Emit&& emit, double beg
       measure(trial, kFull);
     }
     path.commit(trial);
+    // A nose held still at a crease over the whole step (a profile's trough narrower than
+    // the nose): the block would repeat the last one's place, a move of no length and no
+    // time. The walk goes on from it; nothing is emitted. In PVT mode the same, where a
+    // block's time is its X-Z chord (Path::holds_still): a controller's velocity at a
+    // block is a difference over its neighbours' times, which three blocks in one place
+    // leave none of. The still state then stands for the block it repeats, still waiting
+    // in the lag: the segment to it was judged with it as the next block, whose place (and
+    // so the velocity it gives) is the same to the program's resolution.
+    const bool still = !apart(current, trial);
     if (!pvt) {
-      // A nose held still at a crease over the whole step (a profile's trough narrower than
-      // the nose): the block would repeat the last one's place, a move of no length and no
-      // time. The walk goes on from it; nothing is emitted.
-      const bool still = !apart(current, trial);
       current = trial;
       if (!still) emit(current, new_error, jump);
       continue;
     }
+    if (still && path.holds_still()) {
+      current = trial;
+      // The program's last block, the one it repeats: the segment to it was judged with
+      // the velocity this still block gives, the one-sided one of the end.
+      if (current.tau >= end && has_before && !first_left_to_other)
+        emit(current, previous_error, pending_jump);
+      continue;
+    }
     // A piece that continues another (with the blocks before it known) leaves its first
     // block to that one.
-    if (has_before && (emit_begin || current.tau != begin)) emit(current, previous_error, pending_jump);
+    if (has_before && !first_left_to_other) emit(current, previous_error, pending_jump);
+    first_left_to_other = false;
     before2 = before;
     has_before2 = has_before;
     before = current;
