@@ -621,6 +621,8 @@ void distribute(Path& path, const CutterPointOptions& o, Emit&& emit, double beg
   }
   path.at(begin, current);
   path.commit(current);
+  // PVT: the τ of the block `current` stands for (its own, unless it is a still state).
+  double block_tau = current.tau;
   if (emit_begin) emit(current, 0.0, false);
   if (!(end > begin)) return;
   // Chord error ∝ step^order: linear chords; PVT's central-difference velocities are
@@ -687,8 +689,14 @@ void distribute(Path& path, const CutterPointOptions& o, Emit&& emit, double beg
       const double equal_step = judge(known_before, current, t, &look, cutoff);
       worst = std::max(worst, std::abs(equal_step));
     }
-    previous_error = has_before ? judge(has_before2 ? &before2 : nullptr, before, current, &t, cutoff)
-                                : 0.0;
+    previous_error = 0;
+    if (has_before) {
+      // The segment to the block `current` stands for (below: a still state stands for
+      // the block it repeats), over that block's own stretch of τ.
+      AxisState block = current;
+      block.tau = block_tau;
+      previous_error = judge(has_before2 ? &before2 : nullptr, before, block, &t, cutoff);
+    }
     return std::max(worst, std::abs(previous_error));
   };
   bool pending_jump = false;  // PVT: the jump flag of the segment that ends at `current`
@@ -913,7 +921,10 @@ void distribute(Path& path, const CutterPointOptions& o, Emit&& emit, double beg
     // block is a difference over its neighbours' times, which three blocks in one place
     // leave none of. The still state then stands for the block it repeats, still waiting
     // in the lag: the segment to it was judged with it as the next block, whose place (and
-    // so the velocity it gives) is the same to the program's resolution.
+    // so the velocity it gives) is the same to the program's resolution. That segment is
+    // judged again, once the next block is known, over the block's own stretch of τ
+    // (`block_tau`): over the still state's, the path's nose would stand at the block's
+    // place while the motion is still on its way there.
     const bool still = !apart(current, trial);
     if (!pvt) {
       current = trial;
@@ -932,6 +943,7 @@ void distribute(Path& path, const CutterPointOptions& o, Emit&& emit, double beg
     // block to that one.
     if (has_before && !first_left_to_other) emit(current, previous_error, pending_jump);
     first_left_to_other = false;
+    block_tau = trial.tau;
     before2 = before;
     has_before2 = has_before;
     before = current;
