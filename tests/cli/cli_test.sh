@@ -141,6 +141,16 @@ contains "the gouge is a structured warning" "$tmp/gouge/sinusoidal_ring.report.
 "$freeturn" check "$tmp/gouge.yaml" > "$tmp/stdout"; expect "check with a downgraded gouge" 1 $?
 contains "check says UNSAFE" "$tmp/stdout" "UNSAFE: finish: gouge: "
 if grep -q "^PASS" "$tmp/stdout"; then echo "FAIL: check printed PASS for a gouging program"; fail=1; fi
+# A 1 mm nose in those troughs: past r = 1.04 mm no step meets the tolerance. In PVT mode
+# (this machine's) the planner once took slivers of no length there without end; now it
+# stops as linear motion does: exit 2, the place named, nothing written.
+sed -e 's/amplitude: 0.005 /amplitude: 0.05 /' -e 's/period: 2.5 /period: 1.0 /' \
+    -e 's/nose_radius: 0.5/nose_radius: 1.0\n  checks: {gouge: warning, global_gouge: warning}/' \
+    "$src/configs/jobs/sinusoidal_ring.yaml" > "$tmp/crawl.yaml"
+timeout 120 "$freeturn" run "$tmp/crawl.yaml" -o "$tmp/crawl" > /dev/null 2> "$tmp/err"; expect "PVT run where no step meets the tolerance" 2 $?
+contains "it names the tolerance" "$tmp/err" "cannot meet the chord tolerance 0.1 µm"
+contains "and where" "$tmp/err" "r = 1.04"
+[[ -z "$(ls -A "$tmp/crawl" 2> /dev/null)" ]] || { echo "FAIL: a run stopped by bad input left files:"; ls "$tmp/crawl"; fail=1; }
 # With the checks as errors (the default) the same job stops at the first gouge: exit 1
 # (a check failed, not bad input), the place named, nothing written.
 sed -e 's/amplitude: 0.005 /amplitude: 0.05 /' -e 's/period: 2.5 /period: 1.0 /' \

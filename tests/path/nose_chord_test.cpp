@@ -5,6 +5,7 @@
 #include <numbers>
 #include <string>
 
+#include "freeturn/core/error.hpp"
 #include "freeturn/path/profile.hpp"
 #include "freeturn/path/spiral.hpp"
 #include "freeturn/surface/even_asphere.hpp"
@@ -276,6 +277,29 @@ TEST_SUITE("path") {
       CHECK(held_points(cls) >= 1);
       CHECK(still_blocks(cls) == 0);
       CHECK(std::abs(cls.back().x) <= 1e-9);
+    }
+  }
+
+  TEST_CASE("PVT where no step meets the tolerance: the error linear motion gives, not slivers") {
+    // A 1 mm nose in troughs of concave radius 1/(Aω²) = 0.507 mm: past r = 1.04 mm its
+    // centre turns back, and no step meets ε. Linear motion stops there with an input
+    // error; PVT took the least error of its slivers (3e-12 of τ, still) and crawled on
+    // them without end. Both now name the same place.
+    const SinusoidalRing steep(0.05, 2 * std::numbers::pi, 0.0);
+    for (const Interpolation mode : {Interpolation::kLinear, Interpolation::kCubic}) {
+      ProfileOptions o = ring_profile(1e-4, 1.0, mode);
+      o.outer_radius = 3.0;
+      o.inner_radius = 0;
+      ContactCollector sink;
+      std::string message;
+      try {
+        plan_profile(steep, o, sink);
+      } catch (const InputError& e) {
+        message = e.what();
+      }
+      MESSAGE(std::string(mode == Interpolation::kLinear ? "linear: " : "PVT: ") << message);
+      CHECK(message.find("cannot meet the chord tolerance 0.1 µm") != std::string::npos);
+      CHECK(message.find("r = 1.04") != std::string::npos);
     }
   }
 

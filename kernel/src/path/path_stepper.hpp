@@ -864,7 +864,11 @@ void distribute(Path& path, const CutterPointOptions& o, Emit&& emit, double beg
         if (std::abs(next - step) <= 1e-6 * step && accepted > 0) break;
         step = next;
       }
-      if (accepted == 0 && pvt && least_step > 0) {
+      // PVT takes its least error where the search ends short of the target, but not where
+      // the step shrank to nothing: there no step helps (a nose larger than a trough, whose
+      // centre turns back), the least error is that of a sliver, and the walk would crawl
+      // on slivers without end. The path is not smooth there, as linear motion reports.
+      if (accepted == 0 && pvt && least_step > 0 && !exhausted) {
         accepted = least_step;
         best = least;
         best_new = least_new;
