@@ -700,8 +700,13 @@ void distribute(Path& path, const CutterPointOptions& o, Emit&& emit, double beg
     return std::max(worst, std::abs(previous_error));
   };
   bool pending_jump = false;  // PVT: the jump flag of the segment that ends at `current`
-  // PVT: `current` is the piece's first block and another piece emits it.
-  bool first_left_to_other = !emit_begin;
+  // PVT: the block `current` stands for, waiting in the lag, once the segment to it is
+  // judged finally. A piece that continues another (with the blocks before it known)
+  // leaves its first block to that one.
+  const auto emit_current = [&] {
+    if (has_before && (emit_begin || block_tau != begin))
+      emit(current, previous_error, pending_jump);
+  };
   // Equal angles: the step, and the index of the path's point at `begin`.
   const double angle_step = 2 * std::numbers::pi / std::max(1, o.points_per_revolution);
   const long long first_step = std::llround(begin / angle_step);
@@ -939,14 +944,10 @@ void distribute(Path& path, const CutterPointOptions& o, Emit&& emit, double beg
       current = trial;
       // The program's last block, the one it repeats: the segment to it was judged with
       // the velocity this still block gives, the one-sided one of the end.
-      if (current.tau >= end && has_before && !first_left_to_other)
-        emit(current, previous_error, pending_jump);
+      if (current.tau >= end) emit_current();
       continue;
     }
-    // A piece that continues another (with the blocks before it known) leaves its first
-    // block to that one.
-    if (has_before && !first_left_to_other) emit(current, previous_error, pending_jump);
-    first_left_to_other = false;
+    emit_current();
     block_tau = trial.tau;
     before2 = before;
     has_before2 = has_before;
