@@ -122,9 +122,14 @@ class NoseSection {
   // in touch with the design but touches the wrong place, and the cusp between passes
   // grows with the slide (a 20 µm slide on a 0.2 mm nose leaves 1 µm). Two equal arcs
   // differ by a monotonic function of ρ, so its largest value lies at an end of the stretch.
+  // `ends` (2, optional): the rise at each end, the slide their larger.
   double slide(double x_axis, double z_axis, double b, double ideal_x, double ideal_z,
-               double ideal_b, double ideal_rho, double ideal_slope, double half_width) const {
-    if (R_ == 0) return 0.0;
+               double ideal_b, double ideal_rho, double ideal_slope, double half_width,
+               double* ends = nullptr) const {
+    if (R_ == 0) {
+      if (ends) ends[0] = ends[1] = 0.0;
+      return 0.0;
+    }
     to_centre(x_axis, z_axis, b);
     to_centre(ideal_x, ideal_z, ideal_b);
     const double R = R_ + stand_off_;  // the radius the centres are placed at
@@ -132,10 +137,15 @@ class NoseSection {
       const double d = rho - centre_x;
       return centre_z - std::sqrt(std::max(R * R - d * d, 0.0));
     };
+    const double normal = std::sqrt(1 + ideal_slope * ideal_slope);
     double rise = -1e300;
-    for (const double rho : {ideal_rho - half_width, ideal_rho + half_width})
-      rise = std::max(rise, lower_arc(x_axis, z_axis, rho) - lower_arc(ideal_x, ideal_z, rho));
-    return rise / std::sqrt(1 + ideal_slope * ideal_slope);
+    for (int end = 0; end < 2; ++end) {
+      const double rho = end == 0 ? ideal_rho - half_width : ideal_rho + half_width;
+      const double here = lower_arc(x_axis, z_axis, rho) - lower_arc(ideal_x, ideal_z, rho);
+      if (ends) ends[end] = here / normal;  // the division keeps the order: the same largest
+      rise = std::max(rise, here);
+    }
+    return rise / normal;
   }
 
  private:

@@ -20,13 +20,19 @@
 //                                           // the time from block a to b, up to a constant
 //                                           // factor (pvt_rule.hpp)
 //   bool creased() const;                   // the design has creases (Surface::has_creases)
+//   bool prune_samples() const;             // a creased segment's finer samples may be left
+//                                           // out where they cannot hold its peak
+//                                           // (Pruning: a nose, whose gap is the least over
+//                                           // the section's pieces)
 //   bool holds_still() const;               // a nose held at a crease may stay still while
 //                                           // τ advances, and a block of no length then
 //                                           // has no time (a profile: C stays fixed, and
 //                                           // its block time is the X-Z chord)
-//   double slide(double x_axis, double c, double z, double b, const AxisState& ideal) const;
+//   double slide(double x_axis, double c, double z, double b, const AxisState& ideal,
+//                double* ends = nullptr) const;
 //                                           // how far the tool at these axes rises above
-//                                           // the path's own nose `ideal` (nose_section.hpp)
+//                                           // the path's own nose `ideal` (nose_section.hpp),
+//                                           // the larger of its rises at two ends (`ends`)
 //   double stand_off() const;               // where the blocks stand off the design (mm):
 //                                           // the centre of the tolerance band
 
@@ -53,6 +59,7 @@ struct AxisState {
   Eigen::Vector3d point = Eigen::Vector3d::Zero();
   bool held = false;  // the nose is held at a crease (section_envelope.hpp)
   double uncut = 0;   // mm: the material it leaves there
+  double crease_rho = 0;  // the crease it is held at (held only)
   double warm = 0;   // the path's warm start for the next point (a projection distance)
 };
 
@@ -170,6 +177,77 @@ inline bool peak_within_bracket_bound(const double (&t)[4], const double (&f)[4]
   return found >= (1 - 5e-3) * bound;
 }
 
+// Whether the largest deviation may lie in (lo, hi) of the grid, both sampled, above
+// `best_found`: false only where the samples either side show the deviation concave about
+// the interval (the slopes from the nearest sampled neighbours beyond, through lo and hi,
+// fall), so that it lies under the secant lines through each side's pair extended across
+// it (the bound of peak_within_secant_bound), and that bound stays below what was found.
+// At a grid's end only the one side's line bounds it.
+//
+// Only where those four samples lie above the band's centre (`above`): a nose's distance
+// from the design is the least over the section's pieces, so where a crease passes under
+// it the distance kinks concave (a tent, which the bound holds), and so does its height
+// above the centre. Below the centre the deviation's size is the largest of the pieces'
+// overlaps: there it kinks convex, and a piece that overlaps most only between two
+// samples would lie above any line through them. So does the contact's own distance
+// without a nose, either way, and the caller prunes only with one (Path::prune_samples).
+// `above` null: no such condition, for a smooth part of the deviation (Pruning::parts),
+// which is bounded where its slopes rise as well: convex about the interval, it is highest
+// at one of its ends (a tent could hide between two samples whose slopes rise, but a
+// smooth part has none).
+inline bool peak_may_lie_in(const double* e, const bool* known, const bool* above, int intervals,
+                            int lo, int hi, double best_found) {
+  int before = lo - 1, after = hi + 1;
+  while (before >= 0 && !known[before]) --before;
+  while (after <= intervals && !known[after]) ++after;
+  if (above && (!above[lo] || !above[hi] || (before >= 0 && !above[before]) ||
+                (after <= intervals && !above[after])))
+    return true;
+  const double across = (e[hi] - e[lo]) / (hi - lo);
+  const bool has_before = before >= 0, has_after = after <= intervals;
+  if (!has_before && !has_after) return true;
+  const double rising = has_before ? (e[lo] - e[before]) / (lo - before) : 0.0;
+  const double falling = has_after ? (e[after] - e[hi]) / (after - hi) : 0.0;
+  if ((has_before && !(rising >= across)) || (has_after && !(across >= falling))) {
+    // A smooth part whose slopes rise instead: convex about the interval, highest at an end.
+    const bool convex =
+        !above && (!has_before || rising <= across) && (!has_after || across <= falling);
+    return !(convex && std::max(e[lo], e[hi]) < best_found);
+  }
+  double bound;
+  if (!has_after) {
+    bound = std::max(e[lo], e[lo] + rising * (hi - lo));
+  } else if (!has_before) {
+    bound = std::max(e[hi], e[hi] - falling * (hi - lo));
+  } else if (rising > falling) {
+    // The two lines cross where the one through lo's pair meets the one through hi's.
+    const double u = std::clamp((e[hi] - e[lo] - falling * hi + rising * lo) / (rising - falling),
+                                static_cast<double>(lo), static_cast<double>(hi));
+    bound = std::min(e[lo] + rising * (u - lo), e[hi] + falling * (u - hi));
+  } else {
+    bound = std::max(e[lo], e[hi]);  // all three slopes equal: a line
+  }
+  return !(bound < best_found);
+}
+
+// Where largest_deviation may leave a creased grid's finer samples out: in the eighths of
+// the segment marked, where the deviation is known to be free of narrow features a
+// coarser sample could miss, and only where peak_may_lie_in says its peak cannot lie,
+// above the largest deviation found or `floor` (a peak under which does not change the
+// caller's answer). The eight intervals' samples are always taken, and the peak's
+// neighbours that the search after them reads.
+struct Pruning {
+  bool eighth[8] = {true, true, true, true, true, true, true, true};
+  double floor = 0;
+  // Where the deviation is the larger of two parts, each smooth where the eighth is marked
+  // (the slide: the rises at the two ends of the stretch a pass cuts), their signed values
+  // at the grid's samples, written by the deviation as it samples: each part is bounded on
+  // its own, for the larger of two concave functions is not concave (where the other
+  // overtakes between two samples it kinks up).
+  const double* parts[2] = {nullptr, nullptr};
+};
+inline constexpr Pruning kPruneEveryEighth{};
+
 // The largest deviation (described above kCreasedIntervals). Its samples are taken coarse
 // to fine (every eighth, then the fourths between, ...). Where a level's largest sample already
 // passes `cutoff`, the segment is over it whatever the finer samples show, and the search stops
@@ -182,27 +260,54 @@ inline bool peak_within_bracket_bound(const double (&t)[4], const double (&f)[4]
 template <class Path, class Deviation>
 double largest_deviation(const Path& path, Deviation&& deviation, bool always_search = false,
                          double cutoff = std::numeric_limits<double>::infinity(),
-                         bool as_smooth = false) {
+                         bool as_smooth = false, const Pruning* pruning = nullptr) {
   constexpr int kMaxIntervals = kCreasedIntervals;
   const bool creased = path.creased() && !as_smooth;
   const int intervals = creased ? kMaxIntervals : 8;
   double signed_worst = 0;
-  const auto deviation_at = [&](double t) {
+  const auto signed_deviation_at = [&](double t) {
     const double d = deviation(t);
     if (std::abs(d) > std::abs(signed_worst)) signed_worst = d;
-    return std::abs(d);
+    return d;
   };
+  const auto deviation_at = [&](double t) { return std::abs(signed_deviation_at(t)); };
   double e[kMaxIntervals + 1];
+  bool known[kMaxIntervals + 1] = {}, above[kMaxIntervals + 1] = {};
   e[0] = e[intervals] = 0;  // the blocks themselves lie on the design
+  known[0] = known[intervals] = above[0] = above[intervals] = true;
   int best = intervals / 4;
+  const auto sample = [&](int j) {
+    const double d = signed_deviation_at(static_cast<double>(j) / intervals);
+    e[j] = std::abs(d);
+    known[j] = true;
+    above[j] = d >= 0;
+    if (e[j] > e[best]) best = j;
+  };
+  // Whether the deviation may pass `found` between samples lo and hi (Pruning): true
+  // unless their eighth is marked and the bound says it cannot.
+  const auto may_pass = [&](int lo, int hi, double found) {
+    if (!pruning || !pruning->eighth[8 * lo / intervals] || !known[lo] || !known[hi]) return true;
+    if (!pruning->parts[0]) return peak_may_lie_in(e, known, above, intervals, lo, hi, found);
+    return peak_may_lie_in(pruning->parts[0], known, nullptr, intervals, lo, hi, found) ||
+           peak_may_lie_in(pruning->parts[1], known, nullptr, intervals, lo, hi, found);
+  };
   for (int stride = intervals / 4; stride >= 1; stride /= 2) {
     // The first level takes every multiple of its stride; each finer one, the odd ones.
     const int first = stride, step = stride == intervals / 4 ? stride : 2 * stride;
+    // Past the eight intervals, in a prunable eighth only where the peak may lie.
+    const bool pruned = pruning && 8 * stride < intervals;
     for (int j = first; j < intervals; j += step) {
-      e[j] = deviation_at(static_cast<double>(j) / intervals);
-      if (e[j] > e[best]) best = j;
+      // Within the 0.5 % the peak search itself settles for (peak_within_secant_bound); an
+      // interval left out at a coarser level has no samples at its ends here.
+      if (pruned && pruning->eighth[8 * j / intervals] &&
+          (!known[j - stride] || !known[j + stride] ||
+           !may_pass(j - stride, j + stride, (1 + 5e-3) * std::max(e[best], pruning->floor))))
+        continue;
+      sample(j);
     }
     if (stride > 1 && e[best] > cutoff) {
+      if (!known[best - stride] || !known[best + stride])
+        return std::copysign(e[best], signed_worst);
       const double left = e[best - stride], right = e[best + stride];
       const double curvature = left - 2 * e[best] + right;
       const double vertex = curvature < 0 ? e[best] - 0.125 * (left - right) * (left - right) / curvature
@@ -210,6 +315,20 @@ double largest_deviation(const Path& path, Deviation&& deviation, bool always_se
       const double estimate = std::min(vertex, 2 * e[best]);
       return std::copysign(estimate, signed_worst);
     }
+  }
+  // The finish reads the peak's neighbours two either side; a pruned grid may lack some
+  // (and one found higher moves the peak, whose own are then read).
+  if (pruning) {
+    for (int seen = -1; seen != best;) {
+      seen = best;
+      for (int j = std::max(1, seen - 2); j <= std::min(intervals - 1, seen + 2); ++j)
+        if (!known[j]) sample(j);
+    }
+    // A peak that cannot pass the floor either side of the largest sample changes nothing
+    // for the caller, and is not searched for (the slide's, far under the gap).
+    if (pruning->floor > 0 && !may_pass(best - 1, best, pruning->floor) &&
+        !may_pass(best, best + 1, pruning->floor))
+      return signed_worst;
   }
   const double denominator = e[best - 1] - 2 * e[best] + e[best + 1];
   if (!(denominator < 0)) return signed_worst;
@@ -418,11 +537,48 @@ double segment_error(const Path& path, const Segment& segment, Interpolation mod
         double x, c, z, bb;
         return gap_at(t, grid_index(t), x, c, z, bb);
       },
-      true, target);
+      true, target, false, path.prune_samples() ? &kPruneEveryEighth : nullptr);
   if (!path.creased() || std::abs(gap) > target) return gap;
   // The size of the distance above is max(|gap|, slide) at every sample, so its largest
   // value over the segment is the larger of the gap's (found above) and the slide's: the
   // slide is searched on its own, without the gap at its samples off the grid.
+  //
+  // Its finer samples are pruned (Pruning) below the gap, and only in the eighths of the
+  // segment over which the path's own nose stays as it was: its states at the eighth's
+  // ends (the blocks and the grid's every fourth line) both free, or both held at the same
+  // crease on the same flank. Where they differ a hold begins, ends or changes flank in the
+  // eighth, and the slide there can be a bump as narrow as what is left of the hold: every
+  // sample is taken. Where they agree, a hold that begins and ends between them would be
+  // shorter than the eighth and, rising from nothing at both its ends, low with it; the
+  // peak's neighbours are sampled either way.
+  AxisState coarse[9];
+  coarse[0] = a;
+  coarse[8] = b;
+  // The rises at either end (Pruning::parts) at the grid's samples; 0 at the blocks.
+  double rise[2][kGrid + 1];
+  rise[0][0] = rise[1][0] = rise[0][kGrid] = rise[1][kGrid] = 0;
+  Pruning pruning;
+  pruning.parts[0] = rise[0];
+  pruning.parts[1] = rise[1];
+  if (path.prune_samples()) {
+    for (int k = 1; k < 8; ++k)
+      path.at(a.tau + static_cast<double>(4 * k) / kGrid * (b.tau - a.tau), grid_line[4 * k],
+              coarse[k]);
+    for (int k = 0; k < 8; ++k) {
+      const AxisState &from = coarse[k], &to = coarse[k + 1];
+      // Held at the same crease: where it crosses the radial line moves by no more than
+      // twice the touch (a rim crossing the line at 63° or more to it; where the line runs
+      // along a rim its crossings move fast and come close, and the eighth is sampled).
+      const double moved = std::hypot(
+          to.contact_r * grid_line[4 * k + 4].cos - from.contact_r * grid_line[4 * k].cos,
+          to.contact_r * grid_line[4 * k + 4].sin - from.contact_r * grid_line[4 * k].sin);
+      pruning.eighth[k] =
+          from.held == to.held &&
+          (!from.held || (std::abs(to.crease_rho - from.crease_rho) <= 2 * moved &&
+                          (from.contact_r > from.crease_rho) == (to.contact_r > to.crease_rho)));
+    }
+    pruning.floor = std::abs(gap);
+  }
   AxisState ideal;
   const double slide = largest_deviation(
       path,
@@ -431,14 +587,22 @@ double segment_error(const Path& path, const Segment& segment, Interpolation mod
         motion.at(t, x, c, z, bb);
         const int j = grid_index(t);
         const double tau = a.tau + t * (b.tau - a.tau);
-        if (j >= 0) {
+        if (j >= 0 && j % 4 == 0 && path.prune_samples()) {
+          ideal = coarse[j / 4];  // the same state: its τ and line are the ones used there
+        } else if (j >= 0) {
           path.at(tau, grid_line[j], ideal);
         } else {
           path.at(tau, line_at(tau), ideal);
         }
-        return std::max(path.slide(x, c, z, bb, ideal), 0.0);  // a nose below rises nowhere
+        double ends[2];
+        const double above_path = path.slide(x, c, z, bb, ideal, ends);
+        if (j >= 0) {
+          rise[0][j] = ends[0];
+          rise[1][j] = ends[1];
+        }
+        return std::max(above_path, 0.0);  // a nose below rises nowhere
       },
-      true, target);
+      true, target, false, path.prune_samples() ? &pruning : nullptr);
   return slide > std::abs(gap) ? slide : gap;
 }
 

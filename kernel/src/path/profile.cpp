@@ -28,6 +28,7 @@ class ProfilePath {
   }
   bool creased() const { return design_.has_creases(); }
   bool holds_still() const { return true; }  // C is fixed: a held nose may not move
+  bool prune_samples() const { return false; }  // one short pass: every sample is taken
   double stand_off() const { return nose_.stand_off(); }
 
   double deviation(double x_axis, const RadialLine&, double z, double b, double hint_r) const {
@@ -40,9 +41,10 @@ class ProfilePath {
   // A profile is one short pass: every segment on a creased design is measured in full.
   bool touch_clear(const RadialLine&, double, double) const { return false; }
   // A single pass: only its own touch counts.
-  double slide(double x_axis, double, double z, double b, const detail::AxisState& ideal) const {
+  double slide(double x_axis, double, double z, double b, const detail::AxisState& ideal,
+               double* ends = nullptr) const {
     return nose_.slide(x_axis, z, b, ideal.x_axis, ideal.z, ideal.b, ideal.contact_r, ideal.slope,
-                       0.0);
+                       0.0, ends);
   }
 
   void at(double tau, const RadialLine&, detail::AxisState& s) const { at(tau, s); }
@@ -66,6 +68,7 @@ class ProfilePath {
     s.slope = touch.slope;
     s.held = touch.held;
     s.uncut = touch.held ? touch.uncut : 0.0;
+    s.crease_rho = touch.held ? touch.crease_rho : 0.0;
     nose_.axes(touch.rho, touch.z, touch.slope, s.x_axis, s.z, s.b);
   }
 

@@ -51,6 +51,9 @@ class SpiralPath {
   }
   bool creased() const { return design_.has_creases(); }
   bool holds_still() const { return false; }  // C advances with τ: a held nose moves too
+  // With a nose the gap's kinks where creases pass are concave (peak_may_lie_in); without
+  // one the contact's own distance kinks either way at a crease.
+  bool prune_samples() const { return nose_.nose_radius() > 0 && !o_.take_every_sample; }
   double stand_off() const { return nose_.stand_off(); }
   double pitch() const { return o_.pitch; }
 
@@ -65,9 +68,10 @@ class SpiralPath {
     return !o_.measure_every_crease && nose_.touch_clear(c, rho, margin);
   }
   // The next turns lie a pitch away on either side: each turn cuts half a pitch either way.
-  double slide(double x_axis, double, double z, double b, const detail::AxisState& ideal) const {
+  double slide(double x_axis, double, double z, double b, const detail::AxisState& ideal,
+               double* ends = nullptr) const {
     return nose_.slide(x_axis, z, b, ideal.x_axis, ideal.z, ideal.b, ideal.contact_r, ideal.slope,
-                       0.5 * o_.pitch);
+                       0.5 * o_.pitch, ends);
   }
 
   void at(double theta, detail::AxisState& s) const { evaluate(theta, RadialLine(theta), s); }
@@ -162,6 +166,7 @@ class SpiralPath {
     s.slope = touch.slope;
     s.held = touch.held;
     s.uncut = touch.held ? touch.uncut : 0.0;
+    s.crease_rho = touch.held ? touch.crease_rho : 0.0;
     nose_.axes(touch.rho, touch.z, touch.slope, s.x_axis, s.z, s.b);
   }
 

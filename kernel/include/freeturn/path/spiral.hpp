@@ -34,6 +34,9 @@ struct SpiralOptions {
   // the slide, including those whose nose stays clear of every crease (path_stepper.hpp,
   // "Segments clear of creases"), which are otherwise measured as on a smooth design.
   bool measure_every_crease = false;
+  // Tests only: a segment measured in full takes every sample of its grid, none left out
+  // where its peak cannot lie (path_stepper.hpp, Pruning).
+  bool take_every_sample = false;
 };
 
 // Streams the contact points into `sink` and returns the summary. Throws InputError
