@@ -697,9 +697,9 @@ TEST_SUITE("path") {
     }
   }
 
-  TEST_CASE("equal angles on lenslets: the slide's pruned samples miss no segment's peak") {
+  TEST_CASE("equal angles on lenslets: the pruned samples miss no segment's peak") {
     // Equal angles place no block where a hold begins or ends (the chord rule does), so at
-    // 4° to 8° a step a segment may hold a whole hold, or a change of flank, between its
+    // 8° a step a segment may hold a whole hold, or a change of flank, between its
     // blocks, and the slide there can be a bump a few of its 32 samples wide. The planner
     // takes the slide's finer samples only where its peak may lie, and only in the eighths
     // of a segment over which the path's nose stays as it was, bounding each of its two
@@ -709,7 +709,7 @@ TEST_SUITE("path") {
     // itself allows. Pruned in every eighth, held or not, the compound eye's slide misses
     // 6 segments' peaks (by up to 35 %); pruned as one function, not as its two rises,
     // the microlens array's misses one (by 1.1 %: the other rise overtook between two
-    // samples).
+    // samples). The gap is pruned as well, above the band's centre.
     // The pruned plan's contacts and cutter locations.
     std::vector<ContactPoint> contacts;
     std::vector<CutterLocation> cls;
@@ -728,7 +728,7 @@ TEST_SUITE("path") {
         held += plans[0][k].uncut_residual > 0;
         const double pruned = plans[0][k].chord_error - plans[0][k].stand_off;
         const double full = plans[1][k].chord_error - plans[1][k].stand_off;
-        if (!(full > 1e-9)) continue;  // a nanometre's millionth: rounding
+        if (!(full > 1e-9)) continue;  // under a picometre: rounding
         lowest = std::min(lowest, pruned / full);
         lower += pruned < 0.995 * full;
       }
