@@ -199,6 +199,17 @@ double residual_bound(const std::vector<ContactPoint>& contacts) {
   return chord_above + std::max(scallop, uncut);
 }
 
+// A hexagonal microlens array on a plane: lenses 0.5 mm across, 0.6 mm apart, to 1.5 mm.
+LensletArray microlens_plate(double lens_radius) {
+  LensletArrayOptions lo;
+  lo.lens_radius = lens_radius;
+  lo.lens_diameter = 0.5;
+  lo.pitch = 0.6;
+  lo.pattern = LensletArrayOptions::Pattern::kHexagonal;
+  lo.extent = 1.5;
+  return LensletArray(lo);
+}
+
 // Two plans with their blocks at the same angles.
 bool same_blocks(const std::vector<ContactPoint>& a, const std::vector<ContactPoint>& b) {
   if (a.size() != b.size()) return false;
@@ -750,26 +761,14 @@ TEST_SUITE("path") {
     CHECK(left > 0);
     CHECK(left <= bound);
 
-    LensletArrayOptions lo;
-    lo.lens_radius = -5.0;
-    lo.lens_diameter = 0.5;
-    lo.pitch = 0.6;
-    lo.pattern = LensletArrayOptions::Pattern::kHexagonal;
-    lo.extent = 1.5;
-    const LensletArray mla(lo);
+    const LensletArray mla = microlens_plate(-5.0);
     SpiralOptions m = spiral_options(1.2, 0.02, 2e-4, 0.3);
     m.points.points_per_revolution = 45;
     compare(mla, BaseSurface::plane(1.5), m, 0.3);
   }
 
   TEST_CASE("microlens array on a plane, traditional spiral with a nose: no gouge at the rims") {
-    LensletArrayOptions lo;
-    lo.lens_radius = -2.0;
-    lo.lens_diameter = 0.5;
-    lo.pitch = 0.6;
-    lo.pattern = LensletArrayOptions::Pattern::kHexagonal;
-    lo.extent = 1.5;
-    const LensletArray mla(lo);
+    const LensletArray mla = microlens_plate(-2.0);
     const double R = 0.1;
     SpiralOptions o = spiral_options(1.2, 0.04, 2e-4, R);
     PathSummary summary;
