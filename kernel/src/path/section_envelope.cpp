@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <array>
 #include <cmath>
+#include <limits>
 #include <numbers>
 
 namespace freeturn {
@@ -10,6 +11,10 @@ namespace {
 
 // A search starts this far off a crease, so that it evaluates the flank on its own side.
 constexpr double kOffCrease = 1e-10;  // mm
+
+// How far below a piece's top nose_overlap may leave it, where the piece's concavity shows
+// it can rise no more above the largest height found (a tenth of a picometre).
+constexpr double kUnsought = 1e-13;  // mm
 
 struct Section {
   const Surface& design;
@@ -76,6 +81,10 @@ bool offsets_meet(const Section& section, double R, double a_lo, double a_hi, do
 // Newton steps on h(ρ) = g(ρ) − z_c + √(R² − (ρ − x_c)²) within [lo, hi], keeping the
 // largest h met in `best`.
 //
+// `ceiling` (with m > 0): lowered to the least bound of the piece's maximum that the values
+// met give. h is m-strongly concave on it, so max h ≤ h(r) + h'(r)²/(2m) from any r, with
+// h'(r) taken as 0 at an end of [lo, hi] where h falls into the piece.
+//
 // A search from a crease (start at the end of its piece on the crease's side, the piece
 // reaching `side` (±1) from there) stops after its first value where the piece cannot
 // rise to `floor`: h is m-strongly concave on it (`m`, section_concavity()), so nowhere on it
@@ -84,7 +93,7 @@ bool offsets_meet(const Section& section, double R, double a_lo, double a_hi, do
 // answer (a margin of 1e-12 mm covers the rounding of both).
 void search(const Section& section, double x_c, double z_c, double R, double start, double lo,
             double hi, int steps, NoseOverlap& best, int side = 0, double m = 0,
-            double floor = -1e300) {
+            double floor = -1e300, double* ceiling = nullptr) {
   if (!(lo <= hi)) return;
   double r = std::clamp(start, lo, hi);
   for (int it = 0; it < steps; ++it) {
@@ -94,11 +103,16 @@ void search(const Section& section, double x_c, double z_c, double R, double sta
     const double h = g - z_c + s;
     if (h > best.height) best = {h, r, slope};
     if (!(s > 0)) return;
+    const double h_slope = slope - d / s;
+    if (ceiling && m > 0) {
+      const double rise = (r == lo && h_slope < 0) || (r == hi && h_slope > 0) ? 0.0 : h_slope;
+      *ceiling = std::min(*ceiling, h + rise * rise / (2 * m));
+    }
     if (it == 0 && side != 0 && m > 0 && r == start) {
-      const double rise = std::max(0.0, side * (slope - d / s));  // h' = g' − d/s, into the piece
+      const double rise = std::max(0.0, side * h_slope);  // into the piece
       if (h + rise * rise / (2 * m) + 1e-12 < floor) return;
     }
-    const double next = std::clamp(r + (slope - d / s) * s * s * s / (R * R), lo, hi);
+    const double next = std::clamp(r + h_slope * s * s * s / (R * R), lo, hi);
     if (std::abs(next - r) <= 1e-15 * (1 + std::abs(r))) return;
     r = next;
   }
@@ -235,23 +249,40 @@ NoseOverlap nose_overlap(const Surface& design, const RadialLine& line, double x
   NoseOverlap best;
   SectionCreases creases;
   creases.find(design, line, lo, hi);
-  // The hint's own piece.
+  // The hint's own piece, the `hint_piece`-th (piece p lies between creases p − 1 and p).
   double a = lo, b = hi;
+  int hint_piece = 0;
   for (int k = 0; k < creases.count; ++k) {
-    if (creases.rho[k] <= hint_rho) a = creases.rho[k] + kOffCrease;
+    if (creases.rho[k] <= hint_rho) {
+      a = creases.rho[k] + kOffCrease;
+      hint_piece = k + 1;
+    }
     if (creases.rho[k] > hint_rho) {
       b = creases.rho[k] - kOffCrease;
       break;
     }
   }
-  search(section, x_c, z_c, R, hint_rho, a, b, 2, best);
-  if (creases.count == 0) return best;
+  if (creases.count == 0) {
+    search(section, x_c, z_c, R, hint_rho, a, b, 2, best);
+    return best;
+  }
   const double m = section_concavity(design, R, std::max(std::abs(lo), std::abs(hi)));
+  // Each piece's ceiling (search): a piece searched before is searched again from a crease
+  // only if it may still rise more than kUnsought above the largest height found. Most
+  // often the hint's search has found its own piece's top to well under that, and the
+  // search from the crease beside it, three steps more, used to find it again.
+  std::array<double, SectionCreases::kCapacity + 1> ceiling;
+  std::fill(ceiling.begin(), ceiling.begin() + creases.count + 1,
+            std::numeric_limits<double>::infinity());
+  search(section, x_c, z_c, R, hint_rho, a, b, 2, best, 0, m, -1e300,
+         &ceiling[static_cast<std::size_t>(hint_piece)]);
   for (int k = 0; k < creases.count; ++k)
     for (const int side : {-1, 1}) {
+      double& piece_ceiling = ceiling[static_cast<std::size_t>(side < 0 ? k : k + 1)];
+      if (piece_ceiling <= best.height + kUnsought) continue;
       piece_bounds(creases, k, side, lo, hi, a, b);
       search(section, x_c, z_c, R, creases.rho[k] + side * kOffCrease, a, b, 3, best, side, m,
-             best.height);
+             best.height, &piece_ceiling);
     }
   return best;
 }

@@ -52,7 +52,10 @@ struct NoseOverlap {
 // contact nearby) and, on each side of every crease under the nose, from the crease. Each
 // search takes Newton steps on h(ρ) = g(ρ) − z_c + √(R² − (ρ − x_c)²) with the arc's
 // −R²/s³ standing in for h'', keeps the largest value it meets (a value of h, so never
-// more than the true maximum), and stays on its side of the crease. No allocation.
+// more than the true maximum), and stays on its side of the crease. A piece whose values
+// already met bound its top (its concavity, section_concavity) to within 1e-13 mm of the
+// largest found is not searched again: the answer may be that much short of what the
+// searches would find. No allocation.
 NoseOverlap nose_overlap(const Surface& design, const RadialLine& line, double x_c, double z_c, double R,
                          double hint_rho);
 
