@@ -61,6 +61,14 @@ struct AxisState {
   double uncut = 0;   // mm: the material it leaves there
   double crease_rho = 0;  // the crease it is held at (held only)
   double warm = 0;   // the path's warm start for the next point (a projection distance)
+  // What Path::touch_clear has said of this state's own touch (block_touch_clear): clear by
+  // any margin up to clear_by, not shown clear by any from not_clear_by. Kept for the touch
+  // (contact_r at C) it was asked of, so a state placed anew forgets it.
+  struct TouchClearMemo {
+    double contact_r = std::numeric_limits<double>::quiet_NaN(), c = 0;
+    double clear_by = -1, not_clear_by = std::numeric_limits<double>::infinity();
+  };
+  mutable TouchClearMemo touch_memo;
 };
 
 // One segment of the program as the controller runs it: blocks a and b, and in PVT mode
@@ -384,6 +392,24 @@ double largest_deviation(const Path& path, Deviation&& deviation, bool always_se
 // grid_line: the radial lines at the segment's `grid` + 1 equal steps of C (C at the ends is
 // the blocks'); line_at(C): the line at any other angle. Linear motion's samples lie on the
 // grid's lines; a cubic's C is not affine in the fraction, and its samples take their own.
+// Path::touch_clear at a block's own touch (`line`: the radial line at its C), remembered
+// on the state: a block is asked of for every trial from it, and as the end of the trial
+// that placed it, with margins half of each step. A touch clear by W is clear by any
+// margin less (every touch within it lies within W); where a margin was not shown clear,
+// no larger one is tried (the answer is then no, as the test itself would most likely
+// say: it is not monotonic in the margin to the bit, only in what it means).
+template <class Path>
+bool block_touch_clear(const Path& path, const RadialLine& line, const AxisState& s,
+                       double margin) {
+  AxisState::TouchClearMemo& memo = s.touch_memo;
+  if (!(memo.contact_r == s.contact_r && memo.c == s.c)) memo = {s.contact_r, s.c};
+  if (margin <= memo.clear_by) return true;
+  if (margin >= memo.not_clear_by) return false;
+  const bool clear = path.touch_clear(line, s.contact_r, margin);
+  (clear ? memo.clear_by : memo.not_clear_by) = margin;
+  return clear;
+}
+
 template <class Path, class LineAt>
 bool measure_clear_of_creases(const Path& path, const SegmentMotion& motion, const AxisState& a,
                               const AxisState& b, const RadialLine* grid_line, int grid,
@@ -397,10 +423,10 @@ bool measure_clear_of_creases(const Path& path, const SegmentMotion& motion, con
   // are clear by that (a filter: the touches between lie mostly within it), else none,
   // and each touch is checked below on its own.
   double cover = 0.5 * (ends[1] - ends[0]).norm();
-  if (!path.touch_clear(grid_line[0], a.contact_r, cover) ||
-      !path.touch_clear(grid_line[grid], b.contact_r, cover)) {
-    if (!path.touch_clear(grid_line[0], a.contact_r, 0) ||
-        !path.touch_clear(grid_line[grid], b.contact_r, 0))
+  if (!block_touch_clear(path, grid_line[0], a, cover) ||
+      !block_touch_clear(path, grid_line[grid], b, cover)) {
+    if (!block_touch_clear(path, grid_line[0], a, 0) ||
+        !block_touch_clear(path, grid_line[grid], b, 0))
       return false;
     cover = 0;
   }

@@ -443,7 +443,11 @@ RunResult execute_job(const Job& job, const PreparedJob& prepared, const std::st
   for (std::size_t pass = 0; pass < stock.size(); ++pass) {
     const bool finishing = pass + 1 == stock.size();
     const std::string suffix = finishing ? "" : ".rough-" + std::to_string(pass + 1);
-    const RaisedSurface surface(design, stock[pass]);
+    // A roughing pass cuts the design raised by its stock; the finishing pass the design
+    // itself, not a view raising it by 0 (every evaluation of the design would go
+    // through a second virtual call: about 2 % of a compound eye's planning).
+    const RaisedSurface raised(design, stock[pass]);
+    const Surface& surface = stock[pass] != 0 ? static_cast<const Surface&>(raised) : design;
     PassFigures& figures =
         report.add_pass(finishing ? "finish" : "rough-" + std::to_string(pass + 1), stock[pass]);
     figures.band_width = (job.aperture.outer_radius - job.aperture.inner_radius) / 64;
