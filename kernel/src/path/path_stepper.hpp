@@ -376,6 +376,25 @@ double largest_deviation(const Path& path, Deviation&& deviation, bool always_se
   return signed_worst;
 }
 
+// Path::touch_clear at a block's own touch (`line`: the radial line at its C), remembered
+// on the state: the same block is checked for every trial that starts from it, and
+// before that as the end of the trial that placed it, each time by half that step. A
+// touch clear by W is clear by any margin less (every touch within the smaller disc lies
+// in the larger); where a margin was not shown clear, no larger one is tried and the
+// answer is no (the test is monotonic in the margin in what it means, though not to the
+// last bit of its arithmetic).
+template <class Path>
+bool block_touch_clear(const Path& path, const RadialLine& line, const AxisState& s,
+                       double margin) {
+  AxisState::TouchClearMemo& memo = s.touch_memo;
+  if (!(memo.contact_r == s.contact_r && memo.c == s.c)) memo = {s.contact_r, s.c};
+  if (margin <= memo.clear_by) return true;
+  if (margin >= memo.not_clear_by) return false;
+  const bool clear = path.touch_clear(line, s.contact_r, margin);
+  (clear ? memo.clear_by : memo.not_clear_by) = margin;
+  return clear;
+}
+
 // Segments clear of creases (docs/path.md): where the nose touches nowhere near a crease
 // throughout, neither the interpolated nose nor the path's can meet one (the envelope of
 // touch_clear_of_creases), and the segment is measured as on a smooth design: 8 intervals,
@@ -392,24 +411,6 @@ double largest_deviation(const Path& path, Deviation&& deviation, bool always_se
 // grid_line: the radial lines at the segment's `grid` + 1 equal steps of C (C at the ends is
 // the blocks'); line_at(C): the line at any other angle. Linear motion's samples lie on the
 // grid's lines; a cubic's C is not affine in the fraction, and its samples take their own.
-// Path::touch_clear at a block's own touch (`line`: the radial line at its C), remembered
-// on the state: a block is asked of for every trial from it, and as the end of the trial
-// that placed it, with margins half of each step. A touch clear by W is clear by any
-// margin less (every touch within it lies within W); where a margin was not shown clear,
-// no larger one is tried (the answer is then no, as the test itself would most likely
-// say: it is not monotonic in the margin to the bit, only in what it means).
-template <class Path>
-bool block_touch_clear(const Path& path, const RadialLine& line, const AxisState& s,
-                       double margin) {
-  AxisState::TouchClearMemo& memo = s.touch_memo;
-  if (!(memo.contact_r == s.contact_r && memo.c == s.c)) memo = {s.contact_r, s.c};
-  if (margin <= memo.clear_by) return true;
-  if (margin >= memo.not_clear_by) return false;
-  const bool clear = path.touch_clear(line, s.contact_r, margin);
-  (clear ? memo.clear_by : memo.not_clear_by) = margin;
-  return clear;
-}
-
 template <class Path, class LineAt>
 bool measure_clear_of_creases(const Path& path, const SegmentMotion& motion, const AxisState& a,
                               const AxisState& b, const RadialLine* grid_line, int grid,
