@@ -558,13 +558,14 @@ double segment_error(const Path& path, const Segment& segment, Interpolation mod
       return smooth_gap;
   }
   // Every peak searched on a creased surface (the peak there can be a tent at a crease).
+  const bool prune = path.prune_samples();
   const double gap = largest_deviation(
       path,
       [&](double t) {
         double x, c, z, bb;
         return gap_at(t, grid_index(t), x, c, z, bb);
       },
-      true, target, false, path.prune_samples() ? &kPruneEveryEighth : nullptr);
+      true, target, false, prune ? &kPruneEveryEighth : nullptr);
   if (!path.creased() || std::abs(gap) > target) return gap;
   // The size of the distance above is max(|gap|, slide) at every sample, so its largest
   // value over the segment is the larger of the gap's (found above) and the slide's: the
@@ -587,7 +588,7 @@ double segment_error(const Path& path, const Segment& segment, Interpolation mod
   Pruning pruning;
   pruning.parts[0] = rise[0];
   pruning.parts[1] = rise[1];
-  if (path.prune_samples()) {
+  if (prune) {
     for (int k = 1; k < 8; ++k)
       path.at(a.tau + static_cast<double>(4 * k) / kGrid * (b.tau - a.tau), grid_line[4 * k],
               coarse[k]);
@@ -614,7 +615,7 @@ double segment_error(const Path& path, const Segment& segment, Interpolation mod
         motion.at(t, x, c, z, bb);
         const int j = grid_index(t);
         const double tau = a.tau + t * (b.tau - a.tau);
-        if (j >= 0 && j % 4 == 0 && path.prune_samples()) {
+        if (j >= 0 && j % 4 == 0 && prune) {
           ideal = coarse[j / 4];  // the same state: its τ and line are the ones used there
         } else if (j >= 0) {
           path.at(tau, grid_line[j], ideal);
@@ -629,7 +630,7 @@ double segment_error(const Path& path, const Segment& segment, Interpolation mod
         }
         return std::max(above_path, 0.0);  // a nose below rises nowhere
       },
-      true, target, false, path.prune_samples() ? &pruning : nullptr);
+      true, target, false, prune ? &pruning : nullptr);
   return slide > std::abs(gap) ? slide : gap;
 }
 
