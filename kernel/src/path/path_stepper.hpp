@@ -353,6 +353,7 @@ double largest_deviation(const Path& path, Deviation&& deviation, bool always_se
   const double shift = std::clamp(0.5 * (e[best - 1] - e[best + 1]) / denominator, -1.0, 1.0);
   const double predicted = e[best] - 0.25 * (e[best - 1] - e[best + 1]) * shift;
   const double at_vertex = deviation_at((best + shift) / intervals);
+  if (std::max(e[best], at_vertex) <= kPeakKnownTo) return signed_worst;
   if (!(creased && always_search) &&
       std::abs(at_vertex - predicted) <= (creased ? 1e-3 : 1e-2) * predicted + kPeakKnownTo)
     return signed_worst;
