@@ -2,6 +2,7 @@
 // Shapes shared by the path tests.
 
 #include <cmath>
+#include <span>
 #include <vector>
 
 #include "freeturn/nurbs/surface.hpp"
@@ -9,6 +10,36 @@
 #include "freeturn/surface/nurbs_height_field.hpp"
 
 namespace freeturn::test {
+
+// A surface that counts the evaluations of its heights asked of it (values and gradients,
+// or with Hessians), and passes every question on to `inner`.
+class CountingSurface final : public Surface {
+ public:
+  explicit CountingSurface(const Surface& inner) : inner_(inner) {}
+  const char* type() const override { return inner_.type(); }
+  void sag_gradient(double x, double y, double& z, double& zx, double& zy) const override {
+    ++evaluations;
+    inner_.sag_gradient(x, y, z, zx, zy);
+  }
+  HeightDerivatives height_derivatives(double x, double y) const override {
+    ++evaluations;
+    return inner_.height_derivatives(x, y);
+  }
+  double defined_radius() const override { return inner_.defined_radius(); }
+  bool has_creases() const override { return inner_.has_creases(); }
+  int section_creases(const RadialLine& line, double rho_lo, double rho_hi,
+                      std::span<double> out) const override {
+    return inner_.section_creases(line, rho_lo, rho_hi, out);
+  }
+  double max_bend(double radius) const override { return inner_.max_bend(radius); }
+  int creases_near(double x, double y, double radius, std::span<NearbyCrease> out) const override {
+    return inner_.creases_near(x, y, radius, out);
+  }
+  mutable long evaluations = 0;
+
+ private:
+  const Surface& inner_;
+};
 
 // A compound eye: lenslets of R 5 mm (convex), D 0.9 mm, pitch 1 mm, in rings on a
 // sphere of R 20 mm, out to `extent`.

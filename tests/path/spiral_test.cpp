@@ -73,27 +73,6 @@ long points_on_cap_seams(const std::vector<ContactPoint>& p, double cap, long st
   return seams;
 }
 
-// A surface that counts the evaluations asked of it (values and gradients, or with Hessians).
-class CountingSurface final : public Surface {
- public:
-  explicit CountingSurface(const Surface& inner) : inner_(inner) {}
-  const char* type() const override { return inner_.type(); }
-  void sag_gradient(double x, double y, double& z, double& zx, double& zy) const override {
-    ++evaluations;
-    inner_.sag_gradient(x, y, z, zx, zy);
-  }
-  HeightDerivatives height_derivatives(double x, double y) const override {
-    ++evaluations;
-    return inner_.height_derivatives(x, y);
-  }
-  double defined_radius() const override { return inner_.defined_radius(); }
-  double max_bend(double radius) const override { return inner_.max_bend(radius); }
-  mutable long evaluations = 0;
-
- private:
-  const Surface& inner_;
-};
-
 // Angle between two points of a sphere about c, seen from c.
 double arc_on_sphere(const Eigen::Vector3d& a, const Eigen::Vector3d& b, const Eigen::Vector3d& c,
                      double radius) {
@@ -438,7 +417,7 @@ TEST_SUITE("path") {
     fo.spans = 32;
     const BaseSurface base = fit_base_least_squares(sample_aperture(sphere, 0, 1.0), fo);
     const auto per_point = [&](double inner, double pitch, double& worst) {
-      const CountingSurface counting(sphere);
+      const test::CountingSurface counting(sphere);
       SpiralOptions o;
       o.inner_radius = inner;
       o.outer_radius = 1.0;
