@@ -212,7 +212,10 @@ inline bool peak_within_bracket_bound(const double (&t)[4], const double (&f)[4]
 // `above` null: no such condition, for a smooth part of the deviation (Pruning::parts),
 // which is bounded where its slopes rise as well: convex about the interval, it is highest
 // at one of its ends (a tent could hide between two samples whose slopes rise, but a
-// smooth part has none).
+// smooth part has none). Nor does a smooth part whose four samples are all within half of
+// kPeakKnownTo of 0 rise past kPeakKnownTo between them: there the samples are rounding,
+// which shows no shape, and the slopes' test would fail on every such interval (a nose
+// riding a lenslet's rim at a 0.2 µm pitch took all 33 states of its slide so).
 inline bool peak_may_lie_in(const double* e, const bool* known, const bool* above, int intervals,
                             int lo, int hi, double best_found) {
   int before = lo - 1, after = hi + 1;
@@ -221,8 +224,16 @@ inline bool peak_may_lie_in(const double* e, const bool* known, const bool* abov
   if (above && (!above[lo] || !above[hi] || (before >= 0 && !above[before]) ||
                 (after <= intervals && !above[after])))
     return true;
-  const double across = (e[hi] - e[lo]) / (hi - lo);
   const bool has_before = before >= 0, has_after = after <= intervals;
+  if (!above && best_found >= kPeakKnownTo) {
+    // A smooth part whose samples about the interval are all rounding, either sign (signed
+    // samples all below it but far from 0 could still bracket a peak above it).
+    double largest = std::max(std::abs(e[lo]), std::abs(e[hi]));
+    if (has_before) largest = std::max(largest, std::abs(e[before]));
+    if (has_after) largest = std::max(largest, std::abs(e[after]));
+    if (largest <= 0.5 * kPeakKnownTo) return false;
+  }
+  const double across = (e[hi] - e[lo]) / (hi - lo);
   if (!has_before && !has_after) return true;
   const double rising = has_before ? (e[lo] - e[before]) / (lo - before) : 0.0;
   const double falling = has_after ? (e[after] - e[hi]) / (after - hi) : 0.0;
@@ -315,11 +326,12 @@ double largest_deviation(const Path& path, Deviation&& deviation, bool always_se
     // Past the eight intervals, in a prunable eighth only where the peak may lie.
     const bool pruned = pruning && 8 * stride < intervals;
     for (int j = first; j < intervals; j += step) {
-      // Within the 0.5 % the peak search itself settles for (peak_within_secant_bound); an
-      // interval left out at a coarser level has no samples at its ends here.
+      // Within the 0.5 % the peak search itself settles for (peak_within_secant_bound), or
+      // kPeakKnownTo; an interval left out at a coarser level has no samples at its ends here.
       if (pruned && pruning->eighth[8 * j / intervals] &&
           (!known[j - stride] || !known[j + stride] ||
-           !may_pass(j - stride, j + stride, (1 + 5e-3) * std::max(e[best], pruning->floor))))
+           !may_pass(j - stride, j + stride,
+                     (1 + 5e-3) * std::max({e[best], pruning->floor, kPeakKnownTo}))))
         continue;
       sample(j);
     }
