@@ -718,7 +718,7 @@ TEST_SUITE("path") {
     // is held at; at 10 nm a turn and 100 equal steps a turn the turns follow it, and most
     // deviations about it are rounding (a radial step's square is 1e-14 mm and under). A sample
     // of rounding shows no shape, so no slopes' test could leave the samples between out:
-    // the slide then took every one of its 33 path states a segment, about 0.6 of the
+    // the slide then took most of its 33 path states a segment, about 0.6 of the
     // evaluations of a plan that takes every sample. The slide's parts are smooth where
     // pruned (path_stepper.hpp, peak_may_lie_in), so samples within half of kPeakKnownTo
     // (1e-13 mm) of 0 about an interval leave it out: under half as many. Equal angles

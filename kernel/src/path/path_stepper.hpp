@@ -134,8 +134,10 @@ class SegmentMotion {
 // Samples of a segment where the design has creases (8 elsewhere).
 constexpr int kCreasedIntervals = 32;
 
-// The parabola's check settles a peak to its part in a hundred (a thousand on a creased
-// grid) or to this, whichever is larger. A deviation is a difference of millimetre-sized
+// How well a peak is known: the parabola's check settles it to its part in a hundred (a
+// thousand on a creased grid) or to this, whichever is larger; no search is made for one
+// under it, nor finer samples taken where a peak under it is all they could find
+// (largest_deviation, peak_may_lie_in). A deviation is a difference of millimetre-sized
 // coordinates: under about 1e-15 mm it is their rounding, where the parabola never agrees
 // with its vertex and a golden-section search finds only the rounding's largest value
 // (equal-angle blocks on a stretch that turns as a surface of revolution, the compound
@@ -215,7 +217,7 @@ inline bool peak_within_bracket_bound(const double (&t)[4], const double (&f)[4]
 // smooth part has none). Nor does a smooth part whose four samples are all within half of
 // kPeakKnownTo of 0 rise past kPeakKnownTo between them: there the samples are rounding,
 // which shows no shape, and the slopes' test would fail on every such interval (a nose
-// riding a lenslet's rim at a 0.2 µm pitch took all 33 states of its slide so).
+// riding a lenslet's rim at a 0.2 µm pitch took 20 of the 33 states of its slide so).
 inline bool peak_may_lie_in(const double* e, const bool* known, const bool* above, int intervals,
                             int lo, int hi, double best_found) {
   int before = lo - 1, after = hi + 1;
@@ -225,6 +227,7 @@ inline bool peak_may_lie_in(const double* e, const bool* known, const bool* abov
                 (after <= intervals && !above[after])))
     return true;
   const bool has_before = before >= 0, has_after = after <= intervals;
+  if (!has_before && !has_after) return true;
   if (!above && best_found >= kPeakKnownTo) {
     // A smooth part whose samples about the interval are all rounding, either sign (signed
     // samples all below it but far from 0 could still bracket a peak above it).
@@ -234,7 +237,6 @@ inline bool peak_may_lie_in(const double* e, const bool* known, const bool* abov
     if (largest <= 0.5 * kPeakKnownTo) return false;
   }
   const double across = (e[hi] - e[lo]) / (hi - lo);
-  if (!has_before && !has_after) return true;
   const double rising = has_before ? (e[lo] - e[before]) / (lo - before) : 0.0;
   const double falling = has_after ? (e[after] - e[hi]) / (after - hi) : 0.0;
   if ((has_before && !(rising >= across)) || (has_after && !(across >= falling))) {
@@ -365,6 +367,8 @@ double largest_deviation(const Path& path, Deviation&& deviation, bool always_se
   const double shift = std::clamp(0.5 * (e[best - 1] - e[best + 1]) / denominator, -1.0, 1.0);
   const double predicted = e[best] - 0.25 * (e[best - 1] - e[best + 1]) * shift;
   const double at_vertex = deviation_at((best + shift) / intervals);
+  // Every sample and the vertex under kPeakKnownTo: rounding chose the bracket, and no
+  // search of it (a creased grid's, always made) can say where a peak lies.
   if (std::max(e[best], at_vertex) <= kPeakKnownTo) return signed_worst;
   if (!(creased && always_search) &&
       std::abs(at_vertex - predicted) <= (creased ? 1e-3 : 1e-2) * predicted + kPeakKnownTo)
