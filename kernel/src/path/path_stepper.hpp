@@ -261,12 +261,6 @@ inline bool peak_may_lie_in(const double* e, const bool* known, const bool* abov
   return !(bound < best_found);
 }
 
-// Where largest_deviation may leave a creased grid's finer samples out: in the eighths of
-// the segment marked, where the deviation is known to be free of narrow features a
-// coarser sample could miss, and only where peak_may_lie_in says its peak cannot lie,
-// above the largest deviation found or `floor` (a peak under which does not change the
-// caller's answer). The eight intervals' samples are always taken, and the peak's
-// neighbours that the search after them reads.
 // Pruning::check: whether the caller knows the deviation free of narrow features over the
 // k-th eighth, asked only where a sample there would be left out.
 class EighthCheck {
@@ -277,6 +271,12 @@ class EighthCheck {
   ~EighthCheck() = default;
 };
 
+// Where largest_deviation may leave a creased grid's finer samples out: in the eighths of
+// the segment marked, where the deviation is known to be free of narrow features a
+// coarser sample could miss, and only where peak_may_lie_in says its peak cannot lie,
+// above the largest deviation found or `floor` (a peak under which does not change the
+// caller's answer). The eight intervals' samples are always taken, and the peak's
+// neighbours that the search after them reads.
 struct Pruning {
   bool eighth[8] = {true, true, true, true, true, true, true, true};
   // A marked eighth is pruned only where this says so as well, asked once an eighth and
@@ -673,7 +673,8 @@ double segment_error(const Path& path, const Segment& segment, Interpolation mod
       const double moved = std::hypot(
           to.contact_r * grid_line[4 * k + 4].cos - from.contact_r * grid_line[4 * k].cos,
           to.contact_r * grid_line[4 * k + 4].sin - from.contact_r * grid_line[4 * k].sin);
-      // Both free: also only where the touches between are clear of the creases (below).
+      // Both free: also only where the touches between are clear of the creases
+      // (TouchesClear, above).
       pruning.eighth[k] =
           from.held == to.held &&
           (!from.held || (std::abs(to.crease_rho - from.crease_rho) <= 2 * moved &&
