@@ -427,6 +427,11 @@ double largest_deviation(const Path& path, Deviation&& deviation, bool always_se
   return signed_worst;
 }
 
+// How far apart two touches lie in (x, y): ρ_a along `a`'s radial line, ρ_b along `b`'s.
+inline double touches_apart(const RadialLine& a, double rho_a, const RadialLine& b, double rho_b) {
+  return std::hypot(rho_b * b.cos - rho_a * a.cos, rho_b * b.sin - rho_a * a.sin);
+}
+
 // Path::touch_clear at a block's own touch (`line`: the radial line at its C), remembered
 // on the state: the same block is checked for every trial that starts from it, and
 // before that as the end of the trial that placed it, each time by half that step. A
@@ -651,8 +656,7 @@ double segment_error(const Path& path, const Segment& segment, Interpolation mod
       const AxisState &from = states[k], &to = states[k + 1];
       if (from.held) return true;  // held at one crease on one flank: the marks' own rule
       const RadialLine &at_from = lines[4 * k], &at_to = lines[4 * k + 4];
-      const double apart = std::hypot(to.contact_r * at_to.cos - from.contact_r * at_from.cos,
-                                      to.contact_r * at_to.sin - from.contact_r * at_from.sin);
+      const double apart = touches_apart(at_from, from.contact_r, at_to, to.contact_r);
       return block_touch_clear(path, at_from, from, 1.5 * apart) &&
              block_touch_clear(path, at_to, to, 1.5 * apart);
     }
@@ -670,9 +674,8 @@ double segment_error(const Path& path, const Segment& segment, Interpolation mod
       // Held at the same crease: where it crosses the radial line moves by no more than
       // twice the touch (a rim crossing the line at 63° or more to it; where the line runs
       // along a rim its crossings move fast and come close, and the eighth is sampled).
-      const double moved = std::hypot(
-          to.contact_r * grid_line[4 * k + 4].cos - from.contact_r * grid_line[4 * k].cos,
-          to.contact_r * grid_line[4 * k + 4].sin - from.contact_r * grid_line[4 * k].sin);
+      const double moved =
+          touches_apart(grid_line[4 * k], from.contact_r, grid_line[4 * k + 4], to.contact_r);
       // Both free: also only where the touches between are clear of the creases
       // (TouchesClear, above).
       pruning.eighth[k] =
