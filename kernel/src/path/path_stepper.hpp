@@ -299,6 +299,15 @@ struct Pruning {
 };
 inline constexpr Pruning kPruneEveryEighth{};
 
+// The step search's screen of a trial segment (distribute): where every sample of its eight
+// intervals lies within `below` of the band's centre, the segment is not measured further
+// (no finer samples, no peak search, no slide) and `coarse_only` is set; the value returned
+// is then that of those samples alone, which a peak between them could exceed.
+struct CoarseScreen {
+  double below = 0;
+  bool coarse_only = false;
+};
+
 // The largest deviation (described above kCreasedIntervals). Its samples are taken coarse
 // to fine (every eighth, then the fourths between, ...). Where a level's largest sample already
 // passes `cutoff`, the segment is over it whatever the finer samples show, and the search stops
@@ -307,11 +316,12 @@ inline constexpr Pruning kPruneEveryEighth{};
 // predict its next step from. A rejected trial then costs 3 to 7 samples instead of 33.
 //
 // `as_smooth`: the segment is known to stay clear of the design's creases (segment_error),
-// and is sampled as on a smooth design.
+// and is sampled as on a smooth design. `screen`: CoarseScreen, above.
 template <class Path, class Deviation>
 double largest_deviation(const Path& path, Deviation&& deviation, bool always_search = false,
                          double cutoff = std::numeric_limits<double>::infinity(),
-                         bool as_smooth = false, const Pruning* pruning = nullptr) {
+                         bool as_smooth = false, const Pruning* pruning = nullptr,
+                         CoarseScreen* screen = nullptr) {
   constexpr int kMaxIntervals = kCreasedIntervals;
   const bool creased = path.creased() && !as_smooth;
   const int intervals = creased ? kMaxIntervals : 8;
@@ -370,6 +380,10 @@ double largest_deviation(const Path& path, Deviation&& deviation, bool always_se
                                           : e[best];
       const double estimate = std::min(vertex, 2 * e[best]);
       return std::copysign(estimate, signed_worst);
+    }
+    if (screen && 8 * stride == intervals && e[best] <= screen->below) {
+      screen->coarse_only = true;
+      return signed_worst;
     }
   }
   // The finish reads the peak's neighbours two either side; a pruned grid may lack some
@@ -567,9 +581,12 @@ bool measure_clear_of_creases(const Path& path, const SegmentMotion& motion, con
 // Whether a segment passes such a place cannot be told from its ends (a hold can begin and
 // end between them), so every segment that meets the gap target is measured again with
 // it; one that misses the target is rejected on its gap alone.
+//
+// `screen` (CoarseScreen): a trial whose gap's coarse samples all lie within screen->below
+// of the centre returns their value, without the rest of the gap or the slide.
 template <class Path>
-double segment_error(const Path& path, const Segment& segment, Interpolation mode,
-                     double target) {
+double segment_error(const Path& path, const Segment& segment, Interpolation mode, double target,
+                     CoarseScreen* screen = nullptr) {
   const SegmentMotion motion(path, segment, mode);
   const AxisState &a = segment.a, &b = segment.b;
   // The grid of the creased design's samples (the slide's search runs on those only).
@@ -621,8 +638,8 @@ double segment_error(const Path& path, const Segment& segment, Interpolation mod
         double x, c, z, bb;
         return gap_at(t, grid_index(t), x, c, z, bb);
       },
-      true, target, false, prune ? &kPruneEveryEighth : nullptr);
-  if (!path.creased() || std::abs(gap) > target) return gap;
+      true, target, false, prune ? &kPruneEveryEighth : nullptr, screen);
+  if (!path.creased() || std::abs(gap) > target || (screen && screen->coarse_only)) return gap;
   // The size of the distance above is max(|gap|, slide) at every sample, so its largest
   // value over the segment is the larger of the gap's (found above) and the slide's: the
   // slide is searched on its own, without the gap at its samples off the grid.
@@ -763,6 +780,12 @@ void end_at_hold_change(const Path& path, const AxisState& a, const AxisState& b
 // contact. Along a smooth offset it moves |1 + Rκ| times as far, a few at most; across a
 // jump the ratio grows without bound as the step shrinks.
 constexpr double kJumpRatio = 100;
+
+// A trial segment whose coarse samples all lie within this fraction of the target of the
+// band's centre grows the step unmeasured (distribute's pending trial): the model's growth,
+// (target/error)^(1/2), reaches its cap of 16 below 1/259 of the target, and this leaves the
+// finer samples a factor of 4 to exceed the coarse ones by.
+constexpr double kGrowsOnCoarse = 1e-3;
 
 // The equal-arc-length rule's next block after `current`: the step in τ whose chord
 // between the two contacts is o.arc_length to 1e-8 (or the largest step, where the angle
@@ -946,6 +969,16 @@ void distribute(Path& path, const CutterPointOptions& o, Emit&& emit, double beg
       }
     return signed_worst;
   };
+  // The chord search's trial, screened (CoarseScreen): `coarse_only` says whether it was.
+  CoarseScreen screen;
+  const auto measure_screened = [&](const AxisState& t, double cutoff, bool& coarse_only) {
+    screen = {kGrowsOnCoarse * target, false};
+    new_error = segment_error(path, Segment{nullptr, current, t, nullptr}, o.interpolation, cutoff,
+                              &screen);
+    previous_error = 0;
+    coarse_only = screen.coarse_only;
+    return std::abs(new_error);
+  };
   const auto measure = [&](const AxisState& t, double cutoff) {
     if (!pvt) {
       new_error = segment_error(path, Segment{nullptr, current, t, nullptr}, o.interpolation, cutoff);
@@ -1034,6 +1067,42 @@ void distribute(Path& path, const CutterPointOptions& o, Emit&& emit, double beg
       // a PVT step also judges the segment before it.
       bool kink_measured = false, on_kink = false;
       double kink_step = -1;  // to `transition`, the hold change found (once a search)
+      // A trial whose coarse samples all lie within kGrowsOnCoarse of the target of the
+      // centre (the base between a compound eye's lenslets turns as a surface of
+      // revolution, and a chord there departs from it by rounding): the model would grow
+      // the step by its largest factor whatever the finer samples showed, and the search
+      // grows from it unmeasured. It is measured in full only if it is to be the block: when
+      // a longer trial misses the target (or where the search ends on it). Before, such a
+      // trial near a rim took a full measure, gap and slide, to say only "grow".
+      AxisState pending;
+      double pending_step = 0;
+      bool screen_misled = false;
+      // The pending trial measured in full, where it is still longer than the step accepted:
+      // accepted as any trial that meets the target, or else the bracket's rejected end
+      // (true then).
+      const auto settle_pending = [&] {
+        if (!(pending_step > accepted)) {
+          pending_step = 0;
+          return false;
+        }
+        const double e = measure(pending, target);
+        if (e <= target) {
+          accepted = pending_step;
+          best = pending;
+          best_new = new_error;
+          best_previous = previous_error;
+          grown_step = pending_step;
+          grown_error = e;
+          pending_step = 0;
+          return false;
+        }
+        // Its finer samples found a peak its coarse ones missed: the rest of this search
+        // measures every trial in full, as it did before the screen.
+        rejected = std::min(rejected, pending_step);
+        pending_step = 0;
+        screen_misled = true;
+        return true;
+      };
       for (int it = 0; it < 80; ++it) {
         path.at(advance(step), trial);
         // The kink is tried before the trial itself: where it meets the target the block
@@ -1047,8 +1116,9 @@ void distribute(Path& path, const CutterPointOptions& o, Emit&& emit, double beg
             end_at_hold_change(path, current, trial, transition);
             kink_step = transition.tau - current.tau;
           }
-          if (kink_step > 0.1 * step && kink_step < step && kink_step > accepted &&
-              apart(transition, current) && apart(transition, trial)) {
+          if (kink_step > 0.1 * step && kink_step < step &&
+              kink_step > std::max(accepted, pending_step) && apart(transition, current) &&
+              apart(transition, trial)) {
             kink_measured = true;
             if (measure(transition, target) <= target) {
               accepted = kink_step;
@@ -1061,7 +1131,14 @@ void distribute(Path& path, const CutterPointOptions& o, Emit&& emit, double beg
             kink_failed = true;
           }
         }
-        error = measure(trial, target);
+        // Screened short of the cap, while the bracket is wider than the 3 % that ends the
+        // search (a trial there would be the block), where the trial's end holds as its
+        // start does (else the kink's rule above), and until a screen has misled.
+        bool coarse_only = false;
+        const bool screened =
+            !pvt && !screen_misled && step < limit && trial.held == current.held &&
+            (rejected == std::numeric_limits<double>::infinity() || rejected - step > 0.03 * step);
+        error = screened ? measure_screened(trial, target, coarse_only) : measure(trial, target);
         if (pvt && error < least_error) {
           least = trial;
           least_error = error;
@@ -1074,7 +1151,11 @@ void distribute(Path& path, const CutterPointOptions& o, Emit&& emit, double beg
         // and the search goes on as it stands).
         if (kink_failed && error > target) rejected = std::min(rejected, kink_step);
         double next;
-        if (error <= target) {
+        if (coarse_only) {
+          // Grown from as an accepted trial is, on its coarse value (pending, above).
+          pending = trial;
+          pending_step = step;
+        } else if (error <= target) {
           if (step > accepted) {
             accepted = step;
             best = trial;
@@ -1082,6 +1163,12 @@ void distribute(Path& path, const CutterPointOptions& o, Emit&& emit, double beg
             best_previous = previous_error;
           }
           if (step >= limit || error >= 0.9 * target) break;
+          // Growing again: the order of growth from the pending trial's full measure.
+          if (pending_step > 0 && grown_step == pending_step)
+            grown_error = measure(pending, target);
+          if (step >= pending_step) pending_step = 0;  // a longer step met the target
+        }
+        if (error <= target) {
           if (error > 0) {
             // The error's order as measured over the last growth: where it grows slower
             // than the step's power (a segment whose error is mostly a hold's), the model's
@@ -1125,21 +1212,26 @@ void distribute(Path& path, const CutterPointOptions& o, Emit&& emit, double beg
             jump = true;
             break;
           }
+          // A pending trial that misses the target as well bounds the bracket below this one.
+          if (settle_pending() && next >= rejected) next = 0.5 * (accepted + rejected);
           if (accepted > 0 && next <= accepted) break;  // nothing between them is better
         }
-        if (accepted > 0 && rejected < std::numeric_limits<double>::infinity()) {
-          const double width = rejected - accepted;
-          if (width <= 0.03 * accepted) break;  // the accepted step is within 3 % of the best
-          if (!(next >= accepted + 0.1 * width && next <= rejected - 0.1 * width))
-            next = accepted + 0.5 * width;
+        // The bracket's lower end: the longest step accepted, or pending.
+        const double lower = std::max(accepted, pending_step);
+        if (lower > 0 && rejected < std::numeric_limits<double>::infinity()) {
+          const double width = rejected - lower;
+          if (width <= 0.03 * lower) break;  // the accepted step is within 3 % of the best
+          if (!(next >= lower + 0.1 * width && next <= rejected - 0.1 * width))
+            next = lower + 0.5 * width;
         }
         if (next < min_step) {
           exhausted = true;
           break;
         }
-        if (std::abs(next - step) <= 1e-6 * step && accepted > 0) break;
+        if (std::abs(next - step) <= 1e-6 * step && lower > 0) break;
         step = next;
       }
+      settle_pending();  // the search ended on it (its 80 trials spent)
       // PVT takes its least error where the search ends short of the target, but not where
       // the step shrank to nothing: there no step helps (a nose larger than a trough, whose
       // centre turns back), the least error is that of a sliver, and the walk would crawl
