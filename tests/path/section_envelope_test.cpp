@@ -841,7 +841,7 @@ TEST_SUITE("path") {
     // of the creases (path_stepper.hpp, TouchesClear).
     const LensletArray eye(test::compound_eye_options(2.2));
     const BaseSurface base = fit_base_least_squares(sample_aperture(eye, 0, 1.6));
-    for (const auto [centre, per_turn] : {std::pair{1.2, 100}, std::pair{0.8, 1000}}) {
+    for (const auto& [centre, per_turn] : {std::pair{1.2, 100}, std::pair{0.8, 1000}}) {
       CAPTURE(centre);
       std::vector<ContactPoint> plans[2];
       for (const bool every : {false, true}) {
