@@ -969,19 +969,11 @@ void distribute(Path& path, const CutterPointOptions& o, Emit&& emit, double beg
       }
     return signed_worst;
   };
-  // The chord search's trial, screened (CoarseScreen): `coarse_only` says whether it was.
-  CoarseScreen screen;
-  const auto measure_screened = [&](const AxisState& t, double cutoff, bool& coarse_only) {
-    screen = {kGrowsOnCoarse * target, false};
-    new_error = segment_error(path, Segment{nullptr, current, t, nullptr}, o.interpolation, cutoff,
-                              &screen);
-    previous_error = 0;
-    coarse_only = screen.coarse_only;
-    return std::abs(new_error);
-  };
-  const auto measure = [&](const AxisState& t, double cutoff) {
+  // `screen` (linear motion only): the chord search's screen of a trial (CoarseScreen).
+  const auto measure = [&](const AxisState& t, double cutoff, CoarseScreen* screen = nullptr) {
     if (!pvt) {
-      new_error = segment_error(path, Segment{nullptr, current, t, nullptr}, o.interpolation, cutoff);
+      new_error = segment_error(path, Segment{nullptr, current, t, nullptr}, o.interpolation,
+                                cutoff, screen);
       previous_error = 0;
       return std::abs(new_error);
     }
@@ -1074,6 +1066,13 @@ void distribute(Path& path, const CutterPointOptions& o, Emit&& emit, double beg
       // grows from it unmeasured. It is measured in full only if it is to be the block: when
       // a longer trial misses the target (or where the search ends on it). Before, such a
       // trial near a rim took a full measure, gap and slide, to say only "grow".
+      // A measured trial taken as the longest accepted step, with its errors.
+      const auto take = [&](double taken_step, const AxisState& taken) {
+        accepted = taken_step;
+        best = taken;
+        best_new = new_error;
+        best_previous = previous_error;
+      };
       AxisState pending;
       double pending_step = 0;
       bool screen_misled = false;
@@ -1087,10 +1086,7 @@ void distribute(Path& path, const CutterPointOptions& o, Emit&& emit, double beg
         }
         const double e = measure(pending, target);
         if (e <= target) {
-          accepted = pending_step;
-          best = pending;
-          best_new = new_error;
-          best_previous = previous_error;
+          take(pending_step, pending);
           grown_step = pending_step;
           grown_error = e;
           pending_step = 0;
@@ -1121,10 +1117,7 @@ void distribute(Path& path, const CutterPointOptions& o, Emit&& emit, double beg
               apart(transition, trial)) {
             kink_measured = true;
             if (measure(transition, target) <= target) {
-              accepted = kink_step;
-              best = transition;
-              best_new = new_error;
-              best_previous = previous_error;
+              take(kink_step, transition);
               on_kink = true;
               break;
             }
@@ -1134,11 +1127,12 @@ void distribute(Path& path, const CutterPointOptions& o, Emit&& emit, double beg
         // Screened short of the cap, while the bracket is wider than the 3 % that ends the
         // search (a trial there would be the block), where the trial's end holds as its
         // start does (else the kink's rule above), and until a screen has misled.
-        bool coarse_only = false;
         const bool screened =
             !pvt && !screen_misled && step < limit && trial.held == current.held &&
             (rejected == std::numeric_limits<double>::infinity() || rejected - step > 0.03 * step);
-        error = screened ? measure_screened(trial, target, coarse_only) : measure(trial, target);
+        CoarseScreen screen{kGrowsOnCoarse * target};
+        error = measure(trial, target, screened ? &screen : nullptr);
+        const bool coarse_only = screen.coarse_only;
         if (pvt && error < least_error) {
           least = trial;
           least_error = error;
@@ -1156,12 +1150,7 @@ void distribute(Path& path, const CutterPointOptions& o, Emit&& emit, double beg
           pending = trial;
           pending_step = step;
         } else if (error <= target) {
-          if (step > accepted) {
-            accepted = step;
-            best = trial;
-            best_new = new_error;
-            best_previous = previous_error;
-          }
+          if (step > accepted) take(step, trial);
           if (step >= limit || error >= 0.9 * target) break;
           // Growing again: the order of growth from the pending trial's full measure.
           if (pending_step > 0 && grown_step == pending_step)
@@ -1205,10 +1194,7 @@ void distribute(Path& path, const CutterPointOptions& o, Emit&& emit, double beg
           if (axes_move > kJumpRatio * contact_move) {
             // This step crosses the jump. A shorter accepted one would only end before it,
             // and the next search would close in on it without end.
-            accepted = step;
-            best = trial;
-            best_new = new_error;
-            best_previous = previous_error;
+            take(step, trial);
             jump = true;
             break;
           }
