@@ -5,7 +5,8 @@
 #
 #   scripts/setup.sh [release|asan|fuzz]
 #                                     install what is missing, configure, build
-#                                     (release: optimised, for the demo and bench/;
+#                                     (release: optimised, with a profile of its own
+#                                      runs unless FREETURN_PGO=off, for the demo and bench/;
 #                                      asan: AddressSanitizer + UBSan, for the tests;
 #                                      fuzz: clang with libFuzzer, the fuzz/ harnesses)
 #   scripts/setup.sh --check          list the missing packages, one per line;
@@ -77,6 +78,30 @@ if ((${#missing[@]})); then
 fi
 
 build="$root/build/$flavour"
+# release: the library built from a profile of its own runs (kernel/CMakeLists.txt,
+# FREETURN_PGO). Once per build folder an instrumented build plans a finishing pass
+# (configs/training), then the library is built again from what it recorded. The profile
+# changes no value, only the code's layout (docs/path.md, "Build"). FREETURN_PGO=off skips
+# it; removing build/release/pgo trains again.
+if [[ "$flavour" == release && "${FREETURN_PGO:-on}" != off ]]; then
+  profile="$build/pgo"
+  if [[ ! -f "$profile/trained" ]]; then
+    echo "setup.sh: training the release build's profile (configs/training)"
+    cmake -S "$root" -B "$build" "${cmake_args[@]}" -DFREETURN_PGO=generate \
+      -DFREETURN_PGO_DIR="$profile" >/dev/null
+    cmake --build "$build" --parallel "$(nproc)" --target freeturn_cli freeturn_post_moore
+    rm -rf "$profile"
+    mkdir -p "$profile"
+    scratch="$(mktemp -d)"
+    trap 'rm -rf "$scratch"' EXIT
+    "$build/bin/freeturn" run "$root/configs/training/compound_eye_fine_pitch.yaml" \
+      -o "$scratch" --quiet --threads 1 >/dev/null
+    touch "$profile/trained"
+  fi
+  cmake_args+=(-DFREETURN_PGO=use -DFREETURN_PGO_DIR="$profile")
+else
+  cmake_args+=(-DFREETURN_PGO=)
+fi
 # Configuring again is quick with a cache, and repairs a build folder left half-configured.
 cmake -S "$root" -B "$build" "${cmake_args[@]}" >/dev/null
 if [[ "$flavour" == fuzz ]]; then
