@@ -734,55 +734,52 @@ TEST_SUITE("path") {
     const auto radial = [](const Eigen::Vector3d& p, double c) {
       return p.x() * std::cos(c) + p.y() * std::sin(c);
     };
-    {
-      SpiralOptions o = spiral_options(1.6, pitch, tolerance, R);
-      o.points.max_angle_step = 4 * std::numbers::pi / 180;
-      std::vector<ContactPoint> chord_points, path_points;
-      const std::vector<CutterLocation> chord = plan_with_nose(eye, base, o, &chord_points);
-      // The same path to r = 0.9 mm (its points do not depend on where it ends).
-      const double envelope = R + chord_points.front().stand_off;
-      o.inner_radius = 0.9;
-      o.points.rule = CutterPointRule::kEqualAngle;
-      o.points.points_per_revolution = 20000;
-      o.tool.nose_radius = envelope;
-      REQUIRE(stand_off_for(o.points, o.tool.nose_radius) == 0);
-      const std::vector<CutterLocation> along = plan_with_nose(eye, base, o, &path_points);
-      std::size_t j = 0;
-      int over = 0, sampled = 0;
-      double largest = 0;
-      for (std::size_t k = 1;
-           k < chord.size() && chord[k].contact.theta < along.back().contact.theta; ++k) {
-        const double ta = chord[k - 1].contact.theta, tb = chord[k].contact.theta;
-        const double xa = radial(chord[k - 1].nose_centre, ta),
-                     xb = radial(chord[k].nose_centre, tb);
-        const double za = chord[k - 1].nose_centre.z(), zb = chord[k].nose_centre.z();
-        const double reported = chord_points[k].chord_error - chord_points[k].stand_off;
-        double slide = 0;
-        while (j < along.size() && along[j].contact.theta <= ta) ++j;
-        for (; j < along.size() && along[j].contact.theta < tb; ++j, ++sampled) {
-          const double theta = along[j].contact.theta, t = (theta - ta) / (tb - ta);
-          const double x = xa + t * (xb - xa), z = za + t * (zb - za);
-          const double px = radial(along[j].nose_centre, theta), pz = along[j].nose_centre.z();
-          const ContactPoint& p = path_points[j];
-          const double slope =
-              -(p.normal.x() * std::cos(theta) + p.normal.y() * std::sin(theta)) / p.normal.z();
-          for (const double side : {-0.5, 0.5}) {
-            const double rho = p.r + side * pitch;
-            const auto lower_arc = [&](double cx, double cz) {
-              return cz - std::sqrt(std::max(envelope * envelope - (rho - cx) * (rho - cx), 0.0));
-            };
-            slide = std::max(slide, (lower_arc(x, z) - lower_arc(px, pz)) / std::hypot(1.0, slope));
-          }
+    SpiralOptions o = spiral_options(1.6, pitch, tolerance, R);
+    o.points.max_angle_step = 4 * std::numbers::pi / 180;
+    std::vector<ContactPoint> chord_points, path_points;
+    const std::vector<CutterLocation> chord = plan_with_nose(eye, base, o, &chord_points);
+    // The same path to r = 0.9 mm (its points do not depend on where it ends).
+    const double envelope = R + chord_points.front().stand_off;
+    o.inner_radius = 0.9;
+    o.points.rule = CutterPointRule::kEqualAngle;
+    o.points.points_per_revolution = 20000;
+    o.tool.nose_radius = envelope;
+    REQUIRE(stand_off_for(o.points, o.tool.nose_radius) == 0);
+    const std::vector<CutterLocation> along = plan_with_nose(eye, base, o, &path_points);
+    std::size_t j = 0;
+    int over = 0, sampled = 0;
+    double largest = 0;
+    for (std::size_t k = 1; k < chord.size() && chord[k].contact.theta < along.back().contact.theta;
+         ++k) {
+      const double ta = chord[k - 1].contact.theta, tb = chord[k].contact.theta;
+      const double xa = radial(chord[k - 1].nose_centre, ta), xb = radial(chord[k].nose_centre, tb);
+      const double za = chord[k - 1].nose_centre.z(), zb = chord[k].nose_centre.z();
+      const double reported = chord_points[k].chord_error - chord_points[k].stand_off;
+      double slide = 0;
+      while (j < along.size() && along[j].contact.theta <= ta) ++j;
+      for (; j < along.size() && along[j].contact.theta < tb; ++j, ++sampled) {
+        const double theta = along[j].contact.theta, t = (theta - ta) / (tb - ta);
+        const double x = xa + t * (xb - xa), z = za + t * (zb - za);
+        const double px = radial(along[j].nose_centre, theta), pz = along[j].nose_centre.z();
+        const ContactPoint& p = path_points[j];
+        const double slope =
+            -(p.normal.x() * std::cos(theta) + p.normal.y() * std::sin(theta)) / p.normal.z();
+        for (const double side : {-0.5, 0.5}) {
+          const double rho = p.r + side * pitch;
+          const auto lower_arc = [&](double cx, double cz) {
+            return cz - std::sqrt(std::max(envelope * envelope - (rho - cx) * (rho - cx), 0.0));
+          };
+          slide = std::max(slide, (lower_arc(x, z) - lower_arc(px, pz)) / std::hypot(1.0, slope));
         }
-        largest = std::max(largest, slide);
-        over += slide > 1.005 * reported + 1e-9;
       }
-      MESSAGE(chord.size(), " blocks, ", sampled, " noses of the path, slide up to ", largest * 1e6,
-              " nm, ", over, " segments over their error");
-      CHECK(sampled > 250000);
-      CHECK(largest > 0.3 * tolerance);  // the slide is there to be measured
-      CHECK(over == 0);
+      largest = std::max(largest, slide);
+      over += slide > 1.005 * reported + 1e-9;
     }
+    MESSAGE(chord.size(), " blocks, ", sampled, " noses of the path, slide up to ", largest * 1e6,
+            " nm, ", over, " segments over their error");
+    CHECK(sampled > 250000);
+    CHECK(largest > 0.3 * tolerance);  // the slide is there to be measured
+    CHECK(over == 0);
   }
 
   TEST_CASE("a nose riding a rim at 10 nm a turn: its samples of rounding are not taken") {

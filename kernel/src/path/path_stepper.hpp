@@ -1059,13 +1059,6 @@ void distribute(Path& path, const CutterPointOptions& o, Emit&& emit, double beg
       // a PVT step also judges the segment before it.
       bool kink_measured = false, on_kink = false;
       double kink_step = -1;  // to `transition`, the hold change found (once a search)
-      // A trial whose coarse samples all lie within kGrowsOnCoarse of the target of the
-      // centre (the base between a compound eye's lenslets turns as a surface of
-      // revolution, and a chord there departs from it by rounding): the model would grow
-      // the step by its largest factor whatever the finer samples showed, and the search
-      // grows from it unmeasured. It is measured in full only if it is to be the block: when
-      // a longer trial misses the target (or where the search ends on it). Before, such a
-      // trial near a rim took a full measure, gap and slide, to say only "grow".
       // A measured trial taken as the longest accepted step, with its errors.
       const auto take = [&](double taken_step, const AxisState& taken) {
         accepted = taken_step;
@@ -1073,6 +1066,13 @@ void distribute(Path& path, const CutterPointOptions& o, Emit&& emit, double beg
         best_new = new_error;
         best_previous = previous_error;
       };
+      // A trial whose coarse samples all lie within kGrowsOnCoarse of the target of the
+      // centre (the base between a compound eye's lenslets turns as a surface of
+      // revolution, and a chord there departs from it by rounding): the model would grow
+      // the step by its largest factor whatever the finer samples showed, and the search
+      // grows from it unmeasured. It is measured in full only if it is to be the block: when
+      // a longer trial misses the target (or where the search ends on it). Before, such a
+      // trial near a rim took a full measure, gap and slide, to say only "grow".
       AxisState pending;
       double pending_step = 0;
       bool screen_misled = false;
