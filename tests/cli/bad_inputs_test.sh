@@ -78,6 +78,13 @@ job=$(variant open_quote 's/^name: plate/name: "plate/')
 refused "an unterminated quote" "$job" "$job:1:7:" "does not close on its line"
 job=$(variant bom_mid 's/^tool:/\xef\xbb\xbftool:/')
 refused "a byte-order mark mid-file" "$job" "$job:7:1:" "byte-order mark"
+# Aliases of aliases (a "billion laughs"): 600 bytes that stand for 9^13 values.
+cp "$base" "$tmp/aliases.yaml"
+echo 'l0: &l0 [x, x, x, x, x, x, x, x, x]' >> "$tmp/aliases.yaml"
+for k in $(seq 1 12); do
+  echo "l$k: &l$k [*l$((k - 1)), *l$((k - 1)), *l$((k - 1)), *l$((k - 1)), *l$((k - 1)), *l$((k - 1)), *l$((k - 1)), *l$((k - 1)), *l$((k - 1))]" >> "$tmp/aliases.yaml"
+done
+refused "aliases of aliases" "$tmp/aliases.yaml" "$tmp/aliases.yaml:19:" "aliases ('*name')"
 printf 'name: plate\0\n' > "$tmp/nul.yaml"
 refused "a NUL byte" "$tmp/nul.yaml" "$tmp/nul.yaml:1:12:" "control character"
 mkdir -p "$tmp/dir.yaml"

@@ -126,27 +126,44 @@ void refuse_open_quote(const YAML::Node& node, const SourceText& source, const s
                        " does not close on its line (a missing closing quote?)");
 }
 
-// Walks the tree: duplicate keys and quoted values left open.
-void check_tree(const YAML::Node& node, const SourceText& text, const std::string& file,
-                int depth) {
+// How many values the walk below may visit. An alias (`*name`) stands for its anchor's whole
+// value, so nine aliases of nine aliases of ... a 554-byte file stands for 9^12 values,
+// and a walk of them (this one, or a reader's) would not end in a lifetime. Written out,
+// a file of n bytes holds at most about 2n values (a key and an empty value take two
+// bytes, "a:"); a file that reuses a block through aliases a few times stays far below
+// the floor of a million, which takes a fraction of a second to walk.
+std::size_t value_budget(const std::string& text) {
+  return std::max<std::size_t>(1'000'000, 2 * text.size() + 64);
+}
+
+// Walks the tree: duplicate keys and quoted values left open; `budget`, the values still
+// allowed (value_budget).
+void check_tree(const YAML::Node& node, const SourceText& text, const std::string& file, int depth,
+                std::size_t& budget) {
   if (depth > 64) throw InputError(location_of(node, file), "nested more than 64 levels deep");
+  if (budget == 0)
+    throw InputError(location_of(node, file),
+                     "the file stands for more values than it could hold written out: its "
+                     "aliases ('*name') repeat their anchors' values into the millions; write "
+                     "the values out, or reuse fewer of them");
+  --budget;
   if (node.IsScalar()) {
     if (node.Tag() == "!") refuse_open_quote(node, text, file);
     return;
   }
   if (node.IsSequence()) {
-    for (const YAML::Node& item : node) check_tree(item, text, file, depth + 1);
+    for (const YAML::Node& item : node) check_tree(item, text, file, depth + 1, budget);
     return;
   }
   if (!node.IsMap()) return;
   std::set<std::string> keys;
   for (auto it = node.begin(); it != node.end(); ++it) {
-    check_tree(it->first, text, file, depth + 1);
+    check_tree(it->first, text, file, depth + 1, budget);
     if (it->first.IsScalar() && !keys.insert(it->first.Scalar()).second)
       throw InputError(location_of(it->first, file),
                        "the key '" + it->first.Scalar() +
                            "' appears twice in this map (the first would silently win)");
-    check_tree(it->second, text, file, depth + 1);
+    check_tree(it->second, text, file, depth + 1, budget);
   }
 }
 
@@ -220,7 +237,8 @@ YAML::Node load_yaml_text(const std::string& text, const std::string& path, std:
     SourceLocation loc{path, e.mark.line + 1, e.mark.column + 1};
     throw InputError(loc, "YAML syntax error: " + e.msg);
   }
-  check_tree(root, SourceText(text), path, 0);
+  std::size_t budget = value_budget(text);
+  check_tree(root, SourceText(text), path, 0, budget);
   return root;
 }
 

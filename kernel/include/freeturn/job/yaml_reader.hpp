@@ -19,7 +19,8 @@ SourceLocation location_of(const YAML::Node& node, const std::string& file);
 
 // Parses a whole YAML file, strictly: a regular file of at most max_bytes, one document,
 // no duplicate key in any map, no quoted value left open past its line, no byte-order mark
-// past the start and no control character. Every refusal (and a syntax error) is an
+// past the start, no control character, and no more values through aliases than the text
+// could hold written out (a floor of a million). Every refusal (and a syntax error) is an
 // InputError at its line and column, or at the file for its kind and size.
 YAML::Node load_yaml_file(const std::string& path, std::uintmax_t max_bytes = kMaxYamlBytes);
 
