@@ -56,9 +56,19 @@ class MoorePost {
   }
 
   void begin() {
+    // S has 3 decimals: a speed under half a thousandth of an rpm (a job's typo, or the one
+    // speed a constant-rpm schedule found every block allows) would command S0.000, a
+    // stopped spindle under a program that cuts.
+    std::string speed;
+    append_number(speed, info_.spindle_rpm, 3);
+    if (speed.find_first_of("123456789") == std::string::npos) {
+      char rpm[32];
+      std::snprintf(rpm, sizeof rpm, "%.6g", info_.spindle_rpm);
+      throw PostError(std::string("a spindle speed of ") + rpm + " rpm reads S" + speed +
+                      " (3 decimals): the spindle would stand still");
+    }
     std::string head = "( " + std::string(info_.program_name) + " for " + info_.machine_name +
-                       ", written by freeturn )\n" + header_ + "\n" + spindle_ + " S";
-    append_number(head, info_.spindle_rpm, 3);
+                       ", written by freeturn )\n" + header_ + "\n" + spindle_ + " S" + speed;
     out_.put(head + "\n");
   }
 

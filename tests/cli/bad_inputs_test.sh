@@ -96,6 +96,8 @@ refused "a 5 MB job" "$tmp/huge.yaml" "$tmp/huge.yaml:" "over the 4194304-byte b
 # Ranges the schema states.
 job=$(variant clearance 's/clearance_angle_deg: 10/clearance_angle_deg: 720/')
 refused "clearance 720°" "$job" "$job:9:24:" "clearance_angle_deg must be within (0, 45]"
+job=$(variant rpm_tiny 's/spindle_rpm: 20/spindle_rpm: 1e-9/')
+refused "a spindle of 1e-9 rpm (S0.000)" "$job" "$job:17:16:" "spindle_rpm must be within [0.001, 20000] rpm"
 job=$(variant pitch 's/pitch: 0.05/pitch: 1.5/')
 refused "a pitch of three nose radii" "$job" "$job:13:10:" "would not overlap"
 job=$(variant tolerance 's/tolerance: 0.001/tolerance: 1e-30/')
@@ -109,7 +111,7 @@ echo "limits: {max_points: 1000000}" >> "$job"
 refused "an arc step over the point limit" "$job" "$job:15:25:" "limits.max_points"
 
 job=$(variant rpm 's/spindle_rpm: 20/spindle_rpm: 1e9/')
-refused "1e9 rpm" "$job" "$job:17:16:" "spindle_rpm must be within (0, 20000]"
+refused "1e9 rpm" "$job" "$job:17:16:" "spindle_rpm must be within [0.001, 20000]"
 job=$(variant long_name "s/^name: plate/name: $(printf 'n%.0s' {1..300})/")
 refused "a 300-character name" "$job" "$job:1:7:" "at most 100"
 job=$(variant waviness 's/^  clearance_angle_deg: 10/&\n  waviness: [[0, 0.6]]/')

@@ -136,17 +136,30 @@ TEST_SUITE("job") {
          "job.yaml:4:21: tool.nose_radius must be a finite number"},
         {head + "tool: {nose_radius: 0.5, colour: red}\n" + good_strategy + good_rest,
          "job.yaml:4:26: unknown key 'colour' in tool"},
-        {head + good_tool + "strategy: {mode: spiral, spiral: planar, pitch: abc, points: {equal_angle: {per_rev: 90}}}\n" + good_rest,
+        {head + good_tool +
+             "strategy: {mode: spiral, spiral: planar, pitch: abc, points: {equal_angle: {per_rev: "
+             "90}}}\n" +
+             good_rest,
          "job.yaml:5:49: strategy.pitch must be a number, not 'abc'"},
         {head + good_tool + "strategy: {mode: zigzag}\n" + good_rest,
          "job.yaml:5:18: strategy.mode must be spiral or profile, not 'zigzag'"},
-        {head + good_tool + "strategy: {mode: profile, points: {equal_angle: {per_rev: 90}}}\n" + good_rest,
+        {head + good_tool + "strategy: {mode: profile, points: {equal_angle: {per_rev: 90}}}\n" +
+             good_rest,
          "equal_angle points need a spiral"},
-        {head + good_tool + "strategy: {mode: spiral, spiral: planar, pitch: 0.01, points: {}}\n" + good_rest,
+        {head + good_tool + "strategy: {mode: spiral, spiral: planar, pitch: 0.01, points: {}}\n" +
+             good_rest,
          "strategy.points takes exactly one of equal_angle, equal_arc, chord"},
         {head + good_tool + good_strategy + "cutting: {feed: 3}\nmachine: iso-lathe-xzc\n",
          "cutting is missing the key 'spindle_rpm'"},
-        {head + good_tool + good_strategy + "cutting: {spindle_rpm: 10, roughing: [0.01, 0.02]}\nmachine: m\n",
+        // Under a thousandth the posts' three decimals would print S0.000 or F0.000.
+        {head + good_tool + good_strategy +
+             "cutting: {spindle_rpm: 1e-9}\nmachine: iso-lathe-xzc\n",
+         "job.yaml:6:24: cutting.spindle_rpm must be within [0.001, 20000] rpm, not 1e-9"},
+        {head + good_tool + "strategy: {mode: profile, points: {chord: {tolerance: 0.001}}}\n" +
+             "cutting: {feed: 0.0004}\nmachine: iso-lathe-xz\n",
+         "job.yaml:6:17: cutting.feed must be within [0.001, 10000] mm/min, not 0.0004"},
+        {head + good_tool + good_strategy +
+             "cutting: {spindle_rpm: 10, roughing: [0.01, 0.02]}\nmachine: m\n",
          "cutting.roughing depths must decrease"},
         {head + good_tool + good_strategy + good_rest.substr(0, good_rest.find("machine")),
          "job is missing the key 'machine'"},

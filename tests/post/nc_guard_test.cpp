@@ -112,5 +112,12 @@ TEST_SUITE("plugins") {
     // Keywords whose letters are word letters are not words.
     CHECK(refused("G1 X1 Z1\nM30\nEXEC\n").empty());
     CHECK(refused("G1 X1.5 F200.\n").empty());
+    // F reading 0 in any form: a feed or an (inverse) block time the controller cannot run.
+    CHECK(refused("G1 X1 F0.000000\n") ==
+          "p.nc:1: F0.000000 is 0: a feed or block time the controller cannot run");
+    CHECK(refused("G93 F0\n").find("F0 is 0") != std::string::npos);
+    CHECK(refused("G01 F-0.000\n").find("F-0.000 is 0") != std::string::npos);
+    CHECK(refused("G01 F.0\n").find("F.0 is 0") != std::string::npos);
+    CHECK(refused("G1 X1 F0.000001\nG93 F100.000\n").empty());
   }
 }

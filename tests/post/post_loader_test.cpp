@@ -213,6 +213,25 @@ TEST_SUITE("plugins") {
       CHECK(in_force[static_cast<std::size_t>(k)] == doctest::Approx(std::round(times[k + 1] * 1e6) / 1e6).epsilon(1e-12));
   }
 
+  TEST_CASE("moore refuses a spindle speed its S word would print as 0") {
+    const MachineDescription m = load_machine(kMachines + "/moore-nanotech-250upl.yaml");
+    const auto plugin = PostPlugin::load_file(kPlugins + "/libfreeturn_post_moore.so");
+    test::TempDir dir;
+    const std::vector<AxisRecord> r = {{3.0, 0.1, 0.0, 0, 0}, {2.9, 0.1, 4.0, 0, 600}};
+    const auto write_at = [&](double rpm) {
+      const std::string path = dir.file("slow.nc");
+      PostProgram program(*plugin, m, {"slow", rpm, 0, -1, -1, 1.0, 1}, path);
+      program.write(r);
+      program.finish();
+      return test::read_file(path);
+    };
+    // S has three decimals: 0.0004 rpm would read S0.000, a stopped spindle; 0.0006 reads
+    // S0.001, the least it can say.
+    CHECK_THROWS_WITH_AS(write_at(0.0004), doctest::Contains("0.0004 rpm reads S0.000"),
+                         InputError);
+    CHECK(write_at(0.0006).find("M03 S0.001\n") != std::string::npos);
+  }
+
   TEST_CASE("iso X-Z profile with feed per minute: G94 and the path feed, no G93") {
     const MachineDescription m = load_machine(kMachines + "/iso-lathe-xz.yaml");
     REQUIRE(m.feed_per_minute);

@@ -188,10 +188,12 @@ void read_cutting(MapReader& job, JobPlan& plan) {
   MapReader c(job.child("cutting"), job.file(), "cutting");
   Cutting& cut = plan.cutting;
   // Ultraprecision spindles turn up to about 10 000 rpm; slide feeds stay under 10 m/min.
+  // Below, a thousandth (a turn in 17 hours, a micrometre a minute) is a typo, and it is
+  // what the posts' three decimals can still say: less would print S0.000 or F0.000.
   if (plan.strategy.mode == Strategy::Mode::kSpiral)
-    cut.spindle_rpm = c.in_range("spindle_rpm", 0, 20000, true, " rpm");
+    cut.spindle_rpm = c.in_range("spindle_rpm", 0.001, 20000, false, " rpm");
   else
-    cut.feed = c.in_range("feed", 0, 10000, true, " mm/min");
+    cut.feed = c.in_range("feed", 0.001, 10000, false, " mm/min");
   if (const auto r = c.optional_child("roughing")) {
     if (!r->IsSequence()) throw InputError(location_of(*r, job.file()), "cutting.roughing must be a list of stock depths (mm)");
     for (std::size_t i = 0; i < r->size(); ++i) {

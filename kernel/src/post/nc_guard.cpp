@@ -181,10 +181,12 @@ void NcGuard::check_line(std::string_view line) {
     if (j < length && (c[j] == '-' || c[j] == '+')) ++j;
     const std::size_t digits = j;
     int integer_digits = 0, points = 0, digit_count = 0;
+    bool nonzero = false;
     for (; j < length; ++j) {
       const char ch = c[j];
       if (ascii_digit(ch)) {
         ++digit_count;
+        nonzero |= ch != '0';
         integer_digits += (points == 0) & ((integer_digits != 0) | (ch != '0'));
       } else if (ch == '.') {
         ++points;
@@ -211,6 +213,12 @@ void NcGuard::check_line(std::string_view line) {
     if (!number.empty() && number.front() == '+') number.remove_prefix(1);
     if (points > 1 || digit_count == 0)
       return refuse(std::string(1, letter) + std::string(number) + " is not a number");
+    // F is a feed, or a block's time or its inverse: none of them can be 0 in any mode (a
+    // feed of 0 stalls or alarms the machine, an inverse time of 0 has no block time). A
+    // job's tiny feed, or a long block, can round to it at the word's decimals.
+    if (lower == 'f' && !nonzero)
+      return refuse(std::string(1, letter) + std::string(number) +
+                    " is 0: a feed or block time the controller cannot run");
     // Digits and at most one point, fewer than 309 before it: a finite number.
     const Range& r = ranges_[letter - 'A'];
     if (!r.checked && integer_digits < 300) {
