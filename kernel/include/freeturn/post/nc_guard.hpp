@@ -5,9 +5,10 @@
 // Before a post-processor formats a block, the block's values must be finite and inside
 // the machine's travel (and B inside its limits). After, every line the plugin wrote is
 // read back outside its comments: each number must be finite and parse whole, the text
-// must hold no "nan" or "inf", and each axis word of the machine's layout must lie inside
-// the travel within half a unit of its declared decimals (except on lines that leave the
-// work frame: G53, G28, G30, G92). The first violation is kept
+// must hold no "nan" or "inf", no F word may read 0 (a feed or a block time), and each
+// axis word of the machine's layout must lie inside the travel within half a unit of its
+// declared decimals (except on lines that leave the work frame: G53, G28, G30, G92). The
+// first violation is kept
 // with its file and line; PostProgram turns it into an error naming the plugin, and no NC
 // file is committed.
 
