@@ -170,6 +170,10 @@ failed() {  # description, job, expected prefix, words...
 }
 m=$(machine_variant x_travel 's/min: -100, max: 100, decimals: 6/min: -100, max: 1.5, decimals: 6/')
 failed "X travel shorter than the aperture" "$m.yaml" "$m.machine.yaml:5:40:" "machine axis X max 1.5" "r = 2" "outside its travel"
+# The part itself above the Z travel: the path's failure, in check as in run (check had
+# probed the approach from the part's top first, and refused it as bad input, exit 2).
+m=$(machine_variant z_below 's/min: -50, max: 50, decimals: 6/min: -50, max: 0.01, decimals: 6/')
+failed "Z travel below the part" "$m.yaml" "$m.machine.yaml:6:39:" "machine axis Z max 0.01" "outside its travel"
 cp "$src/postprocessors/iso/machines/iso-lathe-xzcb.yaml" "$tmp/xzcb.yaml"
 sed -i 's/min_deg: -60, max_deg: 60/min_deg: -0.5, max_deg: 60/' "$tmp/xzcb.yaml"
 sed "s|^machine: .*|machine: $tmp/xzcb.yaml|; s/^strategy:/strategy:\n  b_axis: follow/" "$base" > "$tmp/b_limit.yaml"

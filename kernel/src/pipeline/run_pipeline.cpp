@@ -598,9 +598,10 @@ RunResult run_job_at_requested_speed(const Job& job, const PreparedJob& prepared
 // The plugin reads its dialect settings when a program is created: check creates one in
 // a private temporary folder and drops it unwritten, so that settings `run` would refuse
 // are refused here too, at their place in the machine file.
-// One record at the clearance base is written too, so that an approach the machine's
-// travel cannot take is refused as `run` refuses it.
-void check_dialect_settings(const Job& job, const PreparedJob& prepared) {
+// With `approach`, one record at the clearance base (inside the Z travel, as the program's
+// first block is once the path has passed the travel check) is written too, so that an
+// approach the machine's travel cannot take is refused as `run` refuses it.
+void check_dialect_settings(const Job& job, const PreparedJob& prepared, bool approach) {
   const std::filesystem::path folder = std::filesystem::temp_directory_path() /
                                        ("freeturn-check-" + std::to_string(getpid()));
   std::filesystem::create_directories(folder);
@@ -620,9 +621,10 @@ void check_dialect_settings(const Job& job, const PreparedJob& prepared) {
     const AxisSpec& x = m.spec(Axis::kX);
     AxisRecord record;
     record.x = std::clamp(0.0, x.min, x.max);
-    record.z = top;
+    const AxisSpec& z = m.spec(Axis::kZ);
+    record.z = std::clamp(top, z.min, z.max);
     if (m.has(Axis::kB)) record.b = std::clamp(0.0, m.b_min_deg, m.b_max_deg);
-    if (job.plan->outputs.nc) probe.write(std::span<const AxisRecord>(&record, 1));
+    if (approach && job.plan->outputs.nc) probe.write(std::span<const AxisRecord>(&record, 1));
   } catch (...) {
     std::error_code ignored;
     std::filesystem::remove_all(folder, ignored);
@@ -749,8 +751,12 @@ RunReport check_job(const Job& job, const RunOptions& options, RunObserver* obse
   PreparedJob prepared = prepare_job(job, options.max_yaml_bytes);
   prepared.threads = thread_count(options.threads);
   prepared.max_replay_bytes = options.max_replay_bytes;
-  check_dialect_settings(job, prepared);
-  return run_with_places(job, prepared, "", observer, nullptr, nullptr).report;
+  check_dialect_settings(job, prepared, false);
+  // The approach after the path: `run` checks the first block's travel before the post
+  // writes the approach to it, so a path past the travel fails there first (exit 1).
+  RunReport report = run_with_places(job, prepared, "", observer, nullptr, nullptr).report;
+  check_dialect_settings(job, prepared, true);
+  return report;
 }
 
 PlannedPath plan_job(const Job& job, const RunOptions& options) {
