@@ -22,16 +22,22 @@ namespace {
 
 using Array = py::array_t<double, py::array::c_style | py::array::forcecast>;
 
-// A dict (of dicts, lists, numbers, strings, booleans) as YAML, for surface().
-YAML::Node to_yaml(const py::handle& value) {
+// A dict (of dicts, lists, numbers, strings, booleans) as YAML, for surface(). As deep as
+// a YAML file may nest (yaml_reader): a dict that holds itself, or a list of lists a
+// hundred thousand deep, is refused instead of overflowing the stack.
+YAML::Node to_yaml(const py::handle& value, int depth = 0) {
+  if (depth > 64)
+    throw py::value_error(
+        "the surface spec nests more than 64 levels deep (a dict or list that holds itself?)");
   if (py::isinstance<py::dict>(value)) {
     YAML::Node map(YAML::NodeType::Map);
-    for (const auto& [k, v] : value.cast<py::dict>()) map[py::str(k).cast<std::string>()] = to_yaml(v);
+    for (const auto& [k, v] : value.cast<py::dict>())
+      map[py::str(k).cast<std::string>()] = to_yaml(v, depth + 1);
     return map;
   }
   if (py::isinstance<py::list>(value) || py::isinstance<py::tuple>(value)) {
     YAML::Node list(YAML::NodeType::Sequence);
-    for (const auto& v : value) list.push_back(to_yaml(v));
+    for (const auto& v : value) list.push_back(to_yaml(v, depth + 1));
     return list;
   }
   if (py::isinstance<py::bool_>(value)) return YAML::Node(value.cast<bool>() ? "true" : "false");

@@ -99,6 +99,20 @@ def test_errors_carry_their_place(tmp_path):
     assert str(error.value).startswith(f"{bad}:3:17:")
     with pytest.raises(freeturn.InputError, match=r"^<surface>:1:\d+: "):
         freeturn.surface("{type: no_such_surface}")
+    # A dict has no lines: its errors are at "<surface>", said once.
+    with pytest.raises(freeturn.InputError) as error:
+        freeturn.surface({"type": "sphere", "radius": float("nan")})
+    assert str(error.value) == "<surface>: surface.radius must be a finite number, not 'nan'"
+    # A dict that holds itself, or lists nested 100 000 deep: refused, not a crash.
+    spec = {"type": "sphere", "radius": 20}
+    spec["self"] = spec
+    with pytest.raises(ValueError, match="more than 64 levels"):
+        freeturn.surface(spec)
+    deep = []
+    for _ in range(100000):
+        deep = [deep]
+    with pytest.raises(ValueError, match="more than 64 levels"):
+        freeturn.surface({"type": "sphere", "radius": 20, "x": deep})
     # A check set to error stops a run: CheckFailure, an InputError.
     cup = tmp_path / "cup.yaml"
     cup.write_text("name: cup\naperture: {outer_radius: 0.1}\nsurface: {type: sphere, radius: 0.3}\n"

@@ -271,8 +271,10 @@ std::unique_ptr<Surface> surface_from_yaml(const YAML::Node& node, const std::st
   try {
     surface = read_base(map, type, outer_radius);
   } catch (const InputError& e) {
-    // Constructors name the parameter; point at it in the file.
-    if (e.where().find(':') != std::string::npos) throw;
+    // Constructors name the parameter; point at it in the file. An error already placed
+    // (at a line, or at the file where its nodes carry none: a spec built in memory) is not
+    // a parameter's name.
+    if (e.where().find(':') != std::string::npos || e.where() == file) throw;
     map.fail(map.has(e.where()) ? e.where() : "type", "surface." + e.where() + " " + e.problem());
   }
   const double base_radius = surface->defined_radius();
