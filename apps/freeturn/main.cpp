@@ -11,6 +11,7 @@
 #include <CLI/CLI.hpp>
 
 #include "commands.hpp"
+#include "freeturn/core/parallel_for.hpp"
 #include "freeturn/freeturn.hpp"
 #include "freeturn/io/atomic_file.hpp"
 
@@ -85,7 +86,7 @@ int main(int argc, char** argv) {
     c->add_option("--threads", threads,
                   "threads that plan the spiral (and simulate); the outputs are the same on any "
                   "number [default: one per core]")
-        ->check(CLI::Range(1, 1024));
+        ->check(CLI::Range(1, freeturn::kMaxThreads));
   };
   const auto quiet_flag = [](CLI::App* c, bool& quiet) {
     c->add_flag("-q,--quiet", quiet, "print only errors and the verdict's reasons");

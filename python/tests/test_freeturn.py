@@ -113,6 +113,10 @@ def test_errors_carry_their_place(tmp_path):
         deep = [deep]
     with pytest.raises(ValueError, match="more than 64 levels"):
         freeturn.surface({"type": "sphere", "radius": 20, "x": deep})
+    # Threads as the command line takes them: 0 (one per core) or 1 to 1024.
+    with pytest.raises(freeturn.InputError, match="threads: must be 0"):
+        freeturn.run_job(os.path.join(JOBS, "compound_eye.yaml"), str(tmp_path / "t"), -1)
+    assert not (tmp_path / "t").exists()
     # A check set to error stops a run: CheckFailure, an InputError.
     cup = tmp_path / "cup.yaml"
     cup.write_text("name: cup\naperture: {outer_radius: 0.1}\nsurface: {type: sphere, radius: 0.3}\n"

@@ -2,12 +2,19 @@
 
 #include <algorithm>
 #include <exception>
+#include <string>
 #include <thread>
 #include <vector>
+
+#include "freeturn/core/error.hpp"
 
 namespace freeturn {
 
 int thread_count(int requested) {
+  if (requested < 0 || requested > kMaxThreads)
+    throw InputError("threads", "must be 0 (one per hardware thread) or 1 to " +
+                                    std::to_string(kMaxThreads) + ", not " +
+                                    std::to_string(requested));
   if (requested > 0) return requested;
   return static_cast<int>(std::max(1u, std::thread::hardware_concurrency()));
 }

@@ -8,7 +8,12 @@
 
 namespace freeturn {
 
-// The hardware's threads (at least 1), or `requested` when it is > 0.
+// The most threads a caller may ask for: the command line's bound, and the library's (a
+// typo of 100 000 would start that many threads).
+inline constexpr int kMaxThreads = 1024;
+
+// The hardware's threads (at least 1) for 0, or `requested` from 1 to kMaxThreads; any
+// other number is an InputError at "threads".
 int thread_count(int requested);
 
 // Runs body(begin, end) over [0, count) split into at most `threads` contiguous ranges,
