@@ -11,6 +11,7 @@
 #include <numbers>
 #include <string>
 
+#include "freeturn/core/number_text.hpp"
 #include "freeturn/freeturn.hpp"
 #include "freeturn/job/surface_yaml.hpp"
 #include "freeturn/job/yaml_reader.hpp"
@@ -57,6 +58,11 @@ struct PySurface {
 };
 
 PySurface make_surface(const py::object& spec, double outer_radius) {
+  if (!(outer_radius >= 0) || !std::isfinite(outer_radius))
+    throw InputError("outer_radius",
+                     "must be a finite number of mm ≥ 0 (0: the job's aperture, "
+                     "or none), not " +
+                         shortest_text(outer_radius));
   YAML::Node node = py::isinstance<py::str>(spec)
                         ? load_yaml_text(spec.cast<std::string>(), "<surface>")
                         : to_yaml(spec);

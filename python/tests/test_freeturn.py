@@ -99,6 +99,10 @@ def test_errors_carry_their_place(tmp_path):
     assert str(error.value).startswith(f"{bad}:3:17:")
     with pytest.raises(freeturn.InputError, match=r"^<surface>:1:\d+: "):
         freeturn.surface("{type: no_such_surface}")
+    with pytest.raises(freeturn.InputError, match="^outer_radius: must be a finite number"):
+        freeturn.surface({"type": "sphere", "radius": 20}, float("nan"))
+    with pytest.raises(freeturn.InputError, match="not -1$"):
+        freeturn.surface({"type": "sphere", "radius": 20}, -1.0)
     # A dict has no lines: its errors are at "<surface>", said once.
     with pytest.raises(freeturn.InputError) as error:
         freeturn.surface({"type": "sphere", "radius": float("nan")})
