@@ -144,6 +144,11 @@ m=$(machine_variant unknown_setting 's/^  retract: .*/&\n  colour: red/')
 refused "an unknown dialect key" "$m.yaml" "$m.machine.yaml:13:3:" "unknown setting 'colour'"
 m=$(machine_variant z_travel 's/min: -50, max: 50, decimals: 6/min: -50, max: 1.2, decimals: 6/')
 refused "an approach height beyond the Z travel" "$m.yaml" "$m.machine.yaml:6:39:" "machine axis Z max" "Z1.54"
+# Dynamic limits so small they are typos: the scheduler would write blocks decades long.
+m=$(machine_variant slow_x 's/max: 100, decimals: 6, max_velocity: 50,/max: 100, decimals: 6, max_velocity: 1e-12,/')
+refused "an X velocity limit of 1e-12 mm/s" "$m.yaml" "$m.machine.yaml:5:72:" "max_velocity must be at least 0.001 mm/s, not 1e-12"
+m=$(machine_variant slow_blocks 's/^max_block_rate: 1000/max_block_rate: 1e-9/')
+refused "a block rate of 1e-9" "$m.yaml" "$m.machine.yaml:10:17:" "max_block_rate must be at least 1 blocks/s"
 m=$(machine_variant plugin_path 's/^plugin: iso/plugin: ..\/iso/')
 refused "a plugin path with .." "$m.yaml" "$m.machine.yaml:3:9:" "a name, not a path"
 

@@ -8,6 +8,9 @@
 namespace freeturn {
 namespace {
 
+// Why a dynamic limit under its floor is refused: the program would be written as asked.
+const std::string kTypo = "a machine this slow would take years over one part (a typo?)";
+
 Axis axis_from(const std::string& name, MapReader& map) {
   if (name == "X") return Axis::kX;
   if (name == "Z") return Axis::kZ;
@@ -51,8 +54,13 @@ MachineDescription load_machine(const std::string& path, std::uintmax_t max_byte
     if (decimals != std::floor(decimals) || decimals < 0 || decimals > 12)
       a.fail("decimals", "decimals must be an integer from 0 to 12");
     s.decimals = static_cast<int>(decimals);
-    s.max_velocity = a.positive("max_velocity", std::numeric_limits<double>::infinity());
-    s.max_acceleration = a.positive("max_acceleration", std::numeric_limits<double>::infinity());
+    // Limits below these are typos (a per-second limit of 1e-12 would be a program of blocks
+    // years long, which the scheduler would write as asked): left out, a limit is none.
+    const std::string per_second = s.axis == Axis::kC || s.axis == Axis::kB ? " °/s" : " mm/s";
+    s.max_velocity = a.at_least("max_velocity", std::numeric_limits<double>::infinity(), 1e-3,
+                                per_second, kTypo);
+    s.max_acceleration = a.at_least("max_acceleration", std::numeric_limits<double>::infinity(),
+                                    1e-3, per_second + "²", kTypo);
     a.finish();
     for (const AxisSpec& other : m.axes)
       if (other.axis == s.axis) a.fail("name", std::string("axis ") + axis_letter(s.axis) + " is listed twice");
@@ -86,7 +94,8 @@ MachineDescription load_machine(const std::string& path, std::uintmax_t max_byte
       map.fail("interpolation", "interpolation must be linear or pvt, not '" + i + "'");
     m.interpolation = i == "pvt" ? Interpolation::kCubic : Interpolation::kLinear;
   }
-  m.max_block_rate = map.positive("max_block_rate", std::numeric_limits<double>::infinity());
+  m.max_block_rate = map.at_least("max_block_rate", std::numeric_limits<double>::infinity(), 1,
+                                  " blocks/s", kTypo);
   if (map.has("feed_mode")) {
     const std::string f = map.text("feed_mode");
     if (f != "inverse_time" && f != "per_minute")

@@ -320,6 +320,18 @@ double MapReader::non_negative(const std::string& key, double fallback) {
   return v;
 }
 
+double MapReader::at_least(const std::string& key, double fallback, double lo,
+                           const std::string& unit, const std::string& why) {
+  auto value = optional_child(key);
+  if (!value) return fallback;
+  const double v = read_number(*value, key);
+  if (!(v >= lo))
+    throw InputError(location_of(*value, file_), what_ + "." + key + " must be at least " +
+                                                     significant_text(lo, 6) + unit + ", not " +
+                                                     value->Scalar() + ": " + why);
+  return v;
+}
+
 double MapReader::in_range(const std::string& key, double fallback, double lo, double hi,
                            bool open_low, const std::string& unit) {
   auto value = optional_child(key);

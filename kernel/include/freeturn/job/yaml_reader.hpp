@@ -51,6 +51,9 @@ class MapReader {
   double positive(const std::string& key, double fallback);
   // A finite number >= 0.
   double non_negative(const std::string& key, double fallback);
+  // A finite number >= lo, with no upper bound; `why` says what a smaller one would do.
+  double at_least(const std::string& key, double fallback, double lo, const std::string& unit,
+                  const std::string& why);
   // A finite number in (lo, hi] (`open_low`) or [lo, hi]; `unit` follows the bounds in the
   // message ("°", " mm").
   double in_range(const std::string& key, double fallback, double lo, double hi, bool open_low,
