@@ -228,5 +228,14 @@ TEST_SUITE("metrology") {
     CHECK_THROWS_WITH_AS(register_measurement(*design, far, o, "far.xyz"),
                          doctest::Contains("far.xyz: 0 valid points fall inside the aperture"),
                          InputError);
+    // Heights of 1e300 mm (a file in other units, or garbage): the squares overflow, and the
+    // first step taken from them would land every point outside the aperture. Before, the
+    // outliers' median was then read from no points at all (a segmentation fault).
+    Measurement huge;
+    for (double x = -3.0; x <= 3.0; x += 0.25)
+      for (double y = -3.0; y <= 3.0; y += 0.25) huge.points.emplace_back(x, y, 1e300);
+    CHECK_THROWS_WITH_AS(register_measurement(*design, huge, o, "huge.xyz"),
+                         doctest::Contains("huge.xyz: the measured heights are too large"),
+                         InputError);
   }
 }

@@ -163,6 +163,11 @@ Registration register_measurement(const Surface& design, const Measurement& m,
   for (int round = 0; round < 6; ++round) {
     double lambda = 1e-6;
     double cost = evaluate(model, true, used);
+    // Heights whose squares overflow (1e300 µm) leave no step to compare: no surface's.
+    if (!std::isfinite(cost))
+      throw InputError(where,
+                       "the measured heights are too large to be a surface's (their "
+                       "sum of squares overflows): is the file in these units?");
     if (used < std::max<long>(3L * unknowns, 30))
       throw InputError(where, std::to_string(used) + " valid points fall inside the aperture (" +
                                   fixed_text(o.inner_radius, 3) + " – " + fixed_text(o.outer_radius, 3) +
@@ -205,6 +210,9 @@ Registration register_measurement(const Surface& design, const Measurement& m,
                                     " mm, tilt " + significant_text(std::hypot(model.x[1], model.x[2]), 3) +
                                     " rad): is the measurement of this part, in these units?");
     }
+    // The residuals of the model kept: the last evaluation may have been of a trial step
+    // the loop refused, whose points can all lie elsewhere.
+    evaluate(model, false, used);
     // Outliers against this fit (the B-spline's too, so that a bump it holds is not taken
     // for outliers), by a robust σ of the points it used; every point is judged anew (a
     // point the first, spike-pulled fit dropped comes back once the fit settles).
