@@ -4,6 +4,7 @@
 #include <cmath>
 #include <numbers>
 
+#include "freeturn/core/error.hpp"
 #include "freeturn/path/spiral.hpp"
 #include "freeturn/surface/even_asphere.hpp"
 #include "freeturn/tool/tool_compensator.hpp"
@@ -42,6 +43,20 @@ SimulationResult cut_flat(double f, double planned, double actual) {
 }  // namespace
 
 TEST_SUITE("verify") {
+  TEST_CASE("a radial step as wide as the aperture is refused: it would sample r = 0 alone") {
+    const EvenAsphere flat(0, 0);
+    SimulationOptions s;
+    s.outer_radius = 4.0;
+    s.columns = 2;
+    s.radial_step = 10;  // radii 0 only: a form error of 0 for any cut
+    CHECK_THROWS_WITH_AS(CutSimulator(flat, 0.2, s),
+                         doctest::Contains("leaves 1 radii over r = 0 to 4 mm"), InputError);
+    s.radial_step = 2.1;  // 0 and 2.1: still too few
+    CHECK_THROWS_AS(CutSimulator(flat, 0.2, s), InputError);
+    s.radial_step = 2;  // 0, 2 and 4
+    CHECK_NOTHROW(CutSimulator(flat, 0.2, s));
+  }
+
   TEST_CASE("flat face: the scallop between passes f apart is R − √(R² − f²/4) to 1e-3") {
     const double f = 0.05, R = 0.5;
     const SimulationResult r = cut_flat(f, R, R);

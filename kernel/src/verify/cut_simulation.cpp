@@ -6,6 +6,7 @@
 #include <numbers>
 
 #include "freeturn/core/error.hpp"
+#include "freeturn/core/number_text.hpp"
 #include "freeturn/core/parallel_for.hpp"
 #include "freeturn/path/pvt_rule.hpp"
 
@@ -58,6 +59,13 @@ CutSimulator::CutSimulator(const Surface& design, double nose_radius, const Simu
     throw InputError("simulation", "needs a radial step > 0, outer > inner radius and an even number of columns");
   if (o_.band <= 0 || o_.band > R_) o_.band = R_;
   const double rings = std::floor((o.outer_radius - o.inner_radius) / o.radial_step) + 1;
+  // A step as wide as the aperture samples r = 0 alone, and reports a form error of 0.
+  if (rings < 3)
+    throw InputError("simulation", "a radial step of " + significant_text(o.radial_step, 6) +
+                                       " mm leaves " + std::to_string(static_cast<int>(rings)) +
+                                       " radii over r = " + significant_text(o.inner_radius, 6) +
+                                       " to " + significant_text(o.outer_radius, 6) +
+                                       " mm, too few for a form error; give a finer --radial-step");
   const double cells = rings * o.columns;
   if (!(cells <= static_cast<double>(o.max_cells)))
     throw InputError("simulation", "the grid would hold " + std::to_string(static_cast<long>(cells)) +
