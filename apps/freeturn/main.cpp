@@ -11,7 +11,6 @@
 #include <CLI/CLI.hpp>
 
 #include "commands.hpp"
-#include "freeturn/core/parallel_for.hpp"
 #include "freeturn/freeturn.hpp"
 #include "freeturn/io/atomic_file.hpp"
 

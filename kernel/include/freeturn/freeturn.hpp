@@ -4,6 +4,7 @@
 // planning, compensation, machines, posts (docs/conventions.md, "Layout").
 
 #include "freeturn/core/error.hpp"
+#include "freeturn/core/thread_limits.hpp"
 #include "freeturn/core/version.hpp"
 #include "freeturn/job/job.hpp"
 #include "freeturn/job/yaml_limits.hpp"

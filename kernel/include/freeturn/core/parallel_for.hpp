@@ -6,11 +6,9 @@
 
 #include <functional>
 
-namespace freeturn {
+#include "freeturn/core/thread_limits.hpp"
 
-// The most threads a caller may ask for: the command line's bound, and the library's (a
-// typo of 100 000 would start that many threads).
-inline constexpr int kMaxThreads = 1024;
+namespace freeturn {
 
 // The hardware's threads (at least 1) for 0, or `requested` from 1 to kMaxThreads; any
 // other number is an InputError at "threads".

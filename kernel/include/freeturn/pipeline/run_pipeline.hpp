@@ -42,8 +42,9 @@ struct RunOptions {
   // residual (grid CSV, coloured PLY) with its figures in the report.
   std::optional<SimulationOptions> simulation;
   std::uintmax_t max_yaml_bytes = kMaxYamlBytes;  // the machine file's size bound
-  // Threads that plan the spiral (0: the hardware's). Every output is the same on any
-  // number; the simulation has its own (SimulationOptions::threads).
+  // Threads that plan the spiral (0: the hardware's; at most kMaxThreads, else an
+  // InputError). Every output is the same on any number; the simulation has its own
+  // (SimulationOptions::threads).
   int threads = 0;
   // A constant-rpm spiral is planned once to find the highest speed its blocks allow, then
   // written at that speed. The plan does not depend on the speed, so the first run's path
