@@ -1,8 +1,6 @@
 // freeturn ncdiff A B: semantic comparison of two NC programs (for CI's golden files).
 #include <cstdio>
 #include <cstdlib>
-#include <fstream>
-#include <sstream>
 #include <string>
 #include <vector>
 
@@ -11,24 +9,13 @@
 #include "freeturn/io/nc_program.hpp"
 
 namespace freeturn::cli {
-namespace {
-
-std::string read_whole(const std::string& path) {
-  std::ifstream in(path, std::ios::binary);
-  if (!in) throw InputError(path, "cannot open the file for reading");
-  std::ostringstream s;
-  s << in.rdbuf();
-  return s.str();
-}
-
-}  // namespace
 
 int run_ncdiff(const NcDiffArgs& args) {
   NcDiffOptions o;
   o.axis_tolerance = args.tolerance;
   const std::vector<std::string> files = {args.a, args.b};
-  const auto a = parse_nc(read_whole(files[0]), files[0]);
-  const auto b = parse_nc(read_whole(files[1]), files[1]);
+  const auto a = parse_nc(read_nc_text(files[0]), files[0]);
+  const auto b = parse_nc(read_nc_text(files[1]), files[1]);
   const NcDiffResult r = nc_diff(a, files[0], b, files[1], o);
   if (!args.quiet) {
     std::printf("%ld blocks vs %ld blocks\n", r.blocks_a, r.blocks_b);

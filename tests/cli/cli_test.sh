@@ -57,6 +57,12 @@ printf '%%\nG21 G18\nG1 X1.000000 Z-0.500000 C10.0 F100\nG1 X0.9001 Z-0.4\nM2\n'
 contains "ncdiff names the line" "$tmp/stdout" "a.nc:4 vs $tmp/c.nc:4: X 0.9"
 echo "hello, world" > "$tmp/d.txt"
 "$freeturn" ncdiff "$tmp/a.nc" "$tmp/d.txt" > /dev/null 2> "$tmp/err"; expect "ncdiff not NC" 2 $?
+# A device or a pipe is no program: /dev/zero was read until memory ran out, a pipe's open
+# blocked for good.
+timeout 10 "$freeturn" ncdiff /dev/zero "$tmp/a.nc" > /dev/null 2> "$tmp/err"; expect "ncdiff /dev/zero" 2 $?
+contains "ncdiff /dev/zero says why" "$tmp/err" "/dev/zero: is not a regular file"
+mkfifo "$tmp/pipe.nc"
+timeout 10 "$freeturn" ncdiff "$tmp/a.nc" "$tmp/pipe.nc" > /dev/null 2> "$tmp/err"; expect "ncdiff a pipe" 2 $?
 
 # plugins: the iso post and its three machines are found in the build tree.
 "$freeturn" plugins > "$tmp/stdout"; expect "plugins" 0 $?

@@ -218,14 +218,23 @@ NcDiffResult nc_diff(const std::vector<NcBlock>& a, const std::string& name_a,
   return r;
 }
 
+std::string read_nc_text(const std::string& path) {
+  std::error_code ec;
+  const std::filesystem::file_status status = std::filesystem::status(path, ec);
+  if (ec || !std::filesystem::exists(status))
+    throw InputError(SourceLocation{path, 0, 0}, "no such NC program");
+  if (!std::filesystem::is_regular_file(status))
+    throw InputError(SourceLocation{path, 0, 0},
+                     "is not a regular file (a directory, device or pipe): give an NC program");
+  std::ifstream in(path, std::ios::binary);
+  if (!in) throw InputError(SourceLocation{path, 0, 0}, "cannot open the NC program");
+  std::ostringstream text;
+  text << in.rdbuf();
+  return text.str();
+}
+
 std::vector<NcBlock> read_nc_program(const std::string& path) {
-  const auto read = [](const std::string& file) {
-    std::ifstream in(file, std::ios::binary);
-    if (!in) throw InputError(SourceLocation{file, 0, 0}, "cannot open the NC program");
-    std::ostringstream text;
-    text << in.rdbuf();
-    return parse_nc(text.str(), file);
-  };
+  const auto read = [](const std::string& file) { return parse_nc(read_nc_text(file), file); };
   std::vector<NcBlock> blocks;
   for (NcBlock& b : read(path)) {
     std::string child;

@@ -31,6 +31,10 @@ std::vector<NcBlock> parse_nc(const std::string& text, const std::string& file);
 // the child files a post writes (one level).
 std::vector<NcBlock> read_nc_program(const std::string& path);
 
+// The whole text of an NC program file. Only a regular file: a device (/dev/zero) would be
+// read until memory runs out, and a pipe would block the open for good.
+std::string read_nc_text(const std::string& path);
+
 struct NcDiffOptions {
   double axis_tolerance = 1e-9;    // mm or degrees, for X Y Z A B C U V W I J K
   double other_tolerance = 1e-9;   // relative, for F, S, P and other numeric words
