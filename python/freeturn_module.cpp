@@ -24,12 +24,12 @@ namespace {
 using Array = py::array_t<double, py::array::c_style | py::array::forcecast>;
 
 // A dict (of dicts, lists, numbers, strings, booleans) as YAML, for surface(). As deep as
-// a YAML file may nest (yaml_reader): a dict that holds itself, or a list of lists a
+// a YAML file may nest (kMaxYamlDepth): a dict that holds itself, or a list of lists a
 // hundred thousand deep, is refused instead of overflowing the stack.
 YAML::Node to_yaml(const py::handle& value, int depth = 0) {
-  if (depth > 64)
-    throw py::value_error(
-        "the surface spec nests more than 64 levels deep (a dict or list that holds itself?)");
+  if (depth > kMaxYamlDepth)
+    throw py::value_error("the surface spec nests more than " + std::to_string(kMaxYamlDepth) +
+                          " levels deep (a dict or list that holds itself?)");
   if (py::isinstance<py::dict>(value)) {
     YAML::Node map(YAML::NodeType::Map);
     for (const auto& [k, v] : value.cast<py::dict>())

@@ -140,7 +140,9 @@ std::size_t value_budget(const std::string& text) {
 // allowed (value_budget).
 void check_tree(const YAML::Node& node, const SourceText& text, const std::string& file, int depth,
                 std::size_t& budget) {
-  if (depth > 64) throw InputError(location_of(node, file), "nested more than 64 levels deep");
+  if (depth > kMaxYamlDepth)
+    throw InputError(location_of(node, file),
+                     "nested more than " + std::to_string(kMaxYamlDepth) + " levels deep");
   if (budget == 0)
     throw InputError(location_of(node, file),
                      "the file stands for more values than it could hold written out: its "
