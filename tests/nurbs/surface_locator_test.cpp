@@ -274,4 +274,43 @@ TEST_SUITE("nurbs") {
       CHECK((hit.point - target).norm() <= 1e-10);
     }
   }
+
+  TEST_CASE("cold rays along −z on a surface whose x and y are affine in u and v all hit") {
+    // A 35 × 35 bicubic over [−6, 6]² with its control points' x and y on their Greville
+    // abscissae (x = −6 + 12u exactly, to rounding), z a 0.2 µm ripple: a B-spline of a
+    // measured error (metrology/registration.cpp). After the first Newton step S_x and S_y
+    // meet the ray exactly and only t is left, so Newton's step in (u, v) is exactly 0;
+    // that had been read as "pinned to a corner" and a miss: 1 345 of these 20 001 rays
+    // (a compensated job's spiral stopped at r = 3.42 mm, inside the data).
+    const int n = 35;
+    std::vector<double> knots(n + 4);
+    for (int k = 0; k < n + 4; ++k) knots[k] = std::clamp((k - 3) / double(n - 3), 0.0, 1.0);
+    const auto greville = [&](int i) { return (knots[i + 1] + knots[i + 2] + knots[i + 3]) / 3; };
+    std::vector<Vector3d> pts;
+    for (int i = 0; i < n; ++i)
+      for (int j = 0; j < n; ++j) {
+        const double x = -6 + 12 * greville(i), y = -6 + 12 * greville(j);
+        pts.emplace_back(x, y, 2e-7 * std::sin(1.3 * x) * std::cos(0.7 * y));
+      }
+    const NurbsSurface s(3, 3, knots, knots, pts, std::vector<double>(pts.size(), 1.0));
+    const SurfaceLocator locator(s);
+    // The point the compensated job missed, then random points over the square.
+    std::vector<std::array<double, 2>> xy = {{-1.5001302762635658, 3.0757228682925852}};
+    std::mt19937 rng(3);
+    std::uniform_real_distribution<double> coordinate(-5.9, 5.9);
+    for (int k = 0; k < 20000; ++k) xy.push_back({coordinate(rng), coordinate(rng)});
+    int missed = 0;
+    for (const auto& [x, y] : xy) {
+      const auto hit = locator.intersect_ray({x, y, 17}, {0, 0, -1});
+      if (hit.status != Status::kOk) {
+        ++missed;
+        continue;
+      }
+      // x and y are affine in u and v: the hit's parameters are known in closed form.
+      CHECK(std::abs(hit.u - (x + 6) / 12) <= 1e-13);
+      CHECK(std::abs(hit.v - (y + 6) / 12) <= 1e-13);
+      CHECK(std::abs(hit.point.z() - s.point((x + 6) / 12, (y + 6) / 12).z()) <= 1e-15);
+    }
+    CHECK(missed == 0);
+  }
 }

@@ -63,21 +63,26 @@ RayHit SurfaceLocator::intersect_ray(const Vector3d& origin, const Vector3d& dir
     // creeps toward an edge it must reach and is not thrown onto a pole. On the edge and
     // pushed outward, the step slides along the edge instead.
     double alpha_max = 1.0;
-    bool limited = false;
+    bool limited = false, pinned = false;
     const auto limit = [&](double x, double& dx, double lo, double hi, bool closed) {
       if (closed || dx == 0) return;
       const double room = dx > 0 ? hi - x : lo - x;  // same sign as dx, or 0
       if (std::abs(dx) <= std::abs(room)) return;
       limited = true;
-      if (room == 0)
+      if (room == 0) {
         dx = 0;
-      else
+        pinned = true;
+      } else {
         alpha_max = std::min(alpha_max, 0.9 * room / dx);
+      }
     };
     limit(u, delta.x(), surface_.front_u(), surface_.back_u(), closed_u_);
     limit(v, delta.y(), surface_.front_v(), surface_.back_v(), closed_v_);
-    if (delta.x() == 0 && delta.y() == 0) {
-      hit.status = Status::kMissed;  // pinned to a corner: the hit is outside the domain
+    // Pinned to a corner: the hit is outside the domain. A step of zero in u and v that
+    // no edge made is Newton's own, where only t is left to settle (S_x and S_y met
+    // exactly, as on a surface whose x and y are affine in u and v): that is no miss.
+    if (pinned && delta.x() == 0 && delta.y() == 0) {
+      hit.status = Status::kMissed;
       break;
     }
     // Backtracking: halve the step until |F| decreases.
