@@ -224,6 +224,30 @@ YAML
 sampled "a negative weight" "$tmp/nurbs.yaml" "$tmp/nurbs.yaml:11:25:" "surface.weights[4]"
 sed 's/knots_v: \[0, 0, 0.5, 1, 1\]/knots_v: [0, 0, 0.7, 0.5, 1]/; s/-2/1/' "$tmp/nurbs.yaml" > "$tmp/knots.yaml"
 sampled "decreasing knots" "$tmp/knots.yaml" "$tmp/knots.yaml:9:24:" "surface.knots_v[3]"
+# A least-squares height grid smoothed 1e16 had lost its x-y to rounding (the aperture then
+# lay beyond a 7 µm surface, reported at the data); the weight is refused at its own key.
+cat > "$tmp/grid.yaml" <<'YAML'
+name: g
+aperture:
+  outer_radius: 1.0
+surface:
+  type: height_grid
+  x: [-1.5, -0.75, 0, 0.75, 1.5]
+  y: [-1.5, -0.75, 0, 0.75, 1.5]
+  z: [[0, 0, 0, 0, 0], [0, 1, 1, 1, 0], [0, 1, 2, 1, 0], [0, 1, 1, 1, 0], [0, 0, 0, 0, 0]]
+  fit: least_squares
+  control_points: [4, 4]
+  smoothing: 1e16
+YAML
+sampled "a smoothing weight that swamps the grid" "$tmp/grid.yaml" "$tmp/grid.yaml:11:14:" "surface.smoothing is 1e+16, more than 1e8 times"
+
+# The same weight on a measured error's B-spline is refused at its key in the job, not at
+# the measurement file.
+sed -e "s|fit: {zernike: 21}|fit: {zernike: 21, bspline: {control_points: 12, smoothing: 1e30}}|" \
+    -e "s|\.\./data/|$src/configs/data/|" \
+    "$src/configs/jobs/compound_eye_compensated.yaml" > "$tmp/heavy.yaml"
+refused "a B-spline smoothing that swamps the measurement" "$tmp/heavy.yaml" "$tmp/heavy.yaml:24:63:" \
+  "compensation.fit.bspline.smoothing is 1e+30, more than 1e8 times"
 
 # SIGTERM and SIGINT mid-run remove the temporaries, as an error does. (Job control on:
 # without it a background job ignores SIGINT, and freeturn leaves an ignored signal so.)

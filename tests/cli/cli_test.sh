@@ -203,6 +203,17 @@ cmp -s "$tmp/sim/oap_segment.residual.csv" "$tmp/sim1/oap_segment.residual.csv" 
 "$freeturn" simulate "$src/configs/jobs/oap_segment.yaml" -o "$tmp/sim0" --threads 0 > /dev/null 2>&1; expect "simulate --threads 0" 2 $?
 [[ ! -e "$tmp/sim0" ]] || { echo "FAIL: a refused simulate left output"; fail=1; }
 
+# The compensated example with a B-spline after its Zernike terms: the B-spline had ended at
+# the aperture's edge, and the spiral's last turn, projected along the tilted base normal,
+# landed past it ("misses the design surface"); its cold rays missed inside the data too.
+sed -e "s|fit: {zernike: 21}|fit: {zernike: 21, bspline: {control_points: 24}}|" \
+    -e "s|\.\./data/|$src/configs/data/|" \
+    "$src/configs/jobs/compound_eye_compensated.yaml" > "$tmp/bspline.yaml"
+grep -q "bspline: {control_points: 24}" "$tmp/bspline.yaml" || { echo "FAIL: the B-spline job was not made"; fail=1; }
+"$freeturn" check "$tmp/bspline.yaml" --quiet > "$tmp/out.txt" 2> "$tmp/err"
+expect "a compensated job with a B-spline" 0 $?
+contains "a compensated job with a B-spline passes" "$tmp/out.txt" "PASS"
+
 # Progress: on a terminal (a pseudo-terminal from script(1)) run shows points and rate on
 # stderr; with --quiet, or when stderr is not a terminal, it shows none.
 if command -v script > /dev/null; then

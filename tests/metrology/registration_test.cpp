@@ -189,9 +189,20 @@ TEST_SUITE("metrology") {
     for (double x = -3.8; x <= 3.8; x += 0.05)
       for (double y = -3.8; y <= 3.8; y += 0.05) {
         if (std::hypot(x, y) > 3.8) continue;
-        const double b = g.bspline->point((x + 4) / 8, (y + 4) / 8).z();
+        // The B-spline spans [−1.5 R_n, 1.5 R_n]² (kBsplineReach): x and y affine in u, v.
+        const double b = g.bspline->point((x + 6) / 12, (y + 6) / 12).z();
+        CHECK(bspline_height(*g.bspline, g.normalization_radius, x, y) == b);
         d.push_back(fitted.sag(x, y) + b - error.sag(x, y));
       }
+    // The corrected design is evaluated past the aperture (the nose overhangs its edge, a
+    // tilted base normal lands beyond it): the B-spline has a value to 1.5 R_n, with x and y
+    // those of its square's corners, and the same knot spacing as 24 per side over 2 R_n.
+    CHECK(g.bspline_control == 24);
+    CHECK(g.bspline->count_u() == 3 + 32);
+    CHECK(g.bspline->point(0, 0).x() == doctest::Approx(-6.0).epsilon(1e-12));
+    CHECK(g.bspline->point(1, 1).y() == doctest::Approx(6.0).epsilon(1e-12));
+    for (double t = 0; t < 2 * M_PI; t += 0.1)
+      CHECK(std::isfinite(bspline_height(*g.bspline, 4.0, 5.9 * std::cos(t), 5.9 * std::sin(t))));
     double mean = 0, sq = 0;
     for (const double v : d) mean += v;
     mean /= static_cast<double>(d.size());

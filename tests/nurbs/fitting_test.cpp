@@ -196,4 +196,77 @@ TEST_SUITE("nurbs") {
                          "control points or add smoothing",
                          InputError);
   }
+
+  TEST_CASE(
+      "a smoothing weight that swamps the data is refused, and one under the bound keeps x-y") {
+    // A 9 × 7 grid over [−3, 3] × [−2, 2] mm, x and y linear in the rows and columns: the
+    // penalty is zero on linear functions, so x and y must come back exactly at any weight the
+    // fit accepts. 1e16 had turned this domain into a few micrometres (rounding of λ·E).
+    const int rows = 9, cols = 7;
+    std::vector<Vector3d> grid;
+    for (int i = 0; i < rows; ++i)
+      for (int j = 0; j < cols; ++j) {
+        const double x = -3 + 6.0 * i / (rows - 1), y = -2 + 4.0 * j / (cols - 1);
+        grid.emplace_back(x, y, 0.01 * std::sin(x) * std::cos(y));
+      }
+    SurfaceFitOptions o;
+    o.count_u = 6;
+    o.count_v = 5;
+    for (int i = 0; i < rows; ++i) o.params_u.push_back(static_cast<double>(i) / (rows - 1));
+    for (int j = 0; j < cols; ++j) o.params_v.push_back(static_cast<double>(j) / (cols - 1));
+    o.smoothing = 1e16;
+    double limit = 0;
+    try {
+      fit_surface_grid(grid, rows, cols, o);
+      FAIL("a weight of 1e16 was accepted");
+    } catch (const InputError& e) {
+      CHECK(e.where() == "smoothing");
+      const std::string text = e.problem();
+      const auto at = text.find("at most ");
+      REQUIRE(at != std::string::npos);
+      limit = std::stod(text.substr(at + 8));
+    }
+    REQUIRE(limit > 0);
+    // Just under the bound the fit is accepted, and x-y are those of the grid to 1e-8 of
+    // their size: the rounding the bound allows is ε·1e8 ≈ 1e-8.
+    o.smoothing = 0.9 * limit;
+    const SurfaceFit heavy = fit_surface_grid(grid, rows, cols, o);
+    for (int k = 0; k <= 20; ++k)
+      for (int l = 0; l <= 20; ++l) {
+        const Vector3d p = heavy.surface.point(k / 20.0, l / 20.0);
+        CHECK(std::abs(p.x() - (-3 + 6.0 * k / 20)) <= 6e-8);
+        CHECK(std::abs(p.y() - (-2 + 4.0 * l / 20)) <= 4e-8);
+      }
+    o.smoothing = 1.1 * limit;
+    CHECK_THROWS_AS(fit_surface_grid(grid, rows, cols, o), InputError);
+    // The scattered fit and the curve fit refuse such a weight the same way.
+    std::vector<double> us, vs;
+    for (int i = 0; i < rows; ++i)
+      for (int j = 0; j < cols; ++j) {
+        us.push_back(o.params_u[i]);
+        vs.push_back(o.params_v[j]);
+      }
+    o.params_u.clear();
+    o.params_v.clear();
+    o.smoothing = 1e30;
+    try {
+      fit_surface_scattered(grid, us, vs, o);
+      FAIL("a weight of 1e30 was accepted");
+    } catch (const InputError& e) {
+      CHECK(e.where() == "smoothing");
+    }
+    o.smoothing = 1e-3;
+    CHECK(fit_surface_scattered(grid, us, vs, o).surface.count_u() == 6);
+    std::vector<Vector3d> line;
+    for (int k = 0; k <= 20; ++k) line.push_back(cubic(k / 20.0));
+    CurveFitOptions c;
+    c.count = 8;
+    c.smoothing = 1e30;
+    try {
+      fit_curve(line, c);
+      FAIL("a weight of 1e30 was accepted");
+    } catch (const InputError& e) {
+      CHECK(e.where() == "smoothing");
+    }
+  }
 }

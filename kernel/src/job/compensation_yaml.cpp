@@ -2,6 +2,7 @@
 
 #include <cmath>
 #include <filesystem>
+#include <optional>
 #include <set>
 
 #include "freeturn/core/number_text.hpp"
@@ -75,6 +76,9 @@ MeasuredPart read_part(const YAML::Node& node, const std::string& job_file, cons
     }
   }
   o.zernike_terms = 36;
+  // Where a smoothing the registration finds too heavy is reported: its value, or the
+  // bspline map that takes the default.
+  std::optional<SourceLocation> smoothing_at;
   if (map.has("fit")) {
     MapReader fit(map.child("fit"), job_file, "compensation.fit");
     o.zernike_terms = static_cast<int>(fit.in_range("zernike", 36, 1, 231, false, " terms"));
@@ -90,6 +94,8 @@ MeasuredPart read_part(const YAML::Node& node, const std::string& job_file, cons
       // A round aperture leaves the square's corners without data: a little smoothing
       // fills them (and no more) unless the job asks for more.
       o.bspline_smoothing = b.non_negative("smoothing", 1e-7);
+      smoothing_at =
+          location_of(b.has("smoothing") ? b.child("smoothing") : fit.child("bspline"), job_file);
       b.finish();
     }
     fit.finish();
@@ -104,7 +110,13 @@ MeasuredPart read_part(const YAML::Node& node, const std::string& job_file, cons
   part.points = static_cast<long>(m.points.size());
   if (!o.profile && m.profile)
     map.fail("format", "a profile needs format: profile");
-  part.registration = register_measurement(design, m, o, path);
+  try {
+    part.registration = register_measurement(design, m, o, path);
+  } catch (const InputError& e) {
+    if (e.where() != "smoothing" || !smoothing_at) throw;
+    throw InputError(*smoothing_at, "compensation.fit.bspline.smoothing " + e.problem() +
+                                        " (the B-spline fit of the error)");
+  }
   return part;
 }
 

@@ -257,6 +257,7 @@ std::unique_ptr<Surface> read_height_grid(MapReader& map) {
     try {
       s = nurbs::fit_surface_grid(grid, rows, cols, o).surface;
     } catch (const InputError& e) {
+      if (e.where() == "smoothing") map.fail("smoothing", "surface.smoothing " + e.problem());
       map.fail("control_points", e.where() + ": " + e.problem());
     }
   } else {
@@ -320,6 +321,7 @@ std::unique_ptr<Surface> read_point_cloud(MapReader& map) {
   try {
     fit = nurbs::fit_surface_scattered(points, u, v, o);
   } catch (const InputError& e) {
+    if (e.where() == "smoothing") map.fail("smoothing", "surface.smoothing " + e.problem());
     map.fail("control_points", e.where() + ": " + e.problem() +
                                    " (add smoothing, or fewer control points)");
   }

@@ -44,6 +44,15 @@ struct Model {
 
 }  // namespace
 
+double bspline_height(const nurbs::NurbsSurface& bspline, double normalization_radius, double x,
+                      double y) {
+  const double half = kBsplineReach * normalization_radius;
+  return bspline
+      .point(std::clamp((x + half) / (2 * half), 0.0, 1.0),
+             std::clamp((y + half) / (2 * half), 0.0, 1.0))
+      .z();
+}
+
 Registration register_measurement(const Surface& design, const Measurement& m,
                                   const RegistrationOptions& o, const std::string& where) {
   Model model;
@@ -123,11 +132,14 @@ Registration register_measurement(const Surface& design, const Measurement& m,
   };
 
   // The B-spline part (RegistrationOptions::bspline_control): what the Zernike terms leave,
-  // fitted over [−R_n, R_n]² at the points used, where they lie on the design.
-  const double rn = model.rn;
-  const auto bspline_at = [rn](const nurbs::NurbsSurface& b, const Eigen::Vector3d& q) {
-    return b.point(std::clamp((q.x() + rn) / (2 * rn), 0.0, 1.0),
-                   std::clamp((q.y() + rn) / (2 * rn), 0.0, 1.0)).z();
+  // fitted at the points used, where they lie on the design, over a square that reaches
+  // kBsplineReach · R_n: the planner and the checks evaluate the corrected design past the
+  // aperture's edge (a projection along a tilted base normal lands beyond it, the nose's
+  // edge overhangs it), where a square of [−R_n, R_n]² had no value and every space spiral
+  // stopped at its last turn. The ring beyond the data is filled by the smoothing.
+  const double half = kBsplineReach * model.rn;
+  const auto bspline_at = [&model](const nurbs::NurbsSurface& b, const Eigen::Vector3d& q) {
+    return bspline_height(b, model.rn, q.x(), q.y());
   };
   const auto fit_bspline = [&]() -> std::optional<nurbs::NurbsSurface> {
     if (o.bspline_control <= 0) return std::nullopt;
@@ -137,10 +149,12 @@ Registration register_measurement(const Surface& design, const Measurement& m,
       if (!inside[i]) continue;
       const Eigen::Vector3d q = model.to_design(m.points[i]);
       points.emplace_back(q.x(), q.y(), residual[i]);
-      u.push_back(std::clamp((q.x() + rn) / (2 * rn), 0.0, 1.0));
-      v.push_back(std::clamp((q.y() + rn) / (2 * rn), 0.0, 1.0));
+      u.push_back(std::clamp((q.x() + half) / (2 * half), 0.0, 1.0));
+      v.push_back(std::clamp((q.y() + half) / (2 * half), 0.0, 1.0));
     }
-    const int c = o.bspline_control;
+    // bspline_control per side over the aperture's diameter: the same knot spacing over
+    // the wider square.
+    const int c = 3 + static_cast<int>(std::ceil(kBsplineReach * (o.bspline_control - 3)));
     nurbs::SurfaceFitOptions fo;
     fo.count_u = fo.count_v = c;
     for (int k = 0; k <= 3; ++k) fo.knots_u.push_back(0.0);
@@ -149,8 +163,20 @@ Registration register_measurement(const Surface& design, const Measurement& m,
     fo.knots_v = fo.knots_u;
     fo.smoothing = o.bspline_smoothing;
     try {
-      return nurbs::fit_surface_scattered(points, u, v, fo).surface;
+      const nurbs::NurbsSurface fitted = nurbs::fit_surface_scattered(points, u, v, fo).surface;
+      // x and y are affine in u and v (the thin-plate energy and the data both hold them
+      // so); the solve leaves them so only to rounding, 1e-11 mm in the square's corners
+      // where no data lies. Placed exactly, the height field needs no inversion.
+      std::vector<Eigen::Vector4d> pw(fitted.homogeneous_points());
+      for (int i = 0; i < c; ++i)
+        for (int j = 0; j < c; ++j) {
+          Eigen::Vector4d& p = pw[static_cast<std::size_t>(i * c + j)];
+          p.x() = -half + 2 * half * fitted.knots_u().greville(i);
+          p.y() = -half + 2 * half * fitted.knots_v().greville(j);
+        }
+      return nurbs::NurbsSurface(fitted.knots_u(), fitted.knots_v(), std::move(pw));
     } catch (const InputError& e) {
+      if (e.where() == "smoothing") throw;  // the caller knows where the weight was set
       throw InputError(where, "the B-spline fit of the error: " + e.problem() +
                                   " (fewer control points, or smoothing)");
     }
@@ -281,6 +307,7 @@ Registration register_measurement(const Surface& design, const Measurement& m,
     }
     out.bspline_rms = std::sqrt(b_sq / static_cast<double>(std::max(used, 1L)));
     out.bspline = std::move(bspline);
+    out.bspline_control = o.bspline_control;
   }
   out.fit_rms = std::sqrt(fit_sq / static_cast<double>(std::max(used, 1L)));
   out.measured_rms = std::sqrt(e_sq / static_cast<double>(std::max(used, 1L)));

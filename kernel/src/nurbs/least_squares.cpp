@@ -6,6 +6,7 @@
 
 #include "collocation.hpp"
 #include "freeturn/core/error.hpp"
+#include "freeturn/core/number_text.hpp"
 #include "freeturn/nurbs/basis.hpp"
 #include "freeturn/nurbs/curve_locator.hpp"
 #include "freeturn/nurbs/parameterization.hpp"
@@ -66,6 +67,32 @@ MatrixXd solve_normal_equations(const SparseMatrix& a, const MatrixXd& b,
   return x;
 }
 
+// A smoothing weight λ this many times the data's own weight (the largest diagonal entries
+// of λ·E's matrix against NᵀN's) fits the energy's null space, a line or a plane, whatever
+// the data, and λ·E's rounding, about 1e-16 of it, then moves the fit by ε·λ‖E‖/‖NᵀN‖ of
+// its size (1e16 turned a 3 mm grid's x-y into 7 µm). At 1e8 that is parts in 1e8, well
+// below a nanometre over a part, and the fit is long past any smoothing a user means.
+constexpr double kMaxSmoothingWeight = 1e8;
+
+double largest_diagonal(const SparseMatrix& m) {
+  double largest = 0;
+  for (Eigen::Index i = 0; i < std::min(m.rows(), m.cols()); ++i)
+    largest = std::max(largest, std::abs(m.coeff(i, i)));
+  return largest;
+}
+
+void check_smoothing_weight(double smoothing, double data_weight, double energy_weight) {
+  if (!(smoothing > 0 && energy_weight > 0 && data_weight > 0)) return;
+  const double limit = kMaxSmoothingWeight * data_weight / energy_weight;
+  if (smoothing > limit)
+    throw InputError("smoothing", "is " + shortest_text(smoothing) +
+                                      ", more than 1e8 times the data's own weight (at most " +
+                                      significant_text(limit, 3) +
+                                      " for these points and control points): the fit would be "
+                                      "the smoothest surface whatever the data, and rounding "
+                                      "would move it");
+}
+
 KnotVector fit_knots(const std::vector<double>& given, const std::vector<double>& params,
                      int degree, int count) {
   KnotVector k = given.empty() ? KnotVector(degree, approximation_knots(params, degree, count))
@@ -79,7 +106,11 @@ NurbsCurve solve_curve(const std::vector<Vector3d>& points, const std::vector<do
                        const KnotVector& knots, double smoothing, bool pin_ends) {
   const SparseMatrix n = collocation_matrix(knots, params);
   SparseMatrix a = SparseMatrix(n.transpose()) * n;
-  if (smoothing > 0) a += smoothing * derivative_gram_matrix(knots, 2);
+  if (smoothing > 0) {
+    const SparseMatrix energy = derivative_gram_matrix(knots, 2);
+    check_smoothing_weight(smoothing, largest_diagonal(a), largest_diagonal(energy));
+    a += smoothing * energy;
+  }
   MatrixXd q(static_cast<Eigen::Index>(points.size()), 3);
   for (std::size_t k = 0; k < points.size(); ++k)
     q.row(static_cast<Eigen::Index>(k)) = points[k].transpose();
@@ -164,7 +195,11 @@ SurfaceFit fit_surface_grid(const std::vector<Vector3d>& grid, int rows, int col
                                    const MatrixXd& q) {
     const SparseMatrix n = collocation_matrix(k, t);
     SparseMatrix a = SparseMatrix(n.transpose()) * n;
-    if (options.smoothing > 0) a += options.smoothing * derivative_gram_matrix(k, 2);
+    if (options.smoothing > 0) {
+      const SparseMatrix energy = derivative_gram_matrix(k, 2);
+      check_smoothing_weight(options.smoothing, largest_diagonal(a), largest_diagonal(energy));
+      a += options.smoothing * energy;
+    }
     const std::vector<bool> fixed(static_cast<std::size_t>(k.count()), false);
     return solve_normal_equations(a, n.transpose() * q, fixed, MatrixXd::Zero(k.count(), q.cols()));
   };
@@ -234,6 +269,17 @@ NurbsSurface solve_scattered(const std::vector<Vector3d>& points, const std::vec
                                derivative_gram_matrix(kv, 2)};
     const std::pair<int, int> terms[3] = {{2, 0}, {1, 1}, {0, 2}};
     const double factor[3] = {1.0, 2.0, 1.0};
+    double data_weight = 0, energy_weight = 0;
+    for (int r = 0; r < n; ++r)
+      data_weight = std::max(data_weight, acc[static_cast<std::size_t>(r) * band + p * wv + q]);
+    for (int i = 0; i < nu; ++i)
+      for (int j = 0; j < nv; ++j) {
+        double diagonal = 0;
+        for (int t = 0; t < 3; ++t)
+          diagonal += factor[t] * g[terms[t].first].coeff(i, i) * h[terms[t].second].coeff(j, j);
+        energy_weight = std::max(energy_weight, diagonal);
+      }
+    check_smoothing_weight(smoothing, data_weight, energy_weight);
     for (int t = 0; t < 3; ++t) {
       const SparseMatrix& gu = g[terms[t].first];
       const SparseMatrix& gv = h[terms[t].second];

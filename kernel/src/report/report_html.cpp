@@ -480,10 +480,9 @@ std::string report_html(const RunReport& r, const Surface& design) {
           const double y = outer - (py + 0.5) * 2 * outer / kMapPixels;
           const double rad = std::hypot(x, y);
           if (rad > outer || rad < p.inner_radius) continue;
-          const double rn = m.registration.normalization_radius;
           const double b = m.registration.bspline
-                               ? m.registration.bspline->point(std::clamp((x + rn) / (2 * rn), 0.0, 1.0),
-                                                               std::clamp((y + rn) / (2 * rn), 0.0, 1.0)).z()
+                               ? bspline_height(*m.registration.bspline,
+                                                m.registration.normalization_radius, x, y)
                                : 0.0;
           const double e = m.gain * (error.sag(x, y) + b);
           map.mean[static_cast<std::size_t>(py) * kMapPixels + static_cast<std::size_t>(px)] = e;

@@ -138,7 +138,7 @@ Json compensation_json(const MeasuredPart& m) {
   j["fit"] = {{"zernike_terms", static_cast<long>(g.zernike.size())},
               {"normalization_radius_mm", g.normalization_radius},
               {"zernike_nm", std::move(zernike)},
-              {"bspline", g.bspline ? Json{{"control_points", g.bspline->count_u()},
+              {"bspline", g.bspline ? Json{{"control_points", g.bspline_control},
                                            {"rms_nm", g.bspline_rms * 1e6}}
                                     : Json(nullptr)},
               {"residual_rms_nm", g.fit_rms * 1e6}};

@@ -30,13 +30,6 @@ struct ThreadSpanCache {
 };
 thread_local ThreadSpanCache span_cache;
 
-// Greville abscissa of control point i: the knot average that reproduces linear functions.
-double greville(const nurbs::KnotVector& k, int i) {
-  double sum = 0;
-  for (int j = 1; j <= k.degree(); ++j) sum += k.knots()[static_cast<std::size_t>(i + j)];
-  return k.degree() == 0 ? k.knots()[static_cast<std::size_t>(i)] : sum / k.degree();
-}
-
 double segment_distance(const Eigen::Vector2d& a, const Eigen::Vector2d& b) {
   const Eigen::Vector2d d = b - a;
   const double len2 = d.squaredNorm();
@@ -70,8 +63,8 @@ NurbsHeightField::NurbsHeightField(nurbs::NurbsSurface surface) : locator_(std::
   // Affine parameters: every control point's x (y) is an affine function of its Greville
   // abscissa in u (v), and the surface is not rational.
   if (!s.is_rational() && s.count_u() >= 2 && s.count_v() >= 2) {
-    const double gu0 = greville(s.knots_u(), 0), gu1 = greville(s.knots_u(), s.count_u() - 1);
-    const double gv0 = greville(s.knots_v(), 0), gv1 = greville(s.knots_v(), s.count_v() - 1);
+    const double gu0 = s.knots_u().greville(0), gu1 = s.knots_u().greville(s.count_u() - 1);
+    const double gv0 = s.knots_v().greville(0), gv1 = s.knots_v().greville(s.count_v() - 1);
     const Eigen::Vector3d p00 = s.control_point(0, 0);
     sx_ = (s.control_point(s.count_u() - 1, 0).x() - p00.x()) / (gu1 - gu0);
     sy_ = (s.control_point(0, s.count_v() - 1).y() - p00.y()) / (gv1 - gv0);
@@ -81,8 +74,8 @@ NurbsHeightField::NurbsHeightField(nurbs::NurbsSurface surface) : locator_(std::
     for (int i = 0; affine_ && i < s.count_u(); ++i)
       for (int j = 0; affine_ && j < s.count_v(); ++j) {
         const Eigen::Vector3d p = s.control_point(i, j);
-        affine_ = std::abs(p.x() - (x0_ + sx_ * greville(s.knots_u(), i))) <= 1e-13 * scale_ &&
-                  std::abs(p.y() - (y0_ + sy_ * greville(s.knots_v(), j))) <= 1e-13 * scale_;
+        affine_ = std::abs(p.x() - (x0_ + sx_ * s.knots_u().greville(i))) <= 1e-13 * scale_ &&
+                  std::abs(p.y() - (y0_ + sy_ * s.knots_v().greville(j))) <= 1e-13 * scale_;
       }
   }
 

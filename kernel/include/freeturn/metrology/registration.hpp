@@ -28,6 +28,10 @@
 
 namespace freeturn {
 
+// How far the B-spline part of the error reaches, in R_n: the corrected design is evaluated
+// past the aperture's edge (docs/metrology.md).
+inline constexpr double kBsplineReach = 1.5;
+
 struct RegistrationOptions {
   bool piston = true, tilt = true, decentre = true, clocking = true;  // the pose's free parts
   // A 2-D profile along x (y = 0): only the tilt about y, the decentre in x and the
@@ -39,9 +43,10 @@ struct RegistrationOptions {
   double outlier_sigmas = 5;
   int max_iterations = 50;
   // What the Zernike terms leave, fitted after them as a bicubic B-spline height over
-  // [−R_n, R_n]² with bspline_control × bspline_control control points and thin-plate
-  // smoothing (nurbs/least_squares.hpp): a local error (a bump, a zone) no low-order
-  // polynomial holds. 0: no B-spline.
+  // [−kBsplineReach·R_n, kBsplineReach·R_n]², bspline_control control points per side over
+  // the aperture's diameter (the same knot spacing beyond it), with thin-plate smoothing
+  // (nurbs/least_squares.hpp): a local error (a bump, a zone) no low-order polynomial holds.
+  // 0: no B-spline.
   int bspline_control = 0;
   double bspline_smoothing = 0;
 };
@@ -51,14 +56,21 @@ struct Registration {
   double decentre_x = 0, decentre_y = 0, clocking = 0;  // mm, mm, rad
   double normalization_radius = 0;
   std::vector<double> zernike;  // a_j for j = 1 … N (mm); 0 for terms left out
-  // The B-spline part of the error (x, y, z in mm; x affine in u, y in v), when asked for.
+  // The B-spline part of the error (x, y, z in mm; x affine in u, y in v, over
+  // [−kBsplineReach·R_n, kBsplineReach·R_n]²), when asked for; bspline_height reads it.
   std::optional<nurbs::NurbsSurface> bspline;
+  int bspline_control = 0;  // its control points per side over the aperture, as asked for
   double bspline_rms = 0;  // its RMS over the points used (mm)
   double measured_rms = 0, measured_pv = 0;  // the error E + r over the points used (mm)
   double fit_rms = 0;     // what E (Zernike and B-spline) does not explain, over the points used (mm)
   long used = 0, outliers = 0, outside = 0;  // points used, dropped as outliers, outside the aperture
   int iterations = 0;
 };
+
+// The B-spline part of an error at (x, y) (mm, the design's frame), fitted for the
+// normalization radius R_n: (x, y) outside its square take its edge's value.
+double bspline_height(const nurbs::NurbsSurface& bspline, double normalization_radius, double x,
+                      double y);
 
 // Throws InputError at `where` (the measurement file) when the measurement cannot be
 // registered: too few points inside the aperture, or a pose that runs away (diverging).

@@ -42,6 +42,14 @@ class KnotVector {
   // little between calls, as it does along a path.
   int find_span(double u, int hint) const;
 
+  // The Greville abscissa of control point i, (u_{i+1} + … + u_{i+p}) / p: placed at these,
+  // control points of a linear function make the spline reproduce it (§9.3).
+  double greville(int i) const {
+    double sum = 0;
+    for (int j = 1; j <= degree_; ++j) sum += knots_[static_cast<std::size_t>(i + j)];
+    return sum / degree_;
+  }
+
   // Multiplicity of the knot value u (0 when u is not a knot).
   int multiplicity(double u) const;
 

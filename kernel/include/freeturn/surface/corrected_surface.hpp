@@ -3,6 +3,7 @@
 // the surface a compensated job cuts (docs/metrology.md), each correction the form error a
 // measured part showed, so that the next part comes out nearer the design.
 
+#include <algorithm>
 #include <memory>
 #include <utility>
 #include <vector>
@@ -48,7 +49,13 @@ class CorrectedSurface final : public Surface {
     }
     return h;
   }
-  double defined_radius() const override { return design_->defined_radius(); }
+  // Where the design and every correction have a value (a B-spline correction ends at its
+  // square).
+  double defined_radius() const override {
+    double r = design_->defined_radius();
+    for (const Correction& c : corrections_) r = std::min(r, c.error->defined_radius());
+    return r;
+  }
   // The corrections are smooth (Zernike polynomials): the creases are the design's.
   bool has_creases() const override { return design_->has_creases(); }
   int section_creases(const RadialLine& line, double lo, double hi, std::span<double> out) const override {
