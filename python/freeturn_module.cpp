@@ -53,7 +53,9 @@ YAML::Node to_yaml(const py::handle& value, int depth = 0) {
 
 // A design surface with the aperture it was checked over.
 struct PySurface {
-  std::unique_ptr<Surface> surface;
+  // Its own, or a job's (sharing the job: a compensated job's is the design less the
+  // measured error).
+  std::shared_ptr<const Surface> surface;
   double outer_radius = 0;
 };
 
@@ -63,6 +65,16 @@ PySurface make_surface(const py::object& spec, double outer_radius) {
                      "must be a finite number of mm ≥ 0 (0: the job's aperture, "
                      "or none), not " +
                          shortest_text(outer_radius));
+  // A job read already: the surface it cuts, over its aperture.
+  if (py::isinstance<Job>(spec)) {
+    const auto job = spec.cast<std::shared_ptr<Job>>();
+    if (outer_radius <= 0) outer_radius = job->aperture.outer_radius;
+    if (!(outer_radius <= job->surface->defined_radius()))
+      throw InputError("outer_radius", "the job's surface is undefined beyond r = " +
+                                           shortest_text(job->surface->defined_radius()) +
+                                           " mm, inside " + shortest_text(outer_radius) + " mm");
+    return {std::shared_ptr<const Surface>(job, job->surface.get()), outer_radius};
+  }
   YAML::Node node = py::isinstance<py::str>(spec)
                         ? load_yaml_text(spec.cast<std::string>(), "<surface>")
                         : to_yaml(spec);
@@ -257,5 +269,6 @@ PYBIND11_MODULE(freeturn, m) {
 
   m.def("surface", &make_surface, py::arg("spec"), py::arg("outer_radius") = 0.0,
         "A design surface from its YAML text or dict ({type: ..., parameters}), or a job's\n"
-        "(its surface over its aperture). outer_radius: the aperture it must be defined over.");
+        "text, dict or freeturn.Job (its surface over its aperture; a Job's is the surface it\n"
+        "cuts, with any compensation). outer_radius: the aperture it must be defined over.");
 }

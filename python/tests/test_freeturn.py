@@ -129,3 +129,26 @@ def test_errors_carry_their_place(tmp_path):
                    "cutting: {spindle_rpm: 20}\nmachine: iso-lathe-xzc\n")
     with pytest.raises(freeturn.CheckFailure, match="nose_radius"):
         freeturn.check_job(str(cup))
+
+
+def test_a_jobs_surface_is_the_surface_it_cuts_compensation_and_all():
+    # configs/data/make_measured_compound_eye.py made the measurement with astigmatism Z6
+    # 0.25 µm and trefoil Z9 0.15 µm (Noll, normalised, R_n = 4 mm); the job cuts the design
+    # less 0.8 of the error registered from it. Its text gives the design alone.
+    path = os.path.join(JOBS, "compound_eye_compensated.yaml")
+    job = freeturn.load_job(path)
+    cut = freeturn.surface(job)
+    design = freeturn.surface(open(path).read())
+    assert cut.outer_radius == 4.0
+    x, y = np.meshgrid(np.linspace(-3.5, 3.5, 29), np.linspace(-3.5, 3.5, 29))
+    inside = x * x + y * y <= 3.5**2
+    x, y = x[inside], y[inside]
+    rho, theta = np.hypot(x, y) / 4, np.arctan2(y, x)
+    error = 0.25e-3 * np.sqrt(6) * rho**2 * np.cos(2 * theta)
+    error += 0.15e-3 * np.sqrt(8) * rho**3 * np.sin(3 * theta)
+    assert np.abs(design.sag(x, y) - cut.sag(x, y) - 0.8 * error).max() < 1e-6  # 1 nm
+    # The surface keeps the job's alive; asked beyond where it is defined, it refuses.
+    del job
+    assert np.isfinite(cut.sag(np.array([1.0]), np.array([0.5]))).all()
+    with pytest.raises(freeturn.InputError, match="outer_radius: the job's surface is undefined"):
+        freeturn.surface(freeturn.load_job(path), 100.0)
