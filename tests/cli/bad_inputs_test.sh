@@ -65,6 +65,10 @@ sed -i "s|MACHINE|$tmp/machine.yaml|" "$base"
 # variant NAME SED-SCRIPT: the base job edited.
 variant() { sed "$2" "$base" > "$tmp/$1.yaml"; echo "$tmp/$1.yaml"; }
 
+# A ring narrower than the pitch: the spiral would turn 0.0002 of a revolution over it.
+job=$(variant narrow_ring 's/^  outer_radius: 2.0/  outer_radius: 2.0\n  inner_radius: 1.99999/')
+refused "a ring narrower than the pitch" "$job" "$job:14:10:" "strategy.pitch 0.05 mm is wider than the aperture's ring (1e-05 mm" "turn 0.0002 of a revolution"
+
 # YAML that a person would not mean.
 job=$(variant dup_key 's/^  pitch: 0.05/  pitch: 0.05\n  pitch: 0.5/')
 refused "a duplicate key" "$job" "$job:14:3:" "'pitch' appears twice"

@@ -163,6 +163,13 @@ TEST_SUITE("job") {
          "cutting.roughing depths must decrease"},
         {head + good_tool + good_strategy + good_rest.substr(0, good_rest.find("machine")),
          "job is missing the key 'machine'"},
+        // A spiral over a ring narrower than its pitch turns less than once: 1 µm of ring at
+        // 0.01 mm a turn is a tenth of a revolution.
+        {"name: a\naperture: {outer_radius: 5, inner_radius: 4.999}\n"
+         "surface: {type: sphere, radius: 20}\n" +
+             good_tool + good_strategy + good_rest,
+         "job.yaml:5:49: strategy.pitch 0.01 mm is wider than the aperture's ring (0.001 mm from "
+         "r = 4.999 to 5 mm): the spiral would turn 0.1 of a revolution"},
     };
     for (const Case& c : cases) {
       CAPTURE(c.yaml);
@@ -170,6 +177,23 @@ TEST_SUITE("job") {
       CAPTURE(message);
       CHECK(message.find(c.message) != std::string::npos);
     }
+  }
+
+  TEST_CASE("a key left to its default is placed at the section that would hold it") {
+    TempDir dir;
+    const std::string path =
+        dir.write("job.yaml",
+                  "name: a\naperture: {outer_radius: 5}\nsurface: {type: sphere, radius: 20}\n"
+                  "tool:\n  nose_radius: 0.5\nstrategy: {mode: spiral, spiral: planar, pitch: "
+                  "0.01, points: {equal_angle: {per_rev: 90}}}\ncutting: {spindle_rpm: 10}\n"
+                  "machine: iso-lathe-xzc\n");
+    const freeturn::Job job = load_job(path);
+    // Given: its own value's place (line 5, column 16).
+    CHECK(job.place("tool.nose_radius").to_string() == path + ":5:16");
+    // Left out: the tool map's first key (line 5, column 3), where a user would add it.
+    CHECK(job.place("tool.included_angle_deg").to_string() == path + ":5:3");
+    // No section of it given: the file alone.
+    CHECK(job.place("limits.max_points").to_string() == path);
   }
 
   TEST_CASE("every surface type loads from YAML with its closed-form sag") {

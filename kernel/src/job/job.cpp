@@ -51,8 +51,15 @@ void record_places(const YAML::Node& node, const std::string& prefix, const std:
 }  // namespace
 
 SourceLocation Job::place(const std::string& key) const {
-  const auto it = places.find(key);
-  return it != places.end() ? it->second : SourceLocation{file, 0, 0};
+  // A setting left to its default has no place of its own: the section that would hold it
+  // ("tool" for tool.included_angle_deg) is where to add it.
+  for (std::string k = key; !k.empty();) {
+    const auto it = places.find(k);
+    if (it != places.end()) return it->second;
+    const auto dot = k.rfind('.');
+    k = dot == std::string::npos ? std::string() : k.substr(0, dot);
+  }
+  return SourceLocation{file, 0, 0};
 }
 
 Job load_job(const std::string& path, std::uintmax_t max_bytes) {

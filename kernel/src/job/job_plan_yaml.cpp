@@ -143,6 +143,17 @@ void read_strategy(MapReader& job, JobPlan& plan, const Aperture& aperture,
                           " mm is not below the nose diameter (2 × " +
                           shortest_text(plan.tool.tool.nose_radius) +
                           " mm): the passes would not overlap");
+    // A spiral crosses the aperture's ring in (outer − inner) / pitch revolutions: under
+    // one, it cuts an arc of the ring and leaves the rest as it was (a 10 nm ring at a
+    // 0.05 mm pitch planned 2 points, 0.0002 of a revolution, and passed).
+    const double width = aperture.outer_radius - aperture.inner_radius;
+    if (!(st.pitch <= width))
+      s.fail("pitch", "strategy.pitch " + s.node()["pitch"].Scalar() +
+                          " mm is wider than the aperture's ring (" + significant_text(width, 6) +
+                          " mm from r = " + significant_text(aperture.inner_radius, 9) + " to " +
+                          significant_text(aperture.outer_radius, 9) +
+                          " mm): the spiral would turn " + significant_text(width / st.pitch, 3) +
+                          " of a revolution and leave the rest of the ring uncut");
     st.base.kind = st.space ? BaseKind::kLeastSquares : BaseKind::kPlane;
   }
   if (const auto b = s.optional_child("base_surface")) {

@@ -103,7 +103,8 @@ struct Job {
   // "tool.nose_radius"): errors found later, while planning or posting, are reported there.
   std::map<std::string, SourceLocation> places;
 
-  // The place of `key`'s value, or the file alone when the job does not give it.
+  // The place of `key`'s value; for a key the job leaves to its default, that of the
+  // nearest section holding it ("tool" for tool.included_angle_deg); else the file alone.
   SourceLocation place(const std::string& key) const;
 };
 
