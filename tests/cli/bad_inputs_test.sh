@@ -137,6 +137,10 @@ machine_variant() {
   sed "s|^machine: .*|machine: $tmp/$1.machine.yaml|" "$base" > "$tmp/$1.yaml"
   echo "$tmp/$1"
 }
+# Z words rounded to 1 µm round a block by more than half the 500 nm stand-off the chord
+# rule gives it (decimals: 0 had written X2 for X1.97998, and passed).
+m=$(machine_variant coarse_z 's/\({name: Z, sign: 1, min: [^,]*, max: [^,]*, decimals: \)6/\13/')
+refused "Z words too coarse for the tolerance" "$m.yaml" "$m.machine.yaml:6:53:" "machine axis Z decimals 3" "round the nose's position by up to 500.7 nm"
 m=$(machine_variant retract 's/^  retract: .*/  retract: -1.46/')
 refused "a negative retract" "$m.yaml" "$m.machine.yaml:12:12:" "'retract' is -1.46, outside"
 m=$(machine_variant feed 's/^  approach_feed: .*/  approach_feed: 1e300/')

@@ -54,6 +54,7 @@ MachineDescription load_machine(const std::string& path, std::uintmax_t max_byte
     if (decimals != std::floor(decimals) || decimals < 0 || decimals > 12)
       a.fail("decimals", "decimals must be an integer from 0 to 12");
     s.decimals = static_cast<int>(decimals);
+    m.decimals_places[static_cast<int>(s.axis)] = a.place("decimals");
     // Limits below these are typos (a per-second limit of 1e-12 would be a program of blocks
     // years long, which the scheduler would write as asked): left out, a limit is none.
     const std::string per_second = s.axis == Axis::kC || s.axis == Axis::kB ? " °/s" : " mm/s";

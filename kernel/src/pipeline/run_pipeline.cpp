@@ -299,6 +299,53 @@ void refuse_oversized_program(const Job& job, const MachineDescription& machine)
                        significant_text(plan.limits.max_file_mb, 6) + " MB)");
 }
 
+// The words a program is written with round each block: X and Z by half a unit of their
+// decimals, C by half a unit turned at the aperture's edge, B by half a unit about its
+// pivot. The nose's centre moves by no more than their sum, nor does its distance to the
+// design. The verdict lets the motion dip kChordDipAllowed below the design; the rounding
+// may take that much where the chord rule stands the blocks off (by ε/2, stand_off_for:
+// no more than half of it), half of it where blocks sit on the design (equal angles and
+// arcs, whose chords dip too). Past that the program as written could cut below the
+// design, whatever the planned one does: decimals: 0 had written X2 for X1.97998, a 20 µm
+// step, and passed.
+void refuse_coarse_axis_words(const Job& job, const MachineDescription& machine) {
+  const JobPlan& plan = *job.plan;
+  const double stand_off = stand_off_for(plan.strategy.points, plan.tool.tool.nose_radius);
+  const double allowed =
+      stand_off > 0 ? std::min(0.5 * stand_off, kChordDipAllowed) : 0.5 * kChordDipAllowed;
+  constexpr double kRadian = std::numbers::pi / 180;
+  double moved = 0, largest = -1;
+  const AxisSpec* coarsest = nullptr;
+  for (const AxisSpec& a : machine.axes) {
+    const double half_unit = 0.5 * std::pow(10.0, -a.decimals);
+    const double reach = a.axis == Axis::kC   ? job.aperture.outer_radius * kRadian
+                         : a.axis == Axis::kB ? machine.pivot_distance * kRadian
+                                              : 1.0;
+    const double shift = half_unit * reach;  // mm
+    moved += shift;
+    if (shift > largest) largest = shift, coarsest = &a;
+  }
+  if (!(moved > allowed) || !coarsest) return;
+  const std::string why =
+      allowed < kChordDipAllowed && stand_off > 0
+          ? "half the blocks' stand-off of " + significant_text(stand_off * 1e6, 4) +
+                " nm (half the chord tolerance)"
+      : stand_off > 0 ? "the depth the verdict lets the motion dip below the design"
+                      : "half the " + significant_text(kChordDipAllowed * 1e6, 3) +
+                            " nm the verdict lets a chord dip where blocks sit on the design";
+  throw InputError(machine.decimals_places[static_cast<int>(coarsest->axis)],
+                   std::string("machine axis ") + axis_letter(coarsest->axis) + " decimals " +
+                       std::to_string(coarsest->decimals) +
+                       ": the program's words round the nose's position by up to " +
+                       significant_text(moved * 1e6, 4) + " nm (X, Z" +
+                       (machine.has(Axis::kC)
+                            ? ", C at r = " + significant_text(job.aperture.outer_radius, 6) + " mm"
+                            : std::string()) +
+                       (machine.has(Axis::kB) ? ", B about its pivot" : std::string()) +
+                       "), more than " + significant_text(allowed * 1e6, 4) + " nm, " + why +
+                       ": the program as written could cut below the design; write more decimals");
+}
+
 PreparedJob prepare_job(const Job& job, std::uintmax_t max_yaml_bytes) {
   if (!job.plan)
     throw InputError(job.file,
@@ -316,6 +363,7 @@ PreparedJob prepare_job(const Job& job, std::uintmax_t max_yaml_bytes) {
   }
   p.machine = machine_for(job, machine_file, max_yaml_bytes);
   refuse_oversized_program(job, p.machine);
+  refuse_coarse_axis_words(job, p.machine);
   try {
     p.plugin = PostPlugin::load(p.machine.plugin);
   } catch (const InputError& e) {

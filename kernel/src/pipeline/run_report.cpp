@@ -277,7 +277,7 @@ void judge(RunReport& r) {
   for (const PassFigures& f : r.passes) {
     // The motion between blocks cuts into the design (blocks on the design, chords below
     // them): more than 10 nm is a gouge.
-    if (f.chord_below_max > 1e-5) {
+    if (f.chord_below_max > kChordDipAllowed) {
       ReportWarning w;
       w.kind = "chord_below";
       w.severity = ReportWarning::Severity::kUnsafe;
@@ -286,7 +286,7 @@ void judge(RunReport& r) {
                   " nm into the design (equal-angle or equal-arc points sit on the design and "
                   "their chords dip below it; use points: chord)";
       w.value = f.chord_below_max * 1e6;
-      w.limit = 10;
+      w.limit = kChordDipAllowed * 1e6;
       w.unit = "nm";
       r.warnings.push_back(std::move(w));
     }

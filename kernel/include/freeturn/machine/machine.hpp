@@ -48,6 +48,7 @@ struct MachineDescription {
   };
   BoundPlaces travel_places[4];
   BoundPlaces b_limit_places;
+  SourceLocation decimals_places[4];  // by Axis: each axis's decimals (its entry when left out)
   Interpolation interpolation = Interpolation::kLinear;
   double max_block_rate = std::numeric_limits<double>::infinity();  // blocks per second
   // How the program states speed: inverse time (each block's duration: G93) or feed per

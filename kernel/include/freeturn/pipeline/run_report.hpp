@@ -19,6 +19,10 @@
 
 namespace freeturn {
 
+// How deep the motion between blocks may dip below the design before the verdict is
+// UNSAFE (mm): equal-angle and equal-arc blocks sit on the design and their chords dip.
+inline constexpr double kChordDipAllowed = 1e-5;
+
 // One thing a run found, for a person (`message`) and for a program (the rest): what, how
 // bad, where the worst of it is and by how much. NaN: not known, or not a place.
 struct ReportWarning {
