@@ -39,10 +39,15 @@ class MoorePost {
       throw PostError("dialect setting 'child_blocks' is " + s.text("child_blocks", "") +
                       ": 0 (one program) or at least 100 points per child file");
     time_decimals_ = static_cast<int>(time_decimals);
-    header_ = freeturn::post::unescape_lines(
-        s.text("header", "G71 G01 G18 G40 G63 G90 G94 G54\\nT0101\\nG53 Z-180.\\nM80\\nG09 C0.0\\nG92 C0.0"));
-    footer_ = freeturn::post::unescape_lines(s.text("footer", "G53 Z-180.\\nM79\\nG52\\nT0000\\nM30"));
-    spindle_ = s.text("spindle", "M03");
+    // The spindle's code is one word, M03 or M04: it is written on the line of S, where any
+    // other text (a move, a second line) would reach the controller unchecked.
+    if (!s.code_lines("header",
+                      "G71 G01 G18 G40 G63 G90 G94 G54\\nT0101\\nG53 Z-180.\\nM80\\nG09 "
+                      "C0.0\\nG92 C0.0",
+                      header_, message) ||
+        !s.code_lines("footer", "G53 Z-180.\\nM79\\nG52\\nT0000\\nM30", footer_, message) ||
+        !s.one_of("spindle", "M03", {"M03", "M04", "M3", "M4"}, spindle_, message))
+      throw PostError(message);
     bool has_c = false;
     for (int i = 0; i < info.layout.count; ++i) has_c = has_c || info.layout.letters[i] == 'C';
     if (!has_c) throw PostError("the moore post writes slow-tool-servo programs: the machine needs a C axis");

@@ -24,10 +24,19 @@ class PrecitechPost {
   PrecitechPost(const ft_program_info& info, const freeturn::post::Output& out,
                 freeturn::post::FlatSettings& s)
       : info_(info), out_(out) {
-    header_ = freeturn::post::unescape_lines(s.text("header", "; PVT mode\\n; G08"));
-    footer_ = freeturn::post::unescape_lines(s.text("footer", "; end\\nM30"));
+    std::string message;
+    if (!s.code_lines("header", "; PVT mode\\n; G08", header_, message) ||
+        !s.code_lines("footer", "; end\\nM30", footer_, message) ||
+        !s.code_lines("feed_line", "G01 F", feed_line_, message))
+      throw PostError(message);
+    // The feed's own line: the words before its value, which ends it.
+    if (feed_line_.find('\n') != std::string::npos || feed_line_.empty() ||
+        feed_line_.back() != 'F')
+      throw PostError(
+          "dialect setting 'feed_line' must be one line of words ending in F (the "
+          "feed's value follows it), not '" +
+          feed_line_ + "'");
     time_word_ = s.text("time_word", "");
-    feed_line_ = s.text("feed_line", "G01 F");
     // A word letter of its own: not an axis, and not a code (G, M, N) or the feed.
     if (time_word_.size() > 1 ||
         (time_word_.size() == 1 && (time_word_[0] < 'A' || time_word_[0] > 'Z' ||

@@ -232,6 +232,42 @@ TEST_SUITE("plugins") {
     CHECK(write_at(0.0006).find("M03 S0.001\n") != std::string::npos);
   }
 
+  TEST_CASE(
+      "a dialect's code settings carry only what a controller may get, refused at the setting") {
+    test::TempDir dir;
+    const auto refusal = [&](const std::string& machine, const std::string& plugin,
+                             const std::string& from, const std::string& to) {
+      MachineDescription m = load_machine(kMachines + "/" + machine + ".yaml");
+      const std::size_t at = m.dialect_settings.find(from);
+      REQUIRE(at != std::string::npos);
+      m.dialect_settings.replace(at, from.size(), to);
+      const auto post = PostPlugin::load_file(kPlugins + "/libfreeturn_post_" + plugin + ".so");
+      try {
+        PostProgram program(*post, m, {"job", 20, 1, -1, -1, 1.0, 1}, dir.file("p.nc"));
+      } catch (const InputError& e) {
+        return std::string(e.what());
+      }
+      return std::string("accepted");
+    };
+    // Moore writes its spindle word on the line of S: a second line there (a rapid to
+    // Z-50, below the part) had gone to the controller as written.
+    CHECK(refusal("moore-nanotech-250upl", "moore", "spindle: M03", "spindle: M03\\nG00 X0 Z-50")
+              .find("moore-nanotech-250upl.yaml:15:12: post-processor 'moore'") !=
+          std::string::npos);
+    CHECK(refusal("moore-nanotech-250upl", "moore", "spindle: M03", "spindle: G00 X0")
+              .find("dialect setting 'spindle' must be one of M03, M04, M3, M4, not 'G00 X0'") !=
+          std::string::npos);
+    CHECK(refusal("moore-nanotech-250upl", "moore", "spindle: M03", "spindle: M04") == "accepted");
+    // A byte no controller may get, in a header: refused at the header, not at the program.
+    const std::string bell = refusal("moore-nanotech-250upl", "moore", "T0101", "T0101\x07");
+    CHECK(bell.find("moore-nanotech-250upl.yaml:13:11: post-processor 'moore'") !=
+          std::string::npos);
+    CHECK(bell.find("refuses its settings: dialect setting 'header' holds the byte 0x07") !=
+          std::string::npos);
+    CHECK(refusal("precitech-nanoform-250", "precitech", "; end of data", "; fin\xC3\xA9")
+              .find("dialect setting 'footer' holds the byte 0xC3") != std::string::npos);
+  }
+
   TEST_CASE("iso X-Z profile with feed per minute: G94 and the path feed, no G93") {
     const MachineDescription m = load_machine(kMachines + "/iso-lathe-xz.yaml");
     REQUIRE(m.feed_per_minute);

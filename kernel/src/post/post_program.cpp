@@ -74,8 +74,9 @@ void PostProgram::check_output(const char* stage) {
   if (!refused_.empty())
     throw InputError("limits.max_file_mb", refused_ + " (" + who + ", " + stage + "); no NC file was written");
   if (!guard_.ok()) {
-    const std::string what = std::string(stage) + ": wrote a number no machine may get: " +
-                             guard_.reason() + "; no NC file was written";
+    const std::string what = std::string(stage) +
+                             ": wrote what no machine may get: " + guard_.reason() +
+                             "; no NC file was written";
     // Every record was inside the travel before the plugin saw it: a word past it is the
     // plugin's own move (an approach or a retract, from its settings and the clearance
     // base), reported at the bound it crosses in the machine file.

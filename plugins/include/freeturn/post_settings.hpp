@@ -9,9 +9,12 @@
 #include <cmath>
 #include <cstdio>
 #include <cstdlib>
+#include <initializer_list>
 #include <map>
 #include <string>
 #include <system_error>
+
+#include "freeturn/post_format.hpp"
 
 namespace freeturn::post {
 
@@ -79,6 +82,35 @@ class FlatSettings {
     if (!number_in(key, fallback, lo, hi, out, error)) return false;
     if (out == std::floor(out)) return true;
     error = "dialect setting '" + key + "' must be a whole number, not " + text(key, "");
+    return false;
+  }
+  // Lines of codes for the controller (a header, a footer), "\n" between lines: printable
+  // ASCII only. The guard would refuse such a byte in the program anyway; here the refusal
+  // names the setting, which the host places in the machine file.
+  bool code_lines(const std::string& key, const std::string& fallback, std::string& out,
+                  std::string& error) {
+    out = unescape_lines(text(key, fallback));
+    for (const char ch : out) {
+      const auto c = static_cast<unsigned char>(ch);
+      if (c == '\n' || (c >= 0x20 && c < 0x7f)) continue;
+      char hex[8];
+      std::snprintf(hex, sizeof hex, "0x%02X", c);
+      error = "dialect setting '" + key + "' holds the byte " + hex +
+              ", which is not printable ASCII: no controller may get it";
+      return false;
+    }
+    return true;
+  }
+  // One of `choices`, as written.
+  bool one_of(const std::string& key, const std::string& fallback,
+              std::initializer_list<const char*> choices, std::string& out, std::string& error) {
+    out = text(key, fallback);
+    std::string listed;
+    for (const char* c : choices) {
+      if (out == c) return true;
+      listed += (listed.empty() ? "" : ", ") + std::string(c);
+    }
+    error = "dialect setting '" + key + "' must be one of " + listed + ", not '" + out + "'";
     return false;
   }
   // The keys the plugin asked for, comma-separated (for messages).
