@@ -71,7 +71,7 @@ PySurface make_surface(const py::object& spec, double outer_radius) {
     if (outer_radius <= 0) outer_radius = job->aperture.outer_radius;
     if (!(outer_radius <= job->surface->defined_radius()))
       throw InputError("outer_radius", "the job's surface is undefined beyond r = " +
-                                           shortest_text(job->surface->defined_radius()) +
+                                           significant_text(job->surface->defined_radius(), 6) +
                                            " mm, inside " + shortest_text(outer_radius) + " mm");
     return {std::shared_ptr<const Surface>(job, job->surface.get()), outer_radius};
   }

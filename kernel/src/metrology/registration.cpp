@@ -44,13 +44,19 @@ struct Model {
 
 }  // namespace
 
+namespace {
+
+// The B-spline's parameter of a coordinate: its square spans [−half, half] in x and in y.
+double bspline_parameter(double coordinate, double half) {
+  return std::clamp((coordinate + half) / (2 * half), 0.0, 1.0);
+}
+
+}  // namespace
+
 double bspline_height(const nurbs::NurbsSurface& bspline, double normalization_radius, double x,
                       double y) {
   const double half = kBsplineReach * normalization_radius;
-  return bspline
-      .point(std::clamp((x + half) / (2 * half), 0.0, 1.0),
-             std::clamp((y + half) / (2 * half), 0.0, 1.0))
-      .z();
+  return bspline.point(bspline_parameter(x, half), bspline_parameter(y, half)).z();
 }
 
 Registration register_measurement(const Surface& design, const Measurement& m,
@@ -135,8 +141,8 @@ Registration register_measurement(const Surface& design, const Measurement& m,
   // fitted at the points used, where they lie on the design, over a square that reaches
   // kBsplineReach · R_n: the planner and the checks evaluate the corrected design past the
   // aperture's edge (a projection along a tilted base normal lands beyond it, the nose's
-  // edge overhangs it), where a square of [−R_n, R_n]² had no value and every space spiral
-  // stopped at its last turn. The ring beyond the data is filled by the smoothing.
+  // edge overhangs it), where a square of [−R_n, R_n]² had no value and a space spiral
+  // stopped at the aperture's edge. The ring beyond the data is filled by the smoothing.
   const double half = kBsplineReach * model.rn;
   const auto bspline_at = [&model](const nurbs::NurbsSurface& b, const Eigen::Vector3d& q) {
     return bspline_height(b, model.rn, q.x(), q.y());
@@ -149,8 +155,8 @@ Registration register_measurement(const Surface& design, const Measurement& m,
       if (!inside[i]) continue;
       const Eigen::Vector3d q = model.to_design(m.points[i]);
       points.emplace_back(q.x(), q.y(), residual[i]);
-      u.push_back(std::clamp((q.x() + half) / (2 * half), 0.0, 1.0));
-      v.push_back(std::clamp((q.y() + half) / (2 * half), 0.0, 1.0));
+      u.push_back(bspline_parameter(q.x(), half));
+      v.push_back(bspline_parameter(q.y(), half));
     }
     // bspline_control per side over the aperture's diameter: the same knot spacing over
     // the wider square.
