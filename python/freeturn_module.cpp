@@ -236,8 +236,8 @@ PYBIND11_MODULE(freeturn, m) {
       },
       py::arg("path_or_job"),
       "The finishing pass's cutter locations, planned and checked without writing files: a\n"
-      "dict of NumPy arrays named as the CL CSV's columns (theta, x, y, z, nx, ny, nz, tx,\n"
-      "ty, tz, b_deg, X, Z, C, B, chord).");
+      "dict of NumPy arrays named as the CL CSV's columns (theta_rad, x_mm, y_mm, z_mm, nx,\n"
+      "ny, nz, tx_mm, ty_mm, tz_mm, b_deg, X_mm, Z_mm, C_deg, B_deg, chord_mm).");
 
   py::class_<PySurface>(m, "Surface", "A design surface; lengths in mm")
       .def_property_readonly("type", [](const PySurface& s) { return std::string(s.surface->type()); })

@@ -152,3 +152,17 @@ def test_a_jobs_surface_is_the_surface_it_cuts_compensation_and_all():
     assert np.isfinite(cut.sag(np.array([1.0]), np.array([0.5]))).all()
     with pytest.raises(freeturn.InputError, match="outer_radius: the job's surface is undefined"):
         freeturn.surface(freeturn.load_job(path), 100.0)
+
+
+def test_the_readme_example_runs(tmp_path):
+    # The README's Python example, as a user pastes it (it had read cl["theta"], a column
+    # the CL data does not have), from a folder holding the examples' configs.
+    readme = open(os.path.join(SRC, "README.md")).read()
+    start = readme.index("/usr/bin/python3 -c '\n") + len("/usr/bin/python3 -c '\n")
+    code = readme[start:readme.index("'\n```", start)]
+    os.symlink(os.path.join(SRC, "configs"), tmp_path / "configs")
+    env = dict(os.environ)
+    result = subprocess.run(["/usr/bin/python3", "-c", code], cwd=tmp_path, env=env,
+                            capture_output=True, text=True, timeout=300)
+    assert result.returncode == 0, result.stderr
+    assert result.stdout.strip().splitlines()[-1] == "PASS"
