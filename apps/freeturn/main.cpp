@@ -3,6 +3,8 @@
 #include <signal.h>
 
 #include <algorithm>
+#include <charconv>
+#include <cmath>
 #include <cstdio>
 #include <exception>
 #include <string>
@@ -24,6 +26,29 @@ extern "C" void end_on_signal(int number) {
   freeturn::AtomicFile::remove_all_temporaries();
   ::signal(number, SIG_DFL);
   ::raise(number);
+}
+
+// A finite number in [lo, hi]. CLI11's Range lets NaN through (every comparison with it is
+// false): --tolerance nan had made ncdiff call any two programs the same, exit 0.
+CLI::Validator finite_in(double lo, double hi) {
+  const auto text_of = [](double v) {
+    char buf[32];
+    const auto [end, error] = std::to_chars(buf, buf + sizeof buf, v);
+    return std::string(buf, error == std::errc() ? end : buf);
+  };
+  const std::string range = "[" + text_of(lo) + ", " + text_of(hi) + "]";
+  return CLI::Validator(
+      [lo, hi, range](std::string& text) -> std::string {
+        double v = 0;
+        const char* first = text.data() + (!text.empty() && text[0] == '+' ? 1 : 0);
+        const char* last = text.data() + text.size();
+        const auto [end, error] = std::from_chars(first, last, v);
+        if (first == last || error != std::errc() || end != last || !std::isfinite(v) || v < lo ||
+            v > hi)
+          return "must be a finite number in " + range + ", not '" + text + "'";
+        return {};
+      },
+      "FLOAT in " + range);
 }
 
 void remove_outputs_on_termination() {
@@ -115,9 +140,11 @@ int main(int argc, char** argv) {
   job_option(simulate_app, simulate.job);
   output_option(simulate_app, simulate.output);
   quiet_flag(simulate_app, simulate.quiet);
-  simulate_app->add_option("--radial-step", simulate.radial_step,
-                           "mm between the grid's radii (0: an eighth of the pitch)")
-      ->check(CLI::Range(0.0, 10.0))->capture_default_str();
+  simulate_app
+      ->add_option("--radial-step", simulate.radial_step,
+                   "mm between the grid's radii (0: an eighth of the pitch)")
+      ->check(finite_in(0.0, 10.0))
+      ->capture_default_str();
   simulate_app->add_option("--columns", simulate.columns, "angles of the grid over a turn (even)")
       ->check(CLI::Range(2, 1'000'000))->capture_default_str();
   threads_option(simulate_app, simulate.threads);
@@ -141,9 +168,11 @@ int main(int argc, char** argv) {
       "ncdiff", "compare two NC programs by value (axis words, codes), ignoring formatting");
   ncdiff_app->add_option("a", ncdiff.a, "the first program")->required();
   ncdiff_app->add_option("b", ncdiff.b, "the second program")->required();
-  ncdiff_app->add_option("--tolerance", ncdiff.tolerance,
-                         "the largest axis difference taken as equal (mm or degrees)")
-      ->check(CLI::NonNegativeNumber)->capture_default_str();
+  ncdiff_app
+      ->add_option("--tolerance", ncdiff.tolerance,
+                   "the largest axis difference taken as equal (mm or degrees)")
+      ->check(finite_in(0.0, 1e6))
+      ->capture_default_str();
   quiet_flag(ncdiff_app, ncdiff.quiet);
   ncdiff_app->callback([&] { code = guarded("ncdiff", [&] { return run_ncdiff(ncdiff); }); });
 

@@ -54,6 +54,11 @@ printf 'G18 G21 (units)\nG01 Z-0.5 X1 C10 F100.0\nN20 G1 X0.900000 Z-0.400000 ; 
 printf '%%\nG21 G18\nG1 X1.000000 Z-0.500000 C10.0 F100\nG1 X0.9001 Z-0.4\nM2\n' > "$tmp/c.nc"
 "$freeturn" ncdiff "$tmp/a.nc" "$tmp/b.nc" > "$tmp/stdout"; expect "ncdiff same" 0 $?
 "$freeturn" ncdiff "$tmp/a.nc" "$tmp/c.nc" > "$tmp/stdout"; expect "ncdiff moved" 1 $?
+# A tolerance of nan passed CLI11's range check and called the moved word the same (exit 0).
+"$freeturn" ncdiff "$tmp/a.nc" "$tmp/c.nc" --tolerance nan > /dev/null 2> "$tmp/err"; expect "ncdiff --tolerance nan" 2 $?
+contains "ncdiff --tolerance nan says why" "$tmp/err" "--tolerance: must be a finite number in [0, 1e+06], not 'nan'"
+"$freeturn" simulate "$src/configs/jobs/oap_segment.yaml" -o "$tmp/simnan" --radial-step nan > /dev/null 2> "$tmp/err"; expect "simulate --radial-step nan" 2 $?
+[[ ! -e "$tmp/simnan" ]] || { echo "FAIL: a refused simulate left output"; fail=1; }
 contains "ncdiff names the line" "$tmp/stdout" "a.nc:4 vs $tmp/c.nc:4: X 0.9"
 echo "hello, world" > "$tmp/d.txt"
 "$freeturn" ncdiff "$tmp/a.nc" "$tmp/d.txt" > /dev/null 2> "$tmp/err"; expect "ncdiff not NC" 2 $?

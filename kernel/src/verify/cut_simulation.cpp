@@ -68,9 +68,11 @@ CutSimulator::CutSimulator(const Surface& design, double nose_radius, const Simu
                                        " mm, too few for a form error; give a finer --radial-step");
   const double cells = rings * o.columns;
   if (!(cells <= static_cast<double>(o.max_cells)))
-    throw InputError("simulation", "the grid would hold " + std::to_string(static_cast<long>(cells)) +
-                                       " cells (over " + std::to_string(o.max_cells) +
-                                       "); give a coarser radial step (--radial-step) or fewer columns (--columns)");
+    throw InputError(
+        "simulation",
+        "the grid would hold " + significant_text(cells, 6) + " cells (over " +
+            std::to_string(o.max_cells) +
+            "); give a coarser radial step (--radial-step) or fewer columns (--columns)");
   rings_ = static_cast<int>(rings);
   const std::size_t n = static_cast<std::size_t>(rings_) * static_cast<std::size_t>(o.columns);
   machined_.assign(n, kUncut);
