@@ -6,6 +6,7 @@
 
 #include "freeturn/core/error.hpp"
 #include "freeturn/nurbs/gauss_legendre.hpp"
+#include "freeturn/nurbs/knot_vector.hpp"
 
 namespace freeturn {
 namespace {
@@ -20,12 +21,10 @@ nurbs::NurbsCurve generating_curve(int degree, const std::vector<double>& knots,
                                          std::to_string(n) + " coefficients needs " +
                                          std::to_string(n + degree + 1) + " knots, not " +
                                          std::to_string(knots.size()));
+  const nurbs::KnotVector knot_vector(degree, knots);
   std::vector<nurbs::Vector3d> points;
-  for (std::size_t i = 0; i < n; ++i) {
-    double g = 0;
-    for (int j = 1; j <= degree; ++j) g += knots[i + static_cast<std::size_t>(j)];
-    points.emplace_back(g / degree, coefficients[i], 0.0);
-  }
+  for (std::size_t i = 0; i < n; ++i)
+    points.emplace_back(knot_vector.greville(static_cast<int>(i)), coefficients[i], 0.0);
   return nurbs::NurbsCurve(degree, knots, points);
 }
 
