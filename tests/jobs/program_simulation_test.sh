@@ -5,9 +5,19 @@
 #   parabola on the ISO lathe and on the Precitech, whose controller interpolates PVT
 #   cubics and whose X runs negative; the Alvarez plate on the Moore B machine, whose
 #   program calls a child point file and swings the tool on B about its pivot);
+# - the same with the edge 10 µm above the spindle line (centre_height) and with a
+#   measured waviness: the nose centre's angle is C turned by atan2(h, X), and the edge
+#   lies R + δ(ψ) from it (simulated as a round nose at C, the first had crashed and read
+#   as a gouge of 260 nm); the waviness's simulated cut comes down to the chord rule's
+#   stand-off of ε/2 = 50 nm, where the blocks are (a round nose had left 237 nm);
 # - the same program with one block moved 1 µm into the part: the worst place is that
-#   block's (its X as r within 0.1 mm, its C as θ within 1°), a gouge of about 1 µm;
-# - a program that is not NC is an error at its file:line, exit 2, nothing written.
+#   block's (its X as r within 0.1 mm, its C as θ within 1°), a gouge of about 1 µm, and
+#   the verdict is UNSAFE (exit 1): nothing else vouches for a program from elsewhere;
+# - a block past the machine's travel: UNSAFE, naming the axis, the limit and the line;
+# - blocks after the program's end (M2) are not run, so not cut; a program starting at a
+#   negative C (which had crashed the report's turn samples) is simulated;
+# - a program that is not NC is an error at its file:line, exit 2, nothing written; so is
+#   an axis word given twice in a block.
 # usage: program_simulation_test.sh <freeturn> <source dir>
 set -u
 freeturn=$1 src=$2
@@ -16,9 +26,14 @@ trap 'rm -rf "$tmp"' EXIT
 fail=0
 pv() { sed -n 's/.*form error PV \([0-9.]*\) nm.*/\1/p' "$1"; }
 sed 's/^machine: .*/machine: precitech-nanoform-250/' "$src/configs/jobs/oap_segment.yaml" > "$tmp/oap_pvt.yaml"
-for job in oap_segment alvarez_4axis oap_pvt; do
+sed -e 's/^  nose_radius: 0.5$/  nose_radius: 0.5\n  centre_height: 0.01/' -e 's/^  outer_radius: 5.0$/  outer_radius: 5.0\n  inner_radius: 0.5/' \
+  "$src/configs/jobs/oap_segment.yaml" > "$tmp/oap_high.yaml"
+sed -e 's/^  nose_radius: 0.5$/  nose_radius: 0.5\n  waviness: [[-60, -0.0003], [0, 0.0002], [60, -0.0003]]/' \
+  "$src/configs/jobs/oap_segment.yaml" > "$tmp/oap_wavy.yaml"
+grep -q centre_height "$tmp/oap_high.yaml" && grep -q waviness "$tmp/oap_wavy.yaml" || { echo "FAIL: the job variants"; fail=1; }
+for job in oap_segment alvarez_4axis oap_pvt oap_high oap_wavy; do
   file="$src/configs/jobs/$job.yaml"
-  [[ $job == oap_pvt ]] && file="$tmp/oap_pvt.yaml"
+  [[ -e $tmp/$job.yaml ]] && file="$tmp/$job.yaml"
   (cd "$src/configs/jobs" && "$freeturn" simulate "$file" -o "$tmp/$job" --quiet) > "$tmp/own.txt" || { echo "FAIL: $job simulate"; fail=1; continue; }
   program=$(ls "$tmp/$job"/*.nc | head -1)
   (cd "$src/configs/jobs" && "$freeturn" simulate "$file" -o "$tmp/$job.program" --quiet --program "$program") > "$tmp/program.txt" ||
@@ -28,6 +43,11 @@ for job in oap_segment alvarez_4axis oap_pvt; do
     echo "$job: own simulation PV $a nm, its program read back $b nm"
   else
     echo "FAIL: $job: own simulation PV $a nm, its program read back $b nm (not within 1 %)"; fail=1
+  fi
+  if [[ $job == oap_wavy ]]; then
+    low=$(sed -n 's/.*, min \([-+0-9.]*\) nm at r.*/\1/p' "$tmp/own.txt")
+    awk -v m="$low" 'BEGIN { exit !(m >= 0 && m <= 55) }' ||
+      { echo "FAIL: $job: the simulated minimum $low nm is not the stand-off 50 nm"; fail=1; }
   fi
   ls "$tmp/$job.program"/*.report.json "$tmp/$job.program"/*.residual.csv > /dev/null 2>&1 || { echo "FAIL: $job: no report or residual"; fail=1; }
 done
@@ -47,7 +67,12 @@ open(sys.argv[2], "w").write("\n".join(lines))
 print(abs(float(m.group(1))), float(m.group(3)))
 PY
 read -r x c < "$tmp/block.txt"
-(cd "$src/configs/jobs" && "$freeturn" simulate oap_segment.yaml -o "$tmp/moved" --quiet --program "$tmp/moved.nc") > "$tmp/moved.txt" || { echo "FAIL: simulate the moved program"; fail=1; }
+(cd "$src/configs/jobs" && "$freeturn" simulate oap_segment.yaml -o "$tmp/moved" --quiet --program "$tmp/moved.nc") > "$tmp/moved.txt" 2> "$tmp/moved.err"
+[[ $? == 1 ]] || { echo "FAIL: the moved program did not exit 1"; fail=1; }
+grep -q "^UNSAFE: the simulated cut goes [0-9.]* nm below the design (the most allowed is 10.0 nm)" "$tmp/moved.err" ||
+  { echo "FAIL: the moved program's verdict:"; cat "$tmp/moved.err"; fail=1; }
+grep -Eq '"kind": ?"simulated_gouge"' "$tmp/moved"/*.report.json ||
+  { echo "FAIL: the moved program's report has no simulated_gouge"; fail=1; }
 worst=$(grep -m1 'worst:' "$tmp/moved.txt")
 read -r residual r theta < <(echo "$worst" | sed -n 's/.*worst: \([-+0-9.]*\) nm at r = \([0-9.]*\) mm, θ = \([0-9.]*\)°.*/\1 \2 \3/p')
 if awk -v e="$residual" -v r="$r" -v t="$theta" -v x="$x" -v c="$c" \
@@ -58,6 +83,31 @@ else
   echo "FAIL: the moved block (X $x, C $c) is not the worst place: $worst"; fail=1
 fi
 grep -q "(gouge)" <<< "$worst" || { echo "FAIL: the moved block is not called a gouge"; fail=1; }
+# Past the travel: the ISO lathe's X is [-100, 100]; the 40th cutting block at X 120.
+nc="$tmp/oap_segment/oap_segment.iso-lathe-xzc.nc"
+line=$(grep -n '^G1 X' "$nc" | sed -n 40p | cut -d: -f1)
+awk -v n="$line" 'NR == n { sub(/X-?[0-9.]+/, "X120.000000") } { print }' "$nc" > "$tmp/far.nc"
+(cd "$src/configs/jobs" && "$freeturn" simulate oap_segment.yaml -o "$tmp/far" --quiet --program "$tmp/far.nc") > /dev/null 2> "$tmp/far.err"
+[[ $? == 1 ]] || { echo "FAIL: a block past the travel did not exit 1"; fail=1; }
+grep -q "^UNSAFE: 1 block takes X past its travel limit 100 of machine 'iso-lathe-xzc': X = 120 at .*far.nc:$line\$" "$tmp/far.err" ||
+  { echo "FAIL: the travel verdict (line $line):"; cat "$tmp/far.err"; fail=1; }
+# After the program's end nothing runs: a plunge 5 mm into the part after M2 cuts nothing.
+grep -q '^M2$' "$nc" || { echo "FAIL: the parabola's program has no M2"; fail=1; }
+{ cat "$nc"; printf 'G1 X2.5 Z-5 C10\n'; } > "$tmp/after.nc"
+(cd "$src/configs/jobs" && "$freeturn" simulate oap_segment.yaml -o "$tmp/after" --quiet --program "$tmp/after.nc") > "$tmp/after.txt" 2>&1 ||
+  { echo "FAIL: a block after M2 was cut:"; cat "$tmp/after.txt"; fail=1; }
+cmp -s <(pv "$tmp/after.txt") <(cd "$src/configs/jobs" && "$freeturn" simulate oap_segment.yaml -o "$tmp/again" --quiet --program "$nc" | sed -n 's/.*form error PV \([0-9.]*\) nm.*/\1/p') ||
+  { echo "FAIL: a block after M2 changed the simulated PV"; fail=1; }
+# A program whose C starts below 0 (the ISO lathe's C accumulates).
+printf 'G93\nG1 X2 Z0.6 C-20 F100\nG1 X1.9 Z0.6 C-10 F100\nG1 X1.8 Z0.6 C0 F100\nM2\n' > "$tmp/negative.nc"
+(cd "$src/configs/jobs" && "$freeturn" simulate oap_segment.yaml -o "$tmp/negative" --quiet --program "$tmp/negative.nc") > /dev/null 2>&1
+status=$?
+[[ $status == 0 || $status == 1 ]] || { echo "FAIL: a program starting at C-20 exited $status"; fail=1; }
+# An axis word twice in a block: located, exit 2.
+printf 'G1 X1 Z0 C0\nG1 X1 Z0 C4 Z-1\n' > "$tmp/twice.nc"
+(cd "$src/configs/jobs" && "$freeturn" simulate oap_segment.yaml -o "$tmp/twice" --quiet --program "$tmp/twice.nc") > /dev/null 2> "$tmp/err"
+[[ $? == 2 ]] || { echo "FAIL: a word twice did not exit 2"; fail=1; }
+grep -q "twice.nc:2:13: Z is given twice in one block" "$tmp/err" || { echo "FAIL: the word twice:"; cat "$tmp/err"; fail=1; }
 # Not NC: located, exit 2, nothing written.
 printf 'G1 X1 Z0 C0\nG1 X? Z0\n' > "$tmp/bad.nc"
 (cd "$src/configs/jobs" && "$freeturn" simulate oap_segment.yaml -o "$tmp/bad" --quiet --program "$tmp/bad.nc") > /dev/null 2> "$tmp/err"

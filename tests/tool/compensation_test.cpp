@@ -105,6 +105,15 @@ TEST_SUITE("tool") {
     const CutterLocation high = compensate(p, c);
     CHECK(std::hypot(high.x, 0.01) == doctest::Approx(centre.x).epsilon(1e-15));
     CHECK(high.c == doctest::Approx(0.3 - std::atan2(0.01, high.x)).epsilon(1e-15));
+    // Back from the axes: the nose centre sits where the edge's line through (X, h) turned
+    // by C meets it, at the contact's angle θ = 0.3 and radius c_r.
+    const double x_work = high.x * std::cos(high.c) - 0.01 * std::sin(high.c);
+    const double y_work = high.x * std::sin(high.c) + 0.01 * std::cos(high.c);
+    CHECK(work_angle_from_axes(high.c, high.x, c) ==
+          doctest::Approx(std::atan2(y_work, x_work)).epsilon(1e-15));
+    CHECK(work_angle_from_axes(high.c, high.x, c) == doctest::Approx(0.3).epsilon(1e-14));
+    c.tool.centre_height = 0;
+    CHECK(work_angle_from_axes(high.c, high.x, c) == high.c);
   }
 
   TEST_CASE("4-axis: B follows ψ; axis values → nose centre → contact round trip to 1e-9 mm") {

@@ -16,7 +16,9 @@ namespace {
 
 // A flat face cut by a planar spiral of pitch f (equal angles aligned with the grid's
 // columns), compensated for nose radius `planned`, simulated with nose radius `actual`.
-SimulationResult cut_flat(double f, double planned, double actual) {
+// `waviness`: the measured nose-radius error, compensated for and simulated.
+SimulationResult cut_flat(double f, double planned, double actual,
+                          std::vector<std::pair<double, double>> waviness = {}) {
   const EvenAsphere flat(0, 0);
   SpiralOptions o;
   o.outer_radius = 2.0;
@@ -25,6 +27,7 @@ SimulationResult cut_flat(double f, double planned, double actual) {
   o.points.points_per_revolution = 8;
   CompensationOptions c;
   c.tool.nose_radius = planned;
+  c.tool.waviness = std::move(waviness);
   ToolCheckOptions checks;
   checks.policy.fill(CheckPolicy::kOff);
   SimulationOptions s;
@@ -74,6 +77,24 @@ TEST_SUITE("verify") {
     // The scallop of the larger nose rides on the 1 µm offset.
     const double scallop = (R + 0.001) - std::sqrt((R + 0.001) * (R + 0.001) - f * f / 4);
     CHECK(r.max == doctest::Approx(scallop - 0.001).epsilon(1e-2).scale(0));
+  }
+
+  TEST_CASE("a nose whose waviness is δ at every angle cuts as a round nose of R + δ") {
+    // Compensated for its waviness, the centre stands R + δ off the face; simulated as a
+    // round nose of R it would leave δ everywhere (or gouge δ where δ < 0). The real edge
+    // lies R + δ from the centre: on the face, and scallops of the nose R + δ between.
+    const double f = 0.05, R = 0.5;
+    for (const double delta : {0.001, -0.001}) {
+      CAPTURE(delta);
+      const SimulationResult r = cut_flat(
+          f, R, R,
+          {{-90.0 * std::numbers::pi / 180, delta}, {90.0 * std::numbers::pi / 180, delta}});
+      const double rho = R + delta;
+      const double scallop = rho - std::sqrt(rho * rho - f * f / 4);
+      CHECK(r.max == doctest::Approx(scallop).epsilon(1e-3).scale(0));
+      CHECK(r.min >= -1e-12);  // nowhere below the face
+      CHECK(r.min <= 1e-9);    // and on it where a pass's contact is
+    }
   }
 }
 

@@ -7,6 +7,7 @@
 #include <cstdlib>
 #include <filesystem>
 #include <fstream>
+#include <initializer_list>
 #include <map>
 #include <set>
 #include <sstream>
@@ -16,6 +17,25 @@
 #include "freeturn/core/number_text.hpp"
 
 namespace freeturn {
+
+namespace {
+
+// Words a block may give once: an axis's target, or its feed (a block time under G93).
+bool is_unique_word(char letter) {
+  return std::string("XYZABCUVWF").find(letter) != std::string::npos;
+}
+
+// M02 or M30: the program ends. M99: a child returns (the main program ends there too: a
+// controller that would run it again would cut the same path again).
+bool has_code(const NcBlock& b, char letter, std::initializer_list<double> values) {
+  for (const NcWord& w : b.words)
+    if (w.numeric && w.letter == letter)
+      for (double v : values)
+        if (w.value == v) return true;
+  return false;
+}
+
+}  // namespace
 
 std::vector<NcBlock> parse_nc(const std::string& text, const std::string& file) {
   std::vector<NcBlock> blocks;
@@ -33,6 +53,8 @@ std::vector<NcBlock> parse_nc(const std::string& text, const std::string& file) 
     const auto fail = [&](const std::string& what) {
       throw InputError(SourceLocation{file, line, static_cast<int>(i) + 1}, what);
     };
+    // Where each axis and F word of this block was first given (0: not yet).
+    int first_column[26] = {0};
     while (i < l.size()) {
       const char ch = l[i];
       if (ch == ' ' || ch == '\t' || ch == '\r') {
@@ -48,6 +70,7 @@ std::vector<NcBlock> parse_nc(const std::string& text, const std::string& file) 
       } else if (std::isalpha(static_cast<unsigned char>(ch)) || ch == '#' || ch == '[') {
         NcWord w;
         w.letter = static_cast<char>(std::toupper(static_cast<unsigned char>(ch)));
+        w.column = static_cast<int>(i) + 1;
         std::size_t j = i + 1;
         // A number: sign, digits, point.
         const std::size_t number_start = j;
@@ -77,6 +100,13 @@ std::vector<NcBlock> parse_nc(const std::string& text, const std::string& file) 
             w.numeric = false;
             w.text = "M98" + l.substr(j, close + 1 - j);
             j = close + 1;
+          }
+          if (is_unique_word(w.letter)) {
+            int& first = first_column[w.letter - 'A'];
+            if (first != 0)
+              fail(std::string(1, w.letter) + " is given twice in one block (first at column " +
+                   std::to_string(first) + "): a controller stops there or takes one of them");
+            first = w.column;
           }
           block.words.push_back(w);
           i = j;
@@ -233,10 +263,24 @@ std::string read_nc_text(const std::string& path) {
   return text.str();
 }
 
-std::vector<NcBlock> read_nc_program(const std::string& path) {
-  const auto read = [](const std::string& file) { return parse_nc(read_nc_text(file), file); };
+std::vector<NcBlock> read_nc_program(const std::string& path, std::vector<std::string>* files) {
+  std::vector<std::string> read_files;
+  const auto read = [&read_files](const std::string& file) {
+    std::vector<NcBlock> blocks = parse_nc(read_nc_text(file), file);
+    for (NcBlock& b : blocks) b.file = static_cast<int>(read_files.size());
+    read_files.push_back(file);
+    return blocks;
+  };
   std::vector<NcBlock> blocks;
+  const auto done = [&] {
+    if (files) *files = std::move(read_files);
+    return std::move(blocks);
+  };
   for (NcBlock& b : read(path)) {
+    if (has_code(b, 'M', {2, 30, 99})) {
+      blocks.push_back(std::move(b));
+      return done();
+    }
     std::string child;
     for (const NcWord& w : b.words)
       if (!w.numeric && w.text.rfind("M98(", 0) == 0 && w.text.back() == ')')
@@ -251,10 +295,14 @@ std::vector<NcBlock> read_nc_program(const std::string& path) {
         if (!w.numeric && w.text.rfind("M98(", 0) == 0)
           throw InputError(SourceLocation{child_path, cb.line, 0},
                            "a child program calls another (one level of M98 is read)");
+      const bool ends = has_code(cb, 'M', {2, 30});
+      const bool returns = has_code(cb, 'M', {99});
       blocks.push_back(std::move(cb));
+      if (ends) return done();
+      if (returns) break;
     }
   }
-  return blocks;
+  return done();
 }
 
 }  // namespace freeturn

@@ -727,13 +727,25 @@ RunResult run_program_simulation(const Job& job, const std::string& program,
   constexpr double kDegrees = 180 / std::numbers::pi;
   const bool has_b = machine.has(Axis::kB);
   double value[4] = {std::nan(""), std::nan(""), std::nan(""), has_b ? std::nan("") : 0.0};
-  double theta = std::nan(""), last_c = std::nan("");
+  double spindle = std::nan(""), last_c = std::nan(""), theta_end = std::nan("");
   std::vector<CutterLocation> chunk;
   long blocks = 0;
   const auto axis_of = [](char letter) {
     return letter == 'X' ? 0 : letter == 'Z' ? 1 : letter == 'C' ? 2 : letter == 'B' ? 3 : -1;
   };
-  for (const NcBlock& b : read_nc_program(program)) {
+  // A program from elsewhere was never checked against the machine: each axis's travel
+  // (and B's tool-rotation limits) is, block by block; the farthest crossing of each is
+  // reported.
+  struct Crossing {
+    long blocks = 0;
+    double value = 0, limit = 0, excess = -1;
+    std::string where;
+    CutterLocation at;
+  };
+  Crossing crossing[4];
+  std::vector<std::string> program_files;
+  const std::vector<NcBlock> program_blocks = read_nc_program(program, &program_files);
+  for (const NcBlock& b : program_blocks) {
     bool motion = false, machine_frame = false;
     double next[4] = {value[0], value[1], value[2], value[3]};
     for (const NcWord& w : b.words) {
@@ -751,15 +763,21 @@ RunResult run_program_simulation(const Job& job, const std::string& program,
     const AxisSpec& sz = machine.spec(Axis::kZ);
     const AxisSpec& sc = machine.spec(Axis::kC);
     const double c_deg = (value[2] - sc.offset) / sc.sign;
-    theta = std::isnan(theta) ? c_deg / kDegrees
-                              : theta + (machine.c_wrapped ? std::remainder(c_deg - last_c, 360.0)
-                                                           : c_deg - last_c) / kDegrees;
+    spindle = std::isnan(spindle)
+                  ? c_deg / kDegrees
+                  : spindle + (machine.c_wrapped ? std::remainder(c_deg - last_c, 360.0)
+                                                 : c_deg - last_c) /
+                                  kDegrees;
     last_c = c_deg;
     CutterLocation cl;
     cl.x = (value[0] - sx.offset) / sx.sign;
     cl.z = (value[1] - sz.offset) / sz.sign;
     if (has_b) cl.b = (value[3] - machine.spec(Axis::kB).offset) / machine.spec(Axis::kB).sign / kDegrees;
-    cl.c = theta;
+    cl.c = spindle;
+    // The nose centre's angle on the part: the spindle's, turned where the edge sits off
+    // the spindle line.
+    const double theta = work_angle_from_axes(spindle, cl.x, compensation);
+    theta_end = theta;
     const Eigen::Vector2d centre = nose_centre_from_axes(cl.x, cl.z, cl.b, compensation);
     cl.nose_centre = Eigen::Vector3d(centre.x() * std::cos(theta), centre.x() * std::sin(theta), centre.y());
     // The contact, where the design's normal in the radial plane passes through the nose
@@ -773,6 +791,24 @@ RunResult run_program_simulation(const Job& job, const std::string& program,
     cl.contact.r = std::abs(radial);
     cl.contact.point = Eigen::Vector3d(radial * std::cos(theta), radial * std::sin(theta),
                                        std::isfinite(z) ? z : centre.y());
+    for (const AxisSpec& spec : machine.axes) {
+      const int a = static_cast<int>(spec.axis);
+      double lo = spec.min, hi = spec.max;
+      if (spec.axis == Axis::kB)
+        lo = std::max(lo, machine.b_min_deg), hi = std::min(hi, machine.b_max_deg);
+      const double v = value[a];
+      if (v >= lo && v <= hi) continue;
+      Crossing& k = crossing[a];
+      ++k.blocks;
+      const double excess = v < lo ? lo - v : v - hi;
+      if (excess > k.excess) {
+        k.excess = excess;
+        k.value = v;
+        k.limit = v < lo ? lo : hi;
+        k.where = program_files[static_cast<std::size_t>(b.file)] + ":" + std::to_string(b.line);
+        k.at = cl;
+      }
+    }
     figures.add(cl);
     ++blocks;
     chunk.push_back(cl);
@@ -784,11 +820,54 @@ RunResult run_program_simulation(const Job& job, const std::string& program,
   if (blocks < 2)
     throw InputError(program, "the program holds " + std::to_string(blocks) +
                                   " blocks that move X, Z and C: nothing to simulate");
+  for (const AxisSpec& spec : machine.axes) {
+    const Crossing& k = crossing[static_cast<int>(spec.axis)];
+    if (k.blocks == 0) continue;
+    const std::string letter = axis_letter(spec.axis);
+    const bool b_limit =
+        spec.axis == Axis::kB && (k.limit == machine.b_min_deg || k.limit == machine.b_max_deg);
+    ReportWarning w;
+    w.kind = "travel";
+    w.severity = ReportWarning::Severity::kUnsafe;
+    w.message = std::to_string(k.blocks) + (k.blocks == 1 ? " block takes " : " blocks take ") +
+                letter + " past " + (b_limit ? "the tool-rotation limit " : "its travel limit ") +
+                shortest_text(k.limit) + " of machine '" + machine.name + "': " + letter + " = " +
+                shortest_text(k.value) + " at " + k.where;
+    w.count = k.blocks;
+    w.theta_deg = part_degrees(k.at.contact.theta);
+    w.r_mm = k.at.contact.r;
+    w.x_mm = k.at.contact.point.x();
+    w.y_mm = k.at.contact.point.y();
+    w.value = k.value;
+    w.limit = k.limit;
+    w.unit = spec.axis == Axis::kX || spec.axis == Axis::kZ ? "mm" : "deg";
+    report.warnings.push_back(std::move(w));
+  }
   simulator.write(chunk);
   PathSummary summary;
-  summary.theta_end = theta;
+  summary.theta_end = theta_end;
   figures.finish(summary, DynamicsReport{}, ToolCheckReport{});
   attach_simulation(report, simulator.finish(), job, so.margin, true);
+  // Nothing vouches for a program from elsewhere but its simulated cut: below the design
+  // by more than the verdict lets freeturn's own motion dip, it gouges.
+  const SimulationResult& cut = *report.simulation;
+  if (cut.min < -kChordDipAllowed) {
+    ReportWarning w;
+    w.kind = "simulated_gouge";
+    w.severity = ReportWarning::Severity::kUnsafe;
+    w.r_mm = cut.min_r;
+    w.theta_deg = part_degrees(cut.min_phi);
+    w.x_mm = cut.min_r * std::cos(cut.min_phi);
+    w.y_mm = cut.min_r * std::sin(cut.min_phi);
+    w.message = "the simulated cut goes " + fixed_text(-cut.min * 1e6, 1) +
+                " nm below the design (the most allowed is " +
+                fixed_text(kChordDipAllowed * 1e6, 1) + " nm) at r = " + fixed_text(cut.min_r, 4) +
+                " mm, θ = " + fixed_text(w.theta_deg, 2) + "°";
+    w.value = -cut.min * 1e6;
+    w.limit = kChordDipAllowed * 1e6;
+    w.unit = "nm";
+    report.warnings.push_back(std::move(w));
+  }
   OutputSet outputs;
   files.finish(job, report, design, options.output_dir, outputs);
   std::vector<std::string> written = outputs.commit();

@@ -29,7 +29,9 @@ void TurnSamples::add(double theta, double x, double y) {
   const long turn = static_cast<long>(std::floor(theta / turn_angle));
   if (turn % turn_stride != 0) return;
   const long step = static_cast<long>(std::floor((theta - turn * turn_angle) / turn_angle * kTurnPoints));
-  if (turn != turn_) {
+  // A path may start in any turn, −1 included (a program whose C starts below 0): the
+  // first point opens a turn whatever turn_ held.
+  if (turn != turn_ || turns.empty()) {
     turns.emplace_back();
     if (static_cast<int>(turns.size()) > kMaxTurns) {
       // Keep every other turn (those a multiple of the doubled stride) and go on.

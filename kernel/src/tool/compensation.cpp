@@ -67,4 +67,9 @@ Eigen::Vector2d nose_centre_from_axes(double x, double z, double b, const Compen
   return {x - offset * a_r, z - offset * a_z};
 }
 
+double work_angle_from_axes(double c, double x, const CompensationOptions& o) {
+  const double h = o.tool.centre_height;
+  return h != 0 ? c + std::atan2(h, x) : c;
+}
+
 }  // namespace freeturn

@@ -80,13 +80,15 @@ CutSimulator::CutSimulator(const Surface& design, double nose_radius, const Simu
   pending_.reserve(kBatch + 1);
 }
 
-void CutSimulator::lower_column(int column, double c_r, double c_z, double p_r, bool held) {
+void CutSimulator::lower_column(int column, double c_r, double c_z, double b, double p_r,
+                                bool held) {
   // Signed radial coordinates s within `band` of the contact p_r (and on the nose, within
   // R of its centre): s ≥ 0 in this column, s < 0 in the opposite one at radius −s.
   const int n = o_.columns;
   const double lo = std::max(p_r - o_.band, c_r - R_), hi = std::min(p_r + o_.band, c_r + R_);
   const double to_offset = kOffsetSteps / o_.band;
   const std::uint16_t held_bit = held ? kHeldBit : 0;
+  const ToolGeometry& tool = o_.compensation.tool;
   for (int side = 0; side < 2; ++side) {
     const double sign = side == 0 ? 1.0 : -1.0;
     const int col = side == 0 ? column : (column + n / 2) % n;
@@ -101,7 +103,16 @@ void CutSimulator::lower_column(int column, double c_r, double c_z, double p_r, 
     for (int i = i0; i <= i1; ++i) {
       const double s = sign * (o_.inner_radius + i * o_.radial_step);
       const double d = s - c_r;
-      const double h = c_z - std::sqrt(std::max(0.0, R_ * R_ - d * d));
+      double h = c_z - std::sqrt(std::max(0.0, R_ * R_ - d * d));
+      if (!tool.waviness.empty()) {
+        // The edge point at normal angle ψ lies (R + δ(ψ − B)) from the centre, at radial
+        // offset −(R + δ) sin ψ: ψ from the round nose, once refined with its δ (δ ≪ R,
+        // so the rest is second order in δ′).
+        const double psi0 = std::asin(std::clamp(-d / R_, -1.0, 1.0));
+        const double sin_psi = std::clamp(-d / (R_ + tool.waviness_at(psi0 - b)), -1.0, 1.0);
+        const double psi = std::asin(sin_psi);
+        h = c_z - (R_ + tool.waviness_at(psi - b)) * std::sqrt(1 - sin_psi * sin_psi);
+      }
       const std::size_t idx = static_cast<std::size_t>(i) * static_cast<std::size_t>(n) + static_cast<std::size_t>(col);
       if (h < machined_[idx]) {
         machined_[idx] = h;
@@ -157,7 +168,7 @@ void CutSimulator::sweep_columns(std::size_t end, int pair_begin, int pair_end) 
         q = qa + t * (qb - qa);
       }
       const Eigen::Vector2d centre = nose_centre_from_axes(q.x(), q.y(), q.z(), o_.compensation);
-      lower_column(column, centre.x(), centre.y(), pa + t * (pb - pa), held);
+      lower_column(column, centre.x(), centre.y(), q.z(), pa + t * (pb - pa), held);
     }
   }
 }
@@ -207,8 +218,9 @@ SimulationResult CutSimulator::finish() {
     const double k = cl.contact.theta / (2 * std::numbers::pi / o_.columns);
     if (std::abs(k - std::round(k)) < 1e-9) {
       const Eigen::Vector2d centre = nose_centre_from_axes(cl.x, cl.z, cl.b, o_.compensation);
-      lower_column(static_cast<int>((std::llround(k) % o_.columns + o_.columns) % o_.columns), centre.x(),
-                   centre.y(), radial_of(cl.contact.point, cl.contact.theta), cl.contact.uncut_residual > 0);
+      lower_column(static_cast<int>((std::llround(k) % o_.columns + o_.columns) % o_.columns),
+                   centre.x(), centre.y(), cl.b, radial_of(cl.contact.point, cl.contact.theta),
+                   cl.contact.uncut_residual > 0);
     }
     pending_.clear();
   }

@@ -14,22 +14,31 @@ struct NcWord {
   double value = 0;     // for a numeric word
   std::string text;     // the word as written (for non-numeric words and codes)
   bool numeric = true;
+  int column = 0;  // 1-based column of its letter
 };
 
 struct NcBlock {
   int line = 0;  // 1-based line in its file
+  int file = 0;  // read_nc_program: which of its files (0 the program, then each child read)
   std::vector<NcWord> words;
 };
 
 // Throws InputError (file:line:col) for text that is not NC: a character that starts no
-// word, or a letter without a value.
+// word, a letter without a value, or an axis (X Y Z A B C U V W) or F word given twice in
+// one block (controllers either stop there or take one of the two; which is not ours to
+// guess).
 std::vector<NcBlock> parse_nc(const std::string& text, const std::string& file);
 
 // A program file and the child files it calls (M98(name), beside it), as one sequence of
 // blocks in the order the controller runs them. Each block keeps its own file's line.
+// The run ends at the block that ends the program (M02 or M30 in any file, M99 in the
+// main one) and a child returns at its M99: blocks after those are never run, so they are
+// not read as motion.
 // Throws InputError for a file that cannot be read or parsed, or a call nested deeper than
-// the child files a post writes (one level).
-std::vector<NcBlock> read_nc_program(const std::string& path);
+// the child files a post writes (one level). `files`, when given, receives the paths the
+// blocks' `file` indices name.
+std::vector<NcBlock> read_nc_program(const std::string& path,
+                                     std::vector<std::string>* files = nullptr);
 
 // The whole text of an NC program file. Only a regular file: a device (/dev/zero) would be
 // read until memory runs out, and a pipe would block the open for good.

@@ -34,7 +34,8 @@ struct ReportWarning {
   static constexpr double kNone = std::numeric_limits<double>::quiet_NaN();
   // A stable key: a tool check's ("contact_angle", "clearance", "local_gouge",
   // "global_gouge", "centre", "b_limits"), or "nose_jump", "chord_below", "dynamics",
-  // "spindle_speed", "slowed_blocks", "uncut_residual", "quasi_revolution".
+  // "spindle_speed", "slowed_blocks", "uncut_residual", "quasi_revolution"; for a program
+  // from elsewhere (`simulate --program`), "travel" and "simulated_gouge".
   std::string kind;
   Severity severity = Severity::kWarning;
   std::string pass;     // "finish", "rough-1", …; empty: the job as a whole

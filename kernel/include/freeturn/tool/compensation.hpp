@@ -51,5 +51,9 @@ CutterLocation compensate(const ContactPoint& contact, const CompensationOptions
 // centre in the radial plane (ρ, z) — x, z being the point `options` programs.
 Eigen::Vector2d nose_centre_from_axes(double x, double z, double b,
                                       const CompensationOptions& options);
+// The angle on the part (rad) of the nose centre programmed at spindle angle c (rad) and
+// x: c itself, turned by atan2(h, x) when the edge sits h above the spindle line (the
+// inverse of compensate's C = θ − atan2(h, X)).
+double work_angle_from_axes(double c, double x, const CompensationOptions& options);
 
 }  // namespace freeturn

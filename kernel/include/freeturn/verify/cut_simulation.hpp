@@ -100,8 +100,8 @@ struct SimulationResult {
 class CutSimulator final : public CutterSink {
  public:
   // nose_radius: the radius the tool really has (a wrong compensation shows as the
-  // difference from the one the path was planned with). Throws InputError for a bad grid
-  // or one over max_cells.
+  // difference from the one the path was planned with); its measured waviness δ(ψ − B) is
+  // options.compensation.tool's. Throws InputError for a bad grid or one over max_cells.
   CutSimulator(const Surface& design, double nose_radius, const SimulationOptions& options);
 
   void write(std::span<const CutterLocation> chunk) override;
@@ -113,7 +113,8 @@ class CutSimulator final : public CutterSink {
   void sweep_batch(bool last);
   void sweep_columns(std::size_t end, int pair_begin, int pair_end);
   // held: the segment's nose is held at a crease (its cells are marked uncut residual).
-  void lower_column(int column, double c_r, double c_z, double p_r, bool held);
+  // b: the tool's rotation (rad), where the waviness is read on the edge.
+  void lower_column(int column, double c_r, double c_z, double b, double p_r, bool held);
 
   const Surface& design_;
   double R_;

@@ -1,0 +1,59 @@
+#include <doctest/doctest.h>
+
+#include <string>
+#include <vector>
+
+#include "freeturn/core/error.hpp"
+#include "freeturn/io/nc_program.hpp"
+#include "test_files.hpp"
+
+using namespace freeturn;
+
+namespace {
+
+// The X values of the blocks, in the order read.
+std::vector<double> xs(const std::vector<NcBlock>& blocks) {
+  std::vector<double> out;
+  for (const NcBlock& b : blocks)
+    for (const NcWord& w : b.words)
+      if (w.numeric && w.letter == 'X') out.push_back(w.value);
+  return out;
+}
+
+}  // namespace
+
+TEST_SUITE("io") {
+  TEST_CASE("an axis or F word twice in one block is refused at its column") {
+    CHECK_THROWS_WITH_AS(parse_nc("G1 X1 Z0\nC4 X1.9 Z0.3 X2\n", "p.nc"),
+                         doctest::Contains("p.nc:2:14: X is given twice in one block (first at column 4)"),
+                         InputError);
+    CHECK_THROWS_WITH_AS(parse_nc("G93 F0.1 X1 f0.2\n", "p.nc"), doctest::Contains("p.nc:1:13: F is given twice"),
+                         InputError);
+    // Codes may repeat (G01 G18 G90 …), and so may words no controller reads as a target.
+    const std::vector<NcBlock> codes = parse_nc("G71 G01 G18 G40 X1 M03 M08\n", "p.nc");
+    REQUIRE(codes.size() == 1);
+    CHECK(codes[0].words.size() == 7);
+    CHECK(codes[0].words[4].column == 17);
+  }
+
+  TEST_CASE("a program is read as it runs: it ends at M30, M02 or M99, a child returns at M99") {
+    const test::TempDir dir;
+    dir.write("child.nc", "G93 F0.1\nC1 X1\nC2 X2\nM99\nC3 X-99\n");
+    const std::string main = dir.write("main.nc", "G1 X0 Z1\nM98(child.nc)\nG1 X5\nM30\nG1 X-50 Z-50\n");
+    std::vector<std::string> files;
+    const std::vector<NcBlock> blocks = read_nc_program(main, &files);
+    CHECK(xs(blocks) == std::vector<double>{0, 1, 2, 5});
+    REQUIRE(files.size() == 2);
+    CHECK(files[0] == main);
+    CHECK(files[1] == dir.file("child.nc"));
+    CHECK(blocks.back().line == 4);  // the M30 itself is read
+    CHECK(blocks.back().file == 0);
+    CHECK(blocks[3].file == 1);      // C2 X2, the child's line 3
+    CHECK(blocks[3].line == 3);
+    // M02 ends it in a child too; M99 in the main program ends it.
+    dir.write("ends.nc", "C1 X1\nM02\nC2 X-99\n");
+    CHECK(xs(read_nc_program(dir.write("a.nc", "X0\nM98(ends.nc)\nX-98\n"))) == std::vector<double>{0, 1});
+    CHECK(xs(read_nc_program(dir.write("b.nc", "X0\nM99\nX-98\n"))) == std::vector<double>{0});
+    CHECK(xs(read_nc_program(dir.write("c.nc", "X0\nM2\nX-98\n"))) == std::vector<double>{0});
+  }
+}
