@@ -13,6 +13,7 @@
 
 #include "freeturn/core/number_text.hpp"
 #include "freeturn/freeturn.hpp"
+#include "freeturn/io/nc_program.hpp"
 #include "freeturn/job/surface_yaml.hpp"
 #include "freeturn/job/yaml_reader.hpp"
 
@@ -198,6 +199,96 @@ PYBIND11_MODULE(freeturn, m) {
       "Returns a dict: verdict ('PASS' or 'UNSAFE'), unsafe reasons, warnings, per-pass figures,\n"
       "files written. threads: that plan the spiral (and simulate, when simulate is true); 0: one\n"
       "per core. The files are the same on any number.");
+
+  m.def(
+      "simulate",
+      [](const py::object& path_or_job, const std::string& output_dir, double radial_step,
+         int columns, int threads, const py::object& program) {
+        if (!std::isfinite(radial_step) || radial_step < 0 || radial_step > 10)
+          throw InputError("radial_step",
+                           "must be a finite number in [0, 10] mm (0: a sixteenth of the "
+                           "pitch), not " +
+                               shortest_text(radial_step));
+        if (columns < 2 || columns > 1000000 || columns % 2)
+          throw InputError("columns",
+                           "must be an even number from 2 to 1000000 (each angle has its "
+                           "opposite), not " +
+                               std::to_string(columns));
+        const std::shared_ptr<Job> job = job_of(path_or_job);
+        SimulationOptions simulation;
+        simulation.radial_step = radial_step;
+        simulation.columns = columns;
+        simulation.threads = threads;
+        RunOptions options;
+        options.output_dir = output_dir;
+        options.threads = threads;
+        const std::string nc =
+            program.is_none() ? std::string() : py::str(program).cast<std::string>();
+        RunResult r;
+        {
+          py::gil_scoped_release release;
+          r = nc.empty() ? simulate_job(*job, simulation, options)
+                         : simulate_program(*job, nc, simulation, options);
+        }
+        py::dict d = result_dict(r.report, r.files);
+        const SimulationResult& s = *r.report.simulation;
+        py::dict sim;
+        sim["pv_nm"] = s.pv * 1e6;
+        sim["rms_nm"] = s.rms * 1e6;
+        sim["max_nm"] = s.max * 1e6;
+        sim["min_nm"] = s.min * 1e6;
+        sim["max_at_r_mm"] = s.max_r;
+        sim["min_at_r_mm"] = s.min_r;
+        sim["cells_not_reached"] = s.uncut;
+        sim["predicted_pv_nm"] =
+            nc.empty() ? py::object(py::float_(s.predicted.pv() * 1e6)) : py::object(py::none());
+        py::list worst;
+        for (const ResidualPlace& p : s.worst) {
+          py::dict w;
+          w["residual_nm"] = p.residual * 1e6;
+          w["r_mm"] = p.r;
+          w["theta_deg"] = part_degrees(p.phi);
+          w["cause"] = to_string(p.cause);
+          worst.append(w);
+        }
+        sim["worst"] = worst;
+        d["simulation"] = sim;
+        return d;
+      },
+      py::arg("path_or_job"), py::arg("output_dir") = ".", py::arg("radial_step") = 0.0,
+      py::arg("columns") = 360, py::arg("threads") = 0, py::arg("program") = py::none(),
+      "Runs a job and cuts its finishing pass in simulation, as `freeturn simulate` does, or\n"
+      "with program=path an NC program for the job's machine (from freeturn or another CAM)\n"
+      "instead of the job's own: then the verdict is UNSAFE where the simulated cut goes below\n"
+      "the design or a block leaves the machine's travel. radial_step (mm, 0: a sixteenth of the\n"
+      "pitch) and columns (even) set the grid. Returns run_job's dict with 'simulation': PV,\n"
+      "RMS, max and min (nm, residual above the design positive), where, and the worst places.");
+
+  m.def(
+      "ncdiff",
+      [](const std::string& a, const std::string& b, double tolerance) {
+        if (!std::isfinite(tolerance) || tolerance < 0 || tolerance > 1e6)
+          throw InputError("tolerance",
+                           "must be a finite number in [0, 1e6], not " + shortest_text(tolerance));
+        NcDiffOptions o;
+        o.axis_tolerance = tolerance;
+        const NcDiffResult r =
+            nc_diff(parse_nc(read_nc_text(a), a), a, parse_nc(read_nc_text(b), b), b, o);
+        py::dict d;
+        d["same"] = r.same;
+        d["first_difference"] = r.first_difference;
+        d["blocks"] = py::make_tuple(r.blocks_a, r.blocks_b);
+        py::dict largest;
+        for (int i = 0; i < 26; ++i)
+          if (r.largest[i] > 0)
+            largest[py::str(std::string(1, static_cast<char>('A' + i)))] = r.largest[i];
+        d["largest"] = largest;
+        return d;
+      },
+      py::arg("a"), py::arg("b"), py::arg("tolerance") = 1e-9,
+      "Compares two NC programs by value, as `freeturn ncdiff` does: axis words within\n"
+      "tolerance (mm or degrees), codes as sets, formatting and comments ignored. Returns\n"
+      "{'same', 'first_difference', 'blocks': (a, b), 'largest': {letter: largest |Δ|}}.");
 
   m.def(
       "check_job",

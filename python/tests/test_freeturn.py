@@ -166,3 +166,64 @@ def test_the_readme_example_runs(tmp_path):
                             capture_output=True, text=True, timeout=300)
     assert result.returncode == 0, result.stderr
     assert result.stdout.strip().splitlines()[-1] == "PASS"
+
+
+def test_simulate_equals_the_cli(tmp_path):
+    # The module's simulate is the command's: the same residual file, the same figures.
+    job_file = os.path.join(JOBS, "oap_segment.yaml")
+    result = freeturn.simulate(job_file, output_dir=str(tmp_path / "py"), columns=180)
+    cli = subprocess.run([CLI, "simulate", job_file, "-o", str(tmp_path / "cli"), "--quiet", "--columns", "180"],
+                         check=True, cwd=JOBS, capture_output=True, text=True).stdout
+    pv = float(cli.split("form error PV ")[1].split(" nm")[0])
+    sim = result["simulation"]
+    assert sim["pv_nm"] == pytest.approx(pv, abs=5e-4)  # the CLI prints 3 decimals
+    assert sim["pv_nm"] == pytest.approx(sim["max_nm"] - sim["min_nm"], rel=1e-12)
+    residual = "oap_segment.residual.csv"
+    assert open(tmp_path / "py" / residual, "rb").read() == open(tmp_path / "cli" / residual, "rb").read()
+    # The planner's prediction bounds the simulation (an upper bound within 10 %).
+    assert sim["pv_nm"] <= sim["predicted_pv_nm"] <= 1.1 * sim["pv_nm"]
+    assert result["verdict"] == "PASS"
+
+
+def test_simulate_a_program_judges_it(tmp_path):
+    # freeturn's own program read back passes; the same with one block 2 µm lower gouges
+    # there, and the verdict says so.
+    job_file = os.path.join(JOBS, "oap_segment.yaml")
+    own = freeturn.run_job(job_file, output_dir=str(tmp_path / "own"))
+    nc = [f for f in own["files"] if f.endswith(".nc")][0]
+    read_back = freeturn.simulate(job_file, output_dir=str(tmp_path / "back"), program=nc)
+    assert read_back["verdict"] == "PASS" and read_back["simulation"]["min_nm"] > 0
+    assert read_back["simulation"]["predicted_pv_nm"] is None
+    lines = open(nc).read().split("\n")
+    k = [i for i, line in enumerate(lines) if line.startswith("G1 X")][200]
+    words = lines[k].split()
+    z = [w for w in words if w.startswith("Z")][0]
+    lines[k] = lines[k].replace(z, "Z%.6f" % (float(z[1:]) - 0.002))
+    moved = tmp_path / "moved.nc"
+    moved.write_text("\n".join(lines))
+    cut = freeturn.simulate(job_file, output_dir=str(tmp_path / "moved"), program=str(moved))
+    assert cut["verdict"] == "UNSAFE"
+    assert cut["simulation"]["min_nm"] < -1000
+    assert [w["kind"] for w in cut["warning_records"]] == ["simulated_gouge"]
+    assert cut["unsafe"][0].startswith("the simulated cut goes")
+    with pytest.raises(freeturn.InputError, match="^columns: must be an even number"):
+        freeturn.simulate(job_file, columns=7)
+    with pytest.raises(freeturn.InputError, match="^radial_step: must be a finite number"):
+        freeturn.simulate(job_file, radial_step=float("nan"))
+
+
+def test_ncdiff(tmp_path):
+    a = tmp_path / "a.nc"
+    b = tmp_path / "b.nc"
+    a.write_text("G1 X1.000000 Z0.5 C0\nG1 X0.9 Z0.5 C3\n")
+    b.write_text("G01 Z0.50 X1.0 C0.0 (the same, written otherwise)\nG1 X0.9001 Z0.5 C3\n")
+    d = freeturn.ncdiff(str(a), str(b))
+    assert not d["same"] and d["blocks"] == (2, 2)
+    assert d["first_difference"].startswith(f"{a}:2 vs {b}:2: X 0.9")
+    assert d["largest"]["X"] == pytest.approx(1e-4, rel=1e-9)
+    assert freeturn.ncdiff(str(a), str(b), tolerance=2e-4)["same"]
+    with pytest.raises(freeturn.InputError, match="^tolerance: must be a finite number"):
+        freeturn.ncdiff(str(a), str(b), tolerance=float("nan"))
+    b.write_text("G1 X1 X2 Z0 C0\n")
+    with pytest.raises(freeturn.InputError, match=r"b.nc:1:7: X is given twice in one block"):
+        freeturn.ncdiff(str(a), str(b))
