@@ -20,8 +20,16 @@ int run_sample(const SampleArgs& args) {
   std::filesystem::create_directories(args.output, ec);
   if (ec) throw InputError(args.output, "cannot create the output folder: " + ec.message());
   const std::string path = (std::filesystem::path(args.output) / (job.name + ".surface.csv")).string();
-  const SampleSummary s = write_surface_samples_csv(*job.surface, job.aperture.inner_radius,
-                                                    job.aperture.outer_radius, args.grid, path);
+  SampleSummary s;
+  try {
+    s = write_surface_samples_csv(*job.surface, job.aperture.inner_radius,
+                                  job.aperture.outer_radius, args.grid, path,
+                                  job.plan ? job.plan->limits.max_file_mb : Limits{}.max_file_mb);
+  } catch (const InputError& e) {
+    // The file's bound is the job's (its `limits:`, or the job itself where it gives none).
+    if (e.where() != "limits.max_file_mb") throw;
+    throw InputError(job.place(e.where()), e.where() + ": " + e.problem());
+  }
   if (!args.quiet)
     std::printf(
       "%s: %ld points of the %s surface, sag %.9g to %.9g mm (PV %.6g um), "

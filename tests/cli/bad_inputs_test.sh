@@ -216,6 +216,22 @@ sampled() {  # description, job, expected prefix, word
   grep -qF -- "$4" "$tmp/err" || { echo "FAIL: $1: '$4' not in:"; cat "$tmp/err"; fail=1; }
   [[ -z "$(ls -A "$tmp/out" 2> /dev/null)" ]] || { echo "FAIL: $1: left $(ls -A "$tmp/out")"; fail=1; }
 }
+# A sample grid past the job's file limit: refused before evaluating (its rows cannot fit)
+# or as it grows; nothing is left (a 20001-point grid had written about 30 GB).
+{ cat "$src/configs/jobs/oap_segment.yaml"; echo "limits: {max_file_mb: 1}"; } > "$tmp/samples.yaml"
+limits_line=$(grep -n '^limits:' "$tmp/samples.yaml" | cut -d: -f1)
+for grid in 2001 201; do
+  cases=$((cases + 1))
+  rm -rf "$tmp/out"
+  (cd "$src/configs/jobs" && "$freeturn" sample "$tmp/samples.yaml" -o "$tmp/out" --grid $grid) > /dev/null 2> "$tmp/err"
+  code=$?
+  [[ $code == 2 ]] || { echo "FAIL: samples of a $grid grid: exit $code"; fail=1; }
+  grep -qF "$tmp/samples.yaml:$limits_line:23: limits.max_file_mb: the samples of a $grid × $grid grid" "$tmp/err" ||
+    { echo "FAIL: samples of a $grid grid:"; cat "$tmp/err"; fail=1; }
+  [[ -z "$(ls -A "$tmp/out" 2> /dev/null)" ]] || { echo "FAIL: samples of a $grid grid left $(ls -A "$tmp/out")"; fail=1; }
+done
+grep -qF "grow past limits.max_file_mb = 1 MB" "$tmp/err" || { echo "FAIL: the grid that grows past:"; cat "$tmp/err"; fail=1; }
+
 cat > "$tmp/nurbs.yaml" <<'YAML'
 name: n
 aperture:

@@ -3,8 +3,10 @@
 #include <algorithm>
 #include <charconv>
 #include <cmath>
+#include <numbers>
 
 #include "freeturn/core/error.hpp"
+#include "freeturn/core/number_text.hpp"
 #include "freeturn/io/atomic_file.hpp"
 
 namespace freeturn {
@@ -20,9 +22,28 @@ void append_number(std::string& out, double v) {
 }  // namespace
 
 SampleSummary write_surface_samples_csv(const Surface& surface, double inner_radius,
-                                        double outer_radius, int grid_n, const std::string& path) {
+                                        double outer_radius, int grid_n, const std::string& path,
+                                        double max_mb) {
   if (grid_n < 2) throw InputError(path, "the sample grid needs at least 2 points per side");
+  const double max_bytes = max_mb * 1048576.0;
+  const auto too_large = [&](const std::string& how) {
+    return InputError("limits.max_file_mb",
+                      "the samples of a " + std::to_string(grid_n) + " × " +
+                          std::to_string(grid_n) + " grid " + how +
+                          " limits.max_file_mb = " + significant_text(max_mb, 6) +
+                          " MB; give a coarser grid (nothing was written)");
+  };
+  // The rows inside the ring, from its share of the square less a row and column of
+  // boundary, each at least "0,0,0,0,0,1\n".
+  const double share = std::numbers::pi *
+                       (outer_radius * outer_radius - inner_radius * inner_radius) /
+                       (4 * outer_radius * outer_radius);
+  const double fewest_rows = std::max(0.0, share * grid_n * grid_n - 4.0 * grid_n);
+  if (fewest_rows * 12 > max_bytes)
+    throw too_large("would take at least " + significant_text(fewest_rows * 12 / 1048576.0, 4) +
+                    " MB, over");
   AtomicFile file(path);
+  std::size_t written = 0;
   std::string buffer = "x,y,z,nx,ny,nz\n";
   SampleSummary summary;
   summary.z_min = INFINITY;
@@ -47,11 +68,14 @@ SampleSummary write_surface_samples_csv(const Surface& surface, double inner_rad
       summary.z_max = std::max(summary.z_max, z);
       summary.max_slope = std::max(summary.max_slope, std::acos(1.0 / len));
       if (buffer.size() > (1u << 20)) {
+        written += buffer.size();
+        if (static_cast<double>(written) > max_bytes) throw too_large("grow past");
         file.write(buffer);
         buffer.clear();
       }
     }
   }
+  if (static_cast<double>(written + buffer.size()) > max_bytes) throw too_large("grow past");
   file.write(buffer);
   file.commit();
   return summary;
