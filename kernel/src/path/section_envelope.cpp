@@ -15,6 +15,8 @@ constexpr double kOffCrease = 1e-10;  // mm
 // How far below a piece's top nose_overlap may leave it, where the piece's concavity shows
 // it can rise no more above the largest height found (a tenth of a picometre).
 constexpr double kUnsought = 1e-13;  // mm
+// How close to a piece's peak a search that has passed its floor goes on to (search).
+constexpr double kSettled = 1e-9;  // mm
 
 struct Section {
   const Surface& design;
@@ -96,6 +98,8 @@ void search(const Section& section, double x_c, double z_c, double R, double sta
             double floor = -1e300, double* ceiling = nullptr) {
   if (!(lo <= hi)) return;
   double r = std::clamp(start, lo, hi);
+  // The least bound of the piece's maximum the values met give (m > 0, as `ceiling`).
+  double bound = std::numeric_limits<double>::infinity();
   for (int it = 0; it < steps; ++it) {
     double g, slope;
     if (!section.at(r, g, slope)) return;
@@ -104,15 +108,43 @@ void search(const Section& section, double x_c, double z_c, double R, double sta
     if (h > best.height) best = {h, r, slope};
     if (!(s > 0)) return;
     const double h_slope = slope - d / s;
-    if (ceiling && m > 0) {
+    if (m > 0) {
       const double rise = (r == lo && h_slope < 0) || (r == hi && h_slope > 0) ? 0.0 : h_slope;
-      *ceiling = std::min(*ceiling, h + rise * rise / (2 * m));
+      bound = std::min(bound, h + rise * rise / (2 * m));
+      if (ceiling) *ceiling = std::min(*ceiling, bound);
     }
     if (it == 0 && side != 0 && m > 0 && r == start) {
       const double rise = std::max(0.0, side * h_slope);  // into the piece
       if (h + rise * rise / (2 * m) + 1e-12 < floor) return;
     }
     const double next = std::clamp(r + h_slope * s * s * s / (R * R), lo, hi);
+    if (std::abs(next - r) <= 1e-15 * (1 + std::abs(r))) return;
+    r = next;
+  }
+  // The steps above take h'' as the nose's alone (−R²/s³). Where the piece is strongly
+  // convex too (a steep lenslet), they overshoot and can end far from a peak that the
+  // bound still says may pass `floor`, or what was found: a nose held nowhere over a
+  // lenslet 0.25 µm inside it, and a held nose's touch on a lenslet read as 0.24 µm
+  // short of it. Such a search goes on by Newton's method with h'' = g'' − R²/s³ until
+  // the bound settles it: below `floor`, or within kSettled of the largest value found.
+  const auto settled = [&] {
+    return best.height >= floor ? bound <= best.height + kSettled : bound + 1e-12 < floor;
+  };
+  if (!(m > 0) || !(floor > -1e300) || settled()) return;
+  for (int it = 0; it < 40; ++it) {
+    double g, slope, bend;
+    if (!section.at(r, g, slope, bend)) return;
+    const double d = r - x_c, s = std::sqrt(std::max(R * R - d * d, 0.0));
+    const double h = g - z_c + s;
+    if (h > best.height) best = {h, r, slope};
+    if (!(s > 0)) return;
+    const double h_slope = slope - d / s;
+    const double rise = (r == lo && h_slope < 0) || (r == hi && h_slope > 0) ? 0.0 : h_slope;
+    bound = std::min(bound, h + rise * rise / (2 * m));
+    if (ceiling) *ceiling = std::min(*ceiling, bound);
+    if (settled()) return;
+    const double curvature = std::min(bend - R * R / (s * s * s), -m);  // h'' ≤ −m on the piece
+    const double next = std::clamp(r - h_slope / curvature, lo, hi);
     if (std::abs(next - r) <= 1e-15 * (1 + std::abs(r))) return;
     r = next;
   }
@@ -326,6 +358,211 @@ bool touch_clear_of_creases(const Surface& design, double x, double y, double R,
   return directed_envelope_below_zero(near.data(), plain.data(), within, m, reach, x, y, margin);
 }
 
+namespace {
+
+// The nose for the contact (rho_p, t) held at crease `held_at`, overhanging its flank on
+// `far` (±1) at overhang_rho: its centre where the own flank's offset meets the far
+// flank's (nose_touch, below). t itself where that is not resolved.
+NoseTouch hold_at_crease(const Section& section, const SectionCreases& creases, NoseTouch t,
+                         double rho_p, double R, double nose_radius, double m, double tolerance,
+                         int held_at, int far, double overhang_rho) {
+  const double crease = creases.rho[held_at];
+  // The other flank, as far as the next crease or 2R.
+  double far_lo, far_hi;
+  piece_bounds(creases, held_at, far, crease - 2 * R, crease + 2 * R, far_lo, far_hi);
+  // The contact's own flank, likewise.
+  double near_lo, near_hi;
+  piece_bounds(creases, held_at, -far, crease - 2 * R, crease + 2 * R, near_lo, near_hi);
+
+  double foot = overhang_rho;  // warm start of the foot point on the other flank
+  double centre_x = 0, centre_z = 0, g_a = 0, slope_a = 0;
+  // F(a) = R − distance from the offset of the own flank at a to the other flank: > 0 where
+  // the nose there overhangs it, 0 at the intersection of the two offsets.
+  const auto F = [&](double a) {
+    if (!section.at(a, g_a, slope_a)) return -R;
+    const double l = std::sqrt(1 + slope_a * slope_a);
+    centre_x = a - R * slope_a / l;
+    centre_z = g_a + R / l;
+    // The distance is that of the last foot evaluated, taken once after the iterations
+    // (std::hypot costs as much as the rest of an iteration).
+    double g, s, dx = 1e300, dz = 0;
+    bool settled = false;
+    for (int it = 0; it < 12; ++it) {
+      if (!section.at(foot, g, s)) return -R;
+      dx = foot - centre_x;
+      dz = g - centre_z;
+      const double next = std::clamp(foot - (dx + s * dz) / (1 + s * s), far_lo, far_hi);
+      if (std::abs(next - foot) <= 1e-15 * (1 + std::abs(foot))) {
+        settled = true;
+        break;
+      }
+      foot = next;
+    }
+    // Gauss–Newton leaves out the flank's curvature, g''·(g − z_c) in the distance's second
+    // derivative: where the flank curves as tightly as the nose (a 0.3 mm nose over a
+    // 0.3 mm lenslet) its steps overshoot by half and never settle, and the foot it ends
+    // on is not the nearest point (a held nose 56 nm into that flank). Newton's steps then.
+    for (int it = 0; !settled && it < 30; ++it) {
+      double bend;
+      if (!section.at(foot, g, s, bend)) return -R;
+      dx = foot - centre_x;
+      dz = g - centre_z;
+      const double second = 1 + s * s + bend * dz;
+      const double next =
+          std::clamp(foot - (dx + s * dz) / (second > 0 ? second : 1 + s * s), far_lo, far_hi);
+      settled = std::abs(next - foot) <= 1e-15 * (1 + std::abs(foot));
+      foot = next;
+    }
+    return R - std::hypot(dx, dz);
+  };
+  // The held nose, its centre and own-flank values those last computed at a.
+  const auto held_touch = [&](double a, double far_foot) {
+    t.rho = a;
+    t.z = g_a;
+    t.slope = slope_a;
+    t.centre_x = centre_x;
+    t.centre_z = centre_z;
+    t.held = true;
+    t.crease_rho = crease;
+    t.far_rho = far_foot;
+    // The material left between the two touches, largest at a crease between them (on
+    // each piece between, the nose's arc less the section is convex): the held one, and
+    // those of a trough the nose spans.
+    t.uncut = 0;
+    bool lowest = true;
+    for (int k = 0; k < creases.count; ++k) {
+      if (k != held_at &&
+          !(creases.rho[k] > std::min(a, far_foot) && creases.rho[k] < std::max(a, far_foot)))
+        continue;
+      // The hold is named by the lowest crease between its touches, whichever crease it
+      // was solved at: a nose across a trough is one hold for every contact under it, its
+      // touch on the flank of the contact's side of that crease, as at a single crease
+      // (solved at the far rim for a contact on the near lenslet and at the near rim for
+      // one on the flat, it had looked like two holds with one centre, and the chord
+      // search took the touch's change for an error of 276 nm at any step).
+      if (lowest) t.crease_rho = creases.rho[k];
+      lowest = false;
+      double g_crease, s_crease;
+      section.at(creases.rho[k], g_crease, s_crease);
+      const double d = creases.rho[k] - centre_x;
+      t.uncut =
+          std::max(t.uncut, centre_z - std::sqrt(std::max(nose_radius * nose_radius - d * d, 0.0)) -
+                                g_crease);
+    }
+    return t;
+  };
+  const auto beyond_reach = [&](int k) {
+    return k < 0 || k >= creases.count || !(std::abs(creases.rho[k] - crease) < 2 * R);
+  };
+  // The crease that ends the own flank away from the held one. The own flank is the piece
+  // the contact lies on: where other creases lie between it and the held one, the nose
+  // spans a trough (and was left unheld over the far flank when taken from the piece next
+  // to the held crease).
+  int next_crease = held_at - far;
+  while (!beyond_reach(next_crease) && far * (creases.rho[next_crease] - rho_p) > kOffCrease) {
+    piece_bounds(creases, next_crease, -far, crease - 2 * R, crease + 2 * R, near_lo, near_hi);
+    next_crease -= far;
+  }
+  const double own = std::clamp(rho_p, near_lo, near_hi);
+  // The root of F on the own flank [near_lo, near_hi], walking away from `origin` (where
+  // F(a_in) = f_in > 0) until F < 0, then Illinois regula falsi. Where the flank ends at a
+  // crease with the nose still overhanging, the trough is narrower than the nose: it
+  // cannot reach that flank, and rests on the one beyond that crease (a microlens
+  // array's flat between lenslets closer than the nose is wide). False: not resolved.
+  const auto solve = [&](double a_in, double f_in, double origin, double step, double& a) {
+    double a_out = a_in, f_out = f_in;
+    for (;; step *= 2) {
+      a_out = std::clamp(origin - far * step, near_lo, near_hi);
+      f_out = F(a_out);
+      if (f_out < 0) break;
+      if (a_out == (far > 0 ? near_lo : near_hi) && !beyond_reach(next_crease)) {
+        piece_bounds(creases, next_crease, -far, crease - 2 * R, crease + 2 * R, near_lo, near_hi);
+        next_crease -= far;
+        a_in = origin = far > 0 ? near_hi : near_lo;
+        f_in = F(a_in);
+        if (!(f_in > 0)) return false;  // the offsets meet in that crease's own turn
+        step = 0.5e-4 * R;              // doubled before the next trial
+        continue;
+      }
+      if (step > 2 * R || a_out == near_lo || a_out == near_hi) return false;
+    }
+    int kept = 0;
+    a = a_in;
+    for (int it = 0; it < 100; ++it) {
+      a = (a_out * f_in - a_in * f_out) / (f_in - f_out);
+      const double f = F(a);
+      if (std::abs(f) <= 1e-14 || std::abs(a_in - a_out) <= 1e-14) break;
+      if (f > 0) {
+        a_in = a;
+        f_in = f;
+        if (kept == 1) f_out *= 0.5;
+        kept = 1;
+      } else {
+        a_out = a;
+        f_out = f;
+        if (kept == -1) f_in *= 0.5;
+        kept = -1;
+      }
+    }
+    F(a);  // leaves the centre and the flank's values at a
+    return true;
+  };
+  NoseTouch held;
+  // The nose at the contact itself overhangs the far flank by more than `tolerance`
+  // (a point of that flank inside its circle): F(own) > 0, and F falls away
+  // from the crease, so the root lies that way from `own`. Newton on the two offsets from
+  // (own, the overhang's point) when it lands there; else (and for a clamped contact,
+  // whose nose was not the one measured) the bracketing search.
+  double a_newton = own, b_newton = overhang_rho;
+  if (own == rho_p &&
+      offsets_meet(section, R, far > 0 ? near_lo : own, far > 0 ? own : near_hi, far_lo, far_hi,
+                   a_newton, b_newton, g_a, slope_a, centre_x, centre_z)) {
+    held = held_touch(a_newton, b_newton);
+  } else {
+    double start = own, f_start = F(own), origin = crease,
+           step = std::max(std::abs(crease - own), 1e-4 * R);
+    if (!(f_start > 0)) {
+      // A contact on the crease that ends its flank may carry the slope of the flank
+      // beyond it (which one is a matter of rounding): its nose is that flank's offset,
+      // which overhangs the far one across the trough. The hold is solved on that flank.
+      if (beyond_reach(next_crease) || !(std::abs(creases.rho[next_crease] - rho_p) <= kOffCrease))
+        return t;  // the overhang is not this flank's to resolve
+      piece_bounds(creases, next_crease, -far, crease - 2 * R, crease + 2 * R, near_lo, near_hi);
+      next_crease -= far;
+      start = origin = far > 0 ? near_hi : near_lo;
+      f_start = F(start);
+      step = 1e-4 * R;
+      if (!(f_start > 0)) return t;
+    }
+    double a;
+    if (!solve(start, f_start, origin, step, a)) return t;
+    held = held_touch(a, foot);
+  }
+  // The own flank's solution may overhang the flank beyond its other crease: a trough
+  // narrower than the nose, whose two holds cross (each alone would put the nose into the
+  // other side's flank; on a microlens array 21 µm). The nose then rests on the flanks
+  // either side of the trough: solved again on the one beyond.
+  for (int guard = 0; guard < 4 && !beyond_reach(next_crease); ++guard) {
+    double lo, hi;
+    piece_bounds(creases, next_crease, -far, crease - 2 * R, crease + 2 * R, lo, hi);
+    NoseOverlap o;
+    search(section, held.centre_x, held.centre_z, R, creases.rho[next_crease] - far * kOffCrease,
+           lo, hi, 4, o, -far, m, tolerance);
+    if (!(o.height > tolerance)) break;
+    near_lo = lo;
+    near_hi = hi;
+    next_crease -= far;
+    const double start = far > 0 ? near_hi : near_lo;
+    const double f_start = F(start);
+    double a;
+    if (!(f_start > 0) || !solve(start, f_start, start, 1e-4 * R, a)) break;
+    held = held_touch(a, foot);
+  }
+  return held;
+}
+
+}  // namespace
+
 NoseTouch nose_touch(const Surface& design, const RadialLine& line, double nose_radius, double rho_p,
                      double z_p, double slope_p, double stand_off, double tolerance) {
   const double R = nose_radius + stand_off;  // the envelope's radius
@@ -345,7 +582,7 @@ NoseTouch nose_touch(const Surface& design, const RadialLine& line, double nose_
   creases.find(design, line, std::min(rho_p, t.centre_x) - 2 * R,
                std::max(rho_p, t.centre_x) + 2 * R);
   // The crease whose other flank the nose overhangs most.
-  int held_at = -1, far = 0;
+  int held_at = -1, far = 0, overhung = 0;
   NoseOverlap worst;
   worst.height = tolerance;
   const double m = section_concavity(
@@ -365,8 +602,11 @@ NoseTouch nose_touch(const Surface& design, const RadialLine& line, double nose_
       double a, b;
       piece_bounds(creases, k, side, t.centre_x - reach, t.centre_x + reach, a, b);
       NoseOverlap o;
+      // Searched to the tolerance, not to the worst so far: how many flanks the nose
+      // overhangs decides whether its hold needs checking against the others (below).
       search(section, t.centre_x, t.centre_z, R, creases.rho[k] + side * kOffCrease, a, b, 4, o,
-             side, m, worst.height);
+             side, m, tolerance);
+      if (o.height > tolerance) ++overhung;
       if (o.height > worst.height) {
         worst = o;
         held_at = k;
@@ -375,96 +615,77 @@ NoseTouch nose_touch(const Surface& design, const RadialLine& line, double nose_
     }
   }
   if (held_at < 0) return t;
-
-  const double crease = creases.rho[held_at];
-  // The other flank, as far as the next crease or 2R.
-  double far_lo, far_hi;
-  piece_bounds(creases, held_at, far, crease - 2 * R, crease + 2 * R, far_lo, far_hi);
-  // The contact's own flank, likewise.
-  double near_lo, near_hi;
-  piece_bounds(creases, held_at, -far, crease - 2 * R, crease + 2 * R, near_lo, near_hi);
-
-  double foot = worst.rho;  // warm start of the foot point on the other flank
-  double centre_x = 0, centre_z = 0, g_a = 0, slope_a = 0;
-  // F(a) = R − distance from the offset of the own flank at a to the other flank: > 0 where
-  // the nose there overhangs it, 0 at the intersection of the two offsets.
-  const auto F = [&](double a) {
-    if (!section.at(a, g_a, slope_a)) return -R;
-    const double l = std::sqrt(1 + slope_a * slope_a);
-    centre_x = a - R * slope_a / l;
-    centre_z = g_a + R / l;
-    // The distance is that of the last foot evaluated, taken once after the iterations
-    // (std::hypot costs as much as the rest of an iteration).
-    double g, s, dx = 1e300, dz = 0;
-    for (int it = 0; it < 12; ++it) {
-      if (!section.at(foot, g, s)) return -R;
-      dx = foot - centre_x;
-      dz = g - centre_z;
-      const double next = std::clamp(foot - (dx + s * dz) / (1 + s * s), far_lo, far_hi);
-      if (std::abs(next - foot) <= 1e-15 * (1 + std::abs(foot))) break;
-      foot = next;
+  const NoseTouch held = hold_at_crease(section, creases, t, rho_p, R, nose_radius, m, tolerance,
+                                        held_at, far, worst.rho);
+  if (!held.held) return held;
+  // The hold at the crease overhung most may still overhang another flank: the nose held
+  // at a lenslet's far rim, across a flat to the next lenslet, sank into the flat (3.8 µm
+  // on a microlens array whose gaps are narrower than the nose). The envelope is the hold
+  // that overhangs nothing: the other overhung creases' holds are tried, the most first.
+  // Whether a held nose overhangs any piece of the section by more than the tolerance:
+  // each piece under it searched from a crease that bounds it (the creases found reach 2R
+  // past the contact and the offset, so past every held nose too); a piece that cannot
+  // rise to the tolerance is left after one value. The piece of its own touch is not: the
+  // nose is the offset of that touch, tangent there, and h is strongly concave on the
+  // piece, so its one peak is the touch. The far touch is a foot found by iteration, and
+  // its piece is searched like the rest.
+  const auto overhangs = [&](const NoseTouch& h) {
+    for (int k = 0; k < creases.count; ++k) {
+      if (!(std::abs(creases.rho[k] - h.centre_x) < reach)) continue;
+      for (const int side : {-1, 1}) {
+        // The piece below the first crease under the nose from its lower side; the others
+        // from their lower crease.
+        if (side < 0 && k > 0 && std::abs(creases.rho[k - 1] - h.centre_x) < reach) continue;
+        double a, b;
+        piece_bounds(creases, k, side, h.centre_x - reach, h.centre_x + reach, a, b);
+        // A touch strictly inside: one at a piece's end may be a crease's corner (a foot
+        // clamped there), which says nothing of the rest of the piece.
+        const auto holds = [&](double rho) { return rho > a && rho < b; };
+        if (holds(h.rho)) continue;
+        NoseOverlap o;
+        search(section, h.centre_x, h.centre_z, R, creases.rho[k] + side * kOffCrease, a, b, 4, o,
+               side, m, tolerance);
+        if (o.height > tolerance) return true;
+      }
     }
-    return R - std::hypot(dx, dz);
+    return false;
   };
-  // The held nose, its centre and own-flank values those last computed at a.
-  const auto held_touch = [&](double a, double far_foot) {
-    t.rho = a;
-    t.z = g_a;
-    t.slope = slope_a;
-    t.centre_x = centre_x;
-    t.centre_z = centre_z;
-    t.held = true;
-    t.crease_rho = crease;
-    t.far_rho = far_foot;
-    double g_crease, s_crease;
-    section.at(crease, g_crease, s_crease);
-    const double d = crease - centre_x;
-    t.uncut = centre_z - std::sqrt(std::max(nose_radius * nose_radius - d * d, 0.0)) - g_crease;
-    return t;
+  // A nose that overhung one flank alone is held clear of the rest (the trough on its own
+  // side is checked in hold_at_crease); checking every hold cost 7 % of the compound eye's
+  // chord cut, whose holds never needed another crease.
+  if (overhung < 2 || !overhangs(held)) return held;
+  struct Candidate {
+    int crease, side;
+    NoseOverlap overhang;
   };
-  const double own = std::clamp(rho_p, near_lo, near_hi);
-  // The nose at the contact itself overhangs the far flank by more than `tolerance`
-  // (worst.height, a point of that flank inside its circle): F(own) > 0, and F falls away
-  // from the crease, so the root lies that way from `own`. Newton on the two offsets from
-  // (own, the overhang's point) when it lands there; else (and for a clamped contact,
-  // whose nose was not the one measured) the bracketing search below.
-  if (own == rho_p) {
-    double a_newton = own, b_newton = worst.rho;
-    if (offsets_meet(section, R, far > 0 ? near_lo : own, far > 0 ? own : near_hi, far_lo,
-                     far_hi, a_newton, b_newton, g_a, slope_a, centre_x, centre_z))
-      return held_touch(a_newton, b_newton);
-  }
-  double a_in = own, f_in = F(a_in);
-  if (!(f_in > 0)) return t;  // the overhang is not this flank's to resolve
-  // Step away from the crease along the own flank until the offset clears the other one.
-  double a_out = a_in, f_out = f_in;
-  for (double step = std::max(std::abs(crease - own), 1e-4 * R);; step *= 2) {
-    a_out = std::clamp(crease - far * step, near_lo, near_hi);
-    f_out = F(a_out);
-    if (f_out < 0) break;
-    if (step > 2 * R || a_out == near_lo || a_out == near_hi) return t;
-  }
-  // Illinois regula falsi on [a_out, a_in].
-  int kept = 0;
-  double a = a_in;
-  for (int it = 0; it < 100; ++it) {
-    a = (a_out * f_in - a_in * f_out) / (f_in - f_out);
-    const double f = F(a);
-    if (std::abs(f) <= 1e-14 || std::abs(a_in - a_out) <= 1e-14) break;
-    if (f > 0) {
-      a_in = a;
-      f_in = f;
-      if (kept == 1) f_out *= 0.5;
-      kept = 1;
-    } else {
-      a_out = a;
-      f_out = f;
-      if (kept == -1) f_in *= 0.5;
-      kept = -1;
+  std::array<Candidate, 2 * SectionCreases::kCapacity> candidates;
+  int count = 0;
+  for (int k = 0; k < creases.count; ++k) {
+    if (!(std::abs(creases.rho[k] - t.centre_x) < reach) &&
+        !(std::abs(creases.rho[k] - rho_p) <= kOffCrease))
+      continue;
+    const bool at_crease = std::abs(creases.rho[k] - rho_p) <= kOffCrease;
+    for (const int side : {-1, 1}) {
+      if (!at_crease && side != (creases.rho[k] > rho_p ? 1 : -1)) continue;
+      if (k == held_at && side == far) continue;
+      double a, b;
+      piece_bounds(creases, k, side, t.centre_x - reach, t.centre_x + reach, a, b);
+      NoseOverlap o;
+      search(section, t.centre_x, t.centre_z, R, creases.rho[k] + side * kOffCrease, a, b, 4, o,
+             side, m, tolerance);
+      if (o.height > tolerance) candidates[static_cast<std::size_t>(count++)] = {k, side, o};
     }
   }
-  F(a);  // leaves the centre and the flank's values at a
-  return held_touch(a, foot);
+  std::sort(
+      candidates.begin(), candidates.begin() + count,
+      [](const Candidate& a, const Candidate& b) { return a.overhang.height > b.overhang.height; });
+  for (int i = 0; i < count; ++i) {
+    const Candidate& c = candidates[static_cast<std::size_t>(i)];
+    const NoseTouch other = hold_at_crease(section, creases, t, rho_p, R, nose_radius, m, tolerance,
+                                           c.crease, c.side, c.overhang.rho);
+    if (other.held && !overhangs(other)) return other;
+  }
+  return held;  // none overhangs nothing: the global gouge check reports what is left
 }
 
 }  // namespace freeturn
