@@ -210,6 +210,18 @@ LensletArray microlens_plate(double lens_radius) {
   return LensletArray(lo);
 }
 
+// Convex lenslets (R 0.3 mm, D 0.2 mm) on a square 0.25 mm lattice over `extent`: flats
+// 0.05 mm wide between rims, narrower than a 0.2 mm nose can reach into.
+LensletArray close_lenslets(double extent) {
+  LensletArrayOptions lo;
+  lo.lens_radius = -0.3;
+  lo.lens_diameter = 0.2;
+  lo.pitch = 0.25;
+  lo.pattern = LensletArrayOptions::Pattern::kSquare;
+  lo.extent = extent;
+  return LensletArray(lo);
+}
+
 // Two plans with their blocks at the same angles.
 bool same_blocks(const std::vector<ContactPoint>& a, const std::vector<ContactPoint>& b) {
   if (a.size() != b.size()) return false;
@@ -966,13 +978,7 @@ TEST_SUITE("path") {
     // lenslet) put the nose into the other lenslet, 21 µm at a rim. The nose touches both
     // lenslets: by symmetry its centre is at x = 0.625, (0.3 + R) from each lens centre
     // (0.5 or 0.75, −√(0.3² − 0.1²)), and it touches at 0.5 + 0.3·0.125/0.5 = 0.575.
-    LensletArrayOptions lo;
-    lo.lens_radius = -0.3;
-    lo.lens_diameter = 0.2;
-    lo.pitch = 0.25;
-    lo.pattern = LensletArrayOptions::Pattern::kSquare;
-    lo.extent = 1.0;
-    const LensletArray mla(lo);
+    const LensletArray mla = close_lenslets(1.0);
     const double R = 0.2, below = std::sqrt(0.09 - 0.01);
     const double centre_z = std::sqrt(0.25 - 0.125 * 0.125) - below;
     const double uncut = centre_z - std::sqrt(R * R - 0.025 * 0.025);  // over the flat at a rim
@@ -997,13 +1003,7 @@ TEST_SUITE("path") {
     // (and a hold that still overhung was replaced by another crease's), the deepest were
     // 21.6 µm; a search of 4 steps on a steep lenslet had also missed an overhang of
     // 0.25 µm well inside one.
-    LensletArrayOptions lo;
-    lo.lens_radius = -0.3;
-    lo.lens_diameter = 0.2;
-    lo.pitch = 0.25;
-    lo.pattern = LensletArrayOptions::Pattern::kSquare;
-    lo.extent = 1.0;
-    const LensletArray mla(lo);
+    const LensletArray mla = close_lenslets(1.0);
     for (const double R : {0.2, 0.3}) {
       double deepest = -1;
       long held = 0, contacts = 0;
@@ -1056,13 +1056,7 @@ TEST_SUITE("path") {
     // its holds reach across troughs. This plan had stopped with "the path is not smooth
     // here" where a trough's touch changed lenslet (searched from a hint on the flat,
     // the overlap missed both touching lenslets by 0.24 µm).
-    LensletArrayOptions lo;
-    lo.lens_radius = -0.3;
-    lo.lens_diameter = 0.2;
-    lo.pitch = 0.25;
-    lo.pattern = LensletArrayOptions::Pattern::kSquare;
-    lo.extent = 0.5;
-    const LensletArray mla(lo);
+    const LensletArray mla = close_lenslets(0.5);
     const double R = 0.2;
     SpiralOptions o = spiral_options(0.5, 0.02, 2e-4, R);
     PathSummary summary;

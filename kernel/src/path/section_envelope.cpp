@@ -581,8 +581,13 @@ NoseTouch nose_touch(const Surface& design, const RadialLine& line, double nose_
   // the flanks the held nose is solved on (a flank ends at the next crease).
   creases.find(design, line, std::min(rho_p, t.centre_x) - 2 * R,
                std::max(rho_p, t.centre_x) + 2 * R);
-  // The crease whose other flank the nose overhangs most.
-  int held_at = -1, far = 0, overhung = 0;
+  // Every flank the nose overhangs, and the crease of the one it overhangs most.
+  struct Candidate {  // trivial: the buffer is not filled on every call
+    int crease, side;
+    double height, rho;
+  };
+  std::array<Candidate, 2 * SectionCreases::kCapacity> overhung;
+  int held_at = -1, far = 0, count = 0;
   NoseOverlap worst;
   worst.height = tolerance;
   const double m = section_concavity(
@@ -602,11 +607,12 @@ NoseTouch nose_touch(const Surface& design, const RadialLine& line, double nose_
       double a, b;
       piece_bounds(creases, k, side, t.centre_x - reach, t.centre_x + reach, a, b);
       NoseOverlap o;
-      // Searched to the tolerance, not to the worst so far: how many flanks the nose
-      // overhangs decides whether its hold needs checking against the others (below).
+      // Searched to the tolerance, not to the worst so far: every overhung flank is kept,
+      // to check the hold against and to hold at instead (below).
       search(section, t.centre_x, t.centre_z, R, creases.rho[k] + side * kOffCrease, a, b, 4, o,
              side, m, tolerance);
-      if (o.height > tolerance) ++overhung;
+      if (o.height > tolerance)
+        overhung[static_cast<std::size_t>(count++)] = {k, side, o.height, o.rho};
       if (o.height > worst.height) {
         worst = o;
         held_at = k;
@@ -653,36 +659,14 @@ NoseTouch nose_touch(const Surface& design, const RadialLine& line, double nose_
   // A nose that overhung one flank alone is held clear of the rest (the trough on its own
   // side is checked in hold_at_crease); checking every hold cost 7 % of the compound eye's
   // chord cut, whose holds never needed another crease.
-  if (overhung < 2 || !overhangs(held)) return held;
-  struct Candidate {
-    int crease, side;
-    NoseOverlap overhang;
-  };
-  std::array<Candidate, 2 * SectionCreases::kCapacity> candidates;
-  int count = 0;
-  for (int k = 0; k < creases.count; ++k) {
-    if (!(std::abs(creases.rho[k] - t.centre_x) < reach) &&
-        !(std::abs(creases.rho[k] - rho_p) <= kOffCrease))
-      continue;
-    const bool at_crease = std::abs(creases.rho[k] - rho_p) <= kOffCrease;
-    for (const int side : {-1, 1}) {
-      if (!at_crease && side != (creases.rho[k] > rho_p ? 1 : -1)) continue;
-      if (k == held_at && side == far) continue;
-      double a, b;
-      piece_bounds(creases, k, side, t.centre_x - reach, t.centre_x + reach, a, b);
-      NoseOverlap o;
-      search(section, t.centre_x, t.centre_z, R, creases.rho[k] + side * kOffCrease, a, b, 4, o,
-             side, m, tolerance);
-      if (o.height > tolerance) candidates[static_cast<std::size_t>(count++)] = {k, side, o};
-    }
-  }
-  std::sort(
-      candidates.begin(), candidates.begin() + count,
-      [](const Candidate& a, const Candidate& b) { return a.overhang.height > b.overhang.height; });
+  if (count < 2 || !overhangs(held)) return held;
+  std::sort(overhung.begin(), overhung.begin() + count,
+            [](const Candidate& a, const Candidate& b) { return a.height > b.height; });
   for (int i = 0; i < count; ++i) {
-    const Candidate& c = candidates[static_cast<std::size_t>(i)];
+    const Candidate& c = overhung[static_cast<std::size_t>(i)];
+    if (c.crease == held_at && c.side == far) continue;
     const NoseTouch other = hold_at_crease(section, creases, t, rho_p, R, nose_radius, m, tolerance,
-                                           c.crease, c.side, c.overhang.rho);
+                                           c.crease, c.side, c.rho);
     if (other.held && !overhangs(other)) return other;
   }
   return held;  // none overhangs nothing: the global gouge check reports what is left
