@@ -87,6 +87,31 @@ TEST_SUITE("path") {
     CHECK(planned == doctest::Approx(nose).epsilon(0.01).scale(0));
   }
 
+  TEST_CASE("a nose that just fits the troughs: the chords never dip below the design") {
+    // A sinusoidal grid (20 µm, 0.8 mm wavelengths) bends toward the tool up to 1/0.81
+    // mm⁻¹; under a 0.8 mm nose the overlap's search from the interpolated contact used to
+    // stop a tenth of the way to its peak, and a 1 µm chord plan cut up to 61 nm into the
+    // design between blocks (an NC-free check of the program, r 2.9 mm). Every chord of
+    // this spiral must keep the nose above the design (the band's lower edge, 0) and
+    // within ε of it.
+    const SinusoidalGrid grid(0.02, 0.8, 0.8);
+    const double eps = 1e-3, R = 0.8;
+    SpiralOptions o;
+    o.outer_radius = 3.0;
+    o.inner_radius = 2.6;
+    o.pitch = 0.02;
+    o.tool.nose_radius = R;
+    o.points.tolerance = eps;
+    o.points.max_angle_step = 5 * std::numbers::pi / 180;
+    const auto cls = compensated(
+        grid, R, [&](ContactSink& sink) { plan_spiral(grid, BaseSurface::plane(3.0), o, sink); });
+    const test::DenseNoseFigures f = test::dense_nose_figures(grid, cls, R, 24, 300);
+    MESSAGE(cls.size() << " points: the nose " << f.lowest * 1e6 << " to " << f.highest * 1e6
+                       << " nm above the design");
+    CHECK(f.lowest >= -1e-9);
+    CHECK(f.highest <= 1.002 * eps);
+  }
+
   TEST_CASE("with a nose, ε holds on the nose-centre motion (profile)") {
     {
       const double eps = 1e-4, R = 0.2;

@@ -86,8 +86,8 @@ class NoseSection {
     }
     // The largest height of the design's section above the nose's lower arc, from a
     // Newton search at the hint and at each crease under the nose (section_envelope.hpp):
-    // a value of the overlap, so never more than the true one, and short of it by a
-    // fourth-order term on a smooth piece.
+    // a value of the overlap, so never more than the true one, and within 1 pm of it on a
+    // smooth piece where the nose's concavity exceeds the design's (section_envelope.cpp).
     const NoseOverlap o = nose_overlap(design_, c, x_axis, z_axis, R_, hint_r);
     return -o.height / std::sqrt(1 + o.slope * o.slope);
   }

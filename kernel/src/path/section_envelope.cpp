@@ -80,6 +80,44 @@ bool offsets_meet(const Section& section, double R, double a_lo, double a_hi, do
   return false;
 }
 
+// The steps of `search` take h'' as the nose's alone (−R²/s³). Where the section bends
+// toward the tool nearly as much as the nose (g'' close to 1/R: a concave design under a
+// nose that just fits it), the true h'' is a small fraction of that, each step covers only
+// that fraction of the way to the peak, and two of them left a sinusoidal grid's overlap
+// 4 to 61 nm short, so that a chord dipped that far below the design unseen. From the
+// last two points evaluated (ρ₁ before ρ₂, h' there) the secant gives h'', and the peak
+// lies about h'(ρ₂)²/(2|h''|) higher: while that is more than kSettled, go on from `next`
+// (the step already taken from ρ₂) by the secant's Newton steps, which converge
+// superlinearly on a smooth piece. Where the secant shows no concavity the section bends
+// more than the nose (the local gouge check's finding, at the contacts): h has no peak
+// near the hint, and the search stops as before. The peak at an end of [lo, hi] (h'
+// pointing out of it) is settled there.
+void settle_by_secant(const Section& section, double x_c, double z_c, double R, double lo,
+                      double hi, double next, double last_r, double last_h_slope, double previous_r,
+                      double previous_h_slope, int evaluated, NoseOverlap& best) {
+  const auto gain = [&] {
+    if ((last_r <= lo && last_h_slope <= 0) || (last_r >= hi && last_h_slope >= 0)) return 0.0;
+    if (evaluated < 2 || last_r == previous_r) return 0.0;
+    const double curvature = (last_h_slope - previous_h_slope) / (last_r - previous_r);
+    return curvature < 0 ? last_h_slope * last_h_slope / (-2 * curvature) : 0.0;
+  };
+  for (int it = 0; it < 32 && gain() > kSettled; ++it) {
+    if (std::abs(next - last_r) <= 1e-15 * (1 + std::abs(last_r))) return;
+    double g, slope;
+    if (!section.at(next, g, slope)) return;
+    const double d = next - x_c, s = std::sqrt(std::max(R * R - d * d, 0.0));
+    const double h = g - z_c + s;
+    if (h > best.height) best = {h, next, slope};
+    if (!(s > 0)) return;
+    const double h_slope = slope - d / s;
+    previous_r = last_r, previous_h_slope = last_h_slope;
+    last_r = next, last_h_slope = h_slope, ++evaluated;
+    const double curvature = (last_h_slope - previous_h_slope) / (last_r - previous_r);
+    if (!(curvature < 0)) return;
+    next = std::clamp(last_r - h_slope / curvature, lo, hi);
+  }
+}
+
 // Newton steps on h(ρ) = g(ρ) − z_c + √(R² − (ρ − x_c)²) within [lo, hi], keeping the
 // largest h met in `best`.
 //
@@ -100,6 +138,9 @@ void search(const Section& section, double x_c, double z_c, double R, double sta
   double r = std::clamp(start, lo, hi);
   // The least bound of the piece's maximum the values met give (m > 0, as `ceiling`).
   double bound = std::numeric_limits<double>::infinity();
+  // The last two points evaluated and h' there, for the secant's h'' below.
+  double last_r = 0, last_h_slope = 0, previous_r = 0, previous_h_slope = 0;
+  int evaluated = 0;
   for (int it = 0; it < steps; ++it) {
     double g, slope;
     if (!section.at(r, g, slope)) return;
@@ -108,6 +149,8 @@ void search(const Section& section, double x_c, double z_c, double R, double sta
     if (h > best.height) best = {h, r, slope};
     if (!(s > 0)) return;
     const double h_slope = slope - d / s;
+    previous_r = last_r, previous_h_slope = last_h_slope;
+    last_r = r, last_h_slope = h_slope, ++evaluated;
     if (m > 0) {
       const double rise = (r == lo && h_slope < 0) || (r == hi && h_slope > 0) ? 0.0 : h_slope;
       bound = std::min(bound, h + rise * rise / (2 * m));
@@ -130,7 +173,18 @@ void search(const Section& section, double x_c, double z_c, double R, double sta
   const auto settled = [&] {
     return best.height >= floor ? bound <= best.height + kSettled : bound + 1e-12 < floor;
   };
-  if (!(m > 0) || !(floor > -1e300) || settled()) return;
+  if (!(floor > -1e300)) {
+    // A search from the hint that keeps its piece's ceiling under a concavity bound (the
+    // hint's on a creased section) needs no more: nose_overlap searches that piece again
+    // from each crease beside it while the ceiling leaves room above the largest height
+    // found, and those searches settle it by the bound. On the compound eye the secant
+    // would take 0.85 M more evaluations for 0.56 M points, 8 % of the run, to no effect.
+    if (!(ceiling && m > 0))
+      settle_by_secant(section, x_c, z_c, R, lo, hi, r, last_r, last_h_slope, previous_r,
+                       previous_h_slope, evaluated, best);
+    return;
+  }
+  if (!(m > 0) || settled()) return;
   for (int it = 0; it < 40; ++it) {
     double g, slope, bend;
     if (!section.at(r, g, slope, bend)) return;

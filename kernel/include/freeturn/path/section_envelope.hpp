@@ -55,7 +55,10 @@ struct NoseOverlap {
 // more than the true maximum), and stays on its side of the crease. A piece whose values
 // already met bound its top (its concavity, section_concavity) to within 1e-13 mm of the
 // largest found is not searched again: the answer may be that much short of what the
-// searches would find. No allocation.
+// searches would find. Where no such bound settles the hint's piece (a section with no
+// crease, or no concavity bound), its search goes on by secant steps until the peak they
+// predict lies within 1 pm: with a design bending nearly as much as the nose, the arc's
+// h'' alone left the peak tens of nanometres short (docs/path.md). No allocation.
 NoseOverlap nose_overlap(const Surface& design, const RadialLine& line, double x_c, double z_c, double R,
                          double hint_rho);
 
