@@ -848,26 +848,8 @@ RunResult run_program_simulation(const Job& job, const std::string& program,
   summary.theta_end = theta_end;
   figures.finish(summary, DynamicsReport{}, ToolCheckReport{});
   attach_simulation(report, simulator.finish(), job, so.margin, true);
-  // Nothing vouches for a program from elsewhere but its simulated cut: below the design
-  // by more than the verdict lets freeturn's own motion dip, it gouges.
-  const SimulationResult& cut = *report.simulation;
-  if (cut.min < -kChordDipAllowed) {
-    ReportWarning w;
-    w.kind = "simulated_gouge";
-    w.severity = ReportWarning::Severity::kUnsafe;
-    w.r_mm = cut.min_r;
-    w.theta_deg = part_degrees(cut.min_phi);
-    w.x_mm = cut.min_r * std::cos(cut.min_phi);
-    w.y_mm = cut.min_r * std::sin(cut.min_phi);
-    w.message = "the simulated cut goes " + fixed_text(-cut.min * 1e6, 1) +
-                " nm below the design (the most allowed is " +
-                fixed_text(kChordDipAllowed * 1e6, 1) + " nm) at r = " + fixed_text(cut.min_r, 4) +
-                " mm, θ = " + fixed_text(w.theta_deg, 2) + "°";
-    w.value = -cut.min * 1e6;
-    w.limit = kChordDipAllowed * 1e6;
-    w.unit = "nm";
-    report.warnings.push_back(std::move(w));
-  }
+  // Nothing vouches for a program from elsewhere but its simulated cut.
+  judge_simulated_cut(report);
   OutputSet outputs;
   files.finish(job, report, design, options.output_dir, outputs);
   std::vector<std::string> written = outputs.commit();

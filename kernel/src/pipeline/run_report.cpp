@@ -275,7 +275,32 @@ std::vector<std::string> RunReport::messages() const {
   return lines;
 }
 
+void judge_simulated_cut(RunReport& r) {
+  if (!r.simulation) return;
+  const SimulationResult& cut = *r.simulation;
+  if (!(cut.min < -kChordDipAllowed)) return;
+  ReportWarning w;
+  w.kind = "simulated_gouge";
+  w.severity = ReportWarning::Severity::kUnsafe;
+  w.r_mm = cut.min_r;
+  w.theta_deg = part_degrees(cut.min_phi);
+  w.x_mm = cut.min_r * std::cos(cut.min_phi);
+  w.y_mm = cut.min_r * std::sin(cut.min_phi);
+  w.message = "the simulated cut goes " + fixed_text(-cut.min * 1e6, 1) +
+              " nm below the design (the most allowed is " + fixed_text(kChordDipAllowed * 1e6, 1) +
+              " nm) at r = " + fixed_text(cut.min_r, 4) + " mm, θ = " + fixed_text(w.theta_deg, 2) +
+              "°";
+  w.value = -cut.min * 1e6;
+  w.limit = kChordDipAllowed * 1e6;
+  w.unit = "nm";
+  r.warnings.push_back(std::move(w));
+}
+
 void judge(RunReport& r) {
+  // The cut simulated from the program's own blocks is a second witness beside the
+  // planner's figures: a nose it finds below the design is a gouge whatever they say
+  // (a chord measure that fell short once let 45 nm through under a PASS).
+  judge_simulated_cut(r);
   for (const PassFigures& f : r.passes) {
     // The motion between blocks cuts into the design (blocks on the design, chords below
     // them): more than 10 nm is a gouge.

@@ -207,7 +207,12 @@ double part_degrees(double theta);
 std::string warning_line(const ReportWarning& w);
 
 // Adds the verdict's own warnings (the motion between blocks below the design, a dynamics
-// limit exceeded) from the passes' figures. Call once, when every pass is done.
+// limit exceeded) from the passes' figures, and judge_simulated_cut's. Call once, when
+// every pass is done.
 void judge(RunReport& r);
+
+// An UNSAFE `simulated_gouge` warning where the report's simulated cut (if any) lies more
+// than kChordDipAllowed below the design, at its deepest cell.
+void judge_simulated_cut(RunReport& r);
 
 }  // namespace freeturn
