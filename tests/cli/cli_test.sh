@@ -161,6 +161,10 @@ sed -e 's/amplitude: 0.005 /amplitude: 0.05 /' -e 's/period: 2.5 /period: 1.0 /'
 timeout 120 "$freeturn" run "$tmp/crawl.yaml" -o "$tmp/crawl" > /dev/null 2> "$tmp/err"; expect "PVT run where no step meets the tolerance" 2 $?
 contains "it names the tolerance" "$tmp/err" "cannot meet the chord tolerance 0.1 µm"
 contains "and where" "$tmp/err" "r = 1.04"
+# And why: the troughs curve to 1/(A ω²) = 0.507 mm, tighter than the 1 mm nose.
+contains "and why: the section's concave radius against the nose's" "$tmp/err" \
+  "the design's section bends to a concave radius of 0.50"
+contains "and what to use instead" "$tmp/err" "use a nose radius under 0.5"
 [[ -z "$(ls -A "$tmp/crawl" 2> /dev/null)" ]] || { echo "FAIL: a run stopped by bad input left files:"; ls "$tmp/crawl"; fail=1; }
 # With the checks as errors (the default) the same job stops at the first gouge: exit 1
 # (a check failed, not bad input), the place named, nothing written.

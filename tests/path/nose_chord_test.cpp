@@ -325,6 +325,13 @@ TEST_SUITE("path") {
       MESSAGE(std::string(mode == Interpolation::kLinear ? "linear: " : "PVT: ") << message);
       CHECK(message.find("cannot meet the chord tolerance 0.1 µm") != std::string::npos);
       CHECK(message.find("r = 1.04") != std::string::npos);
+      // And why: its troughs curve to 1/(Aω²) = 0.5066 mm; the tightest of the samples
+      // across the nose lies within 0.3 % of it.
+      const std::size_t at = message.find("concave radius of ");
+      REQUIRE(at != std::string::npos);
+      const double radius = std::stod(message.substr(at + 18));
+      CHECK(radius >= 1 / (0.05 * 4 * std::numbers::pi * std::numbers::pi));
+      CHECK(radius <= 1.003 / (0.05 * 4 * std::numbers::pi * std::numbers::pi));
     }
   }
 

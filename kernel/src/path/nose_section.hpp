@@ -15,7 +15,9 @@
 
 #include <algorithm>
 #include <cmath>
+#include <string>
 
+#include "freeturn/core/number_text.hpp"
 #include "freeturn/path/cutter_points.hpp"
 #include "freeturn/path/section_envelope.hpp"
 #include "freeturn/surface/surface.hpp"
@@ -34,6 +36,31 @@ class NoseSection {
   double nose_radius() const { return R_; }
   double stand_off() const { return stand_off_; }
   bool b_follows() const { return b_follows_; }
+
+  // Where the design's section curves toward the tool more tightly than the nose (its
+  // curvature g''/(1 + g'²)^{3/2} above 1/R, the local gouge) anywhere under a nose touching
+  // at contact_r on the line c, the text that says so, with the tightest radius among 65
+  // samples across the nose's footprint and the nose's; "" where none does, or without a
+  // nose. The chord search gives up there (no step follows such a section), and "not
+  // smooth" alone did not tell the user that the nose is too large for the design.
+  std::string nose_larger_than_section(const RadialLine& c, double contact_r) const {
+    if (!(R_ > 0)) return "";
+    double sharpest = 0, where = contact_r;
+    for (int k = 0; k <= 64; ++k) {
+      const double rho = contact_r + R_ * (k / 32.0 - 1);
+      const HeightDerivatives h = design_.height_derivatives(rho * c.cos, rho * c.sin);
+      const double slope = h.zx * c.cos + h.zy * c.sin;
+      const double bend = (h.zxx * c.cos + 2 * h.zxy * c.sin) * c.cos + h.zyy * c.sin * c.sin;
+      const double curvature = bend / std::pow(1 + slope * slope, 1.5);
+      if (std::isfinite(curvature) && curvature > sharpest) sharpest = curvature, where = rho;
+    }
+    if (!(sharpest * R_ > 1)) return "";
+    return "the design's section bends to a concave radius of " +
+           significant_text(1 / sharpest, 4) + " mm at r = " + fixed_text(where, 4) +
+           " mm, tighter than the nose radius " + significant_text(R_, 6) +
+           " mm: no nose position follows it (use a nose radius under " +
+           significant_text(1 / sharpest, 3) + " mm)";
+  }
 
   // The axes of the point that touches the design at signed radius contact_r in the radial
   // plane, height z, with section slope f_r = dz/dρ: the centre c = p + R·n̂_p, n̂_p the

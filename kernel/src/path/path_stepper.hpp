@@ -35,6 +35,10 @@
 //                                           // the larger of its rises at two ends (`ends`)
 //   double stand_off() const;               // where the blocks stand off the design (mm):
 //                                           // the centre of the tolerance band
+//   std::string why_not_smooth(const AxisState& s) const;
+//                                           // where no step meets the tolerance from s:
+//                                           // what about the design makes it so, if the
+//                                           // path knows ("" otherwise)
 
 #include <algorithm>
 #include <cmath>
@@ -1228,12 +1232,17 @@ void distribute(Path& path, const CutterPointOptions& o, Emit&& emit, double beg
         best_new = least_new;
         best_previous = least_previous;
       } else if (accepted == 0) {
+        std::string why;
+        if (exhausted) {
+          why = path.why_not_smooth(current);
+          if (why.empty()) why = "the path is not smooth here";
+        }
         throw InputError("θ = " + std::to_string(current.c) +
                              " rad, r = " + std::to_string(current.contact_r) + " mm",
                          (exhausted ? "cannot meet the chord tolerance "
                                     : "no step meets the chord tolerance ") +
                              significant_text(o.tolerance * 1e3, 6) +
-                             (exhausted ? " µm: the path is not smooth here" : " µm"),
+                             (exhausted ? " µm: " + why : " µm"),
                          "strategy.points.chord.tolerance");
       }
       trial = best;

@@ -30,6 +30,9 @@ class ProfilePath {
   bool holds_still() const { return true; }  // C is fixed: a held nose may not move
   bool prune_samples() const { return false; }  // one short pass: every sample is taken
   double stand_off() const { return nose_.stand_off(); }
+  std::string why_not_smooth(const detail::AxisState& s) const {
+    return nose_.nose_larger_than_section(RadialLine{}, s.contact_r);
+  }
 
   double deviation(double x_axis, const RadialLine&, double z, double b, double hint_r) const {
     return nose_.deviation(x_axis, RadialLine{}, z, b, hint_r);

@@ -56,6 +56,9 @@ class SpiralPath {
   bool prune_samples() const { return nose_.nose_radius() > 0 && !o_.take_every_sample; }
   double stand_off() const { return nose_.stand_off(); }
   double pitch() const { return o_.pitch; }
+  std::string why_not_smooth(const detail::AxisState& s) const {
+    return nose_.nose_larger_than_section(RadialLine(s.c), s.contact_r);
+  }
 
   double deviation(double x_axis, const RadialLine& c, double z, double b, double hint_r) const {
     return nose_.deviation(x_axis, c, z, b, hint_r);
