@@ -56,7 +56,7 @@ class NoseSection {
     }
     if (!(sharpest * R_ > 1)) return "";
     return "the design's section bends to a concave radius of " +
-           significant_text(1 / sharpest, 4) + " mm at r = " + fixed_text(where, 4) +
+           significant_text(1 / sharpest, 4) + " mm at r = " + fixed_text(std::abs(where), 4) +
            " mm, tighter than the nose radius " + significant_text(R_, 6) +
            " mm: no nose position follows it (use a nose radius under " +
            significant_text(1 / sharpest, 3) + " mm)";

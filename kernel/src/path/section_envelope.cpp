@@ -177,8 +177,9 @@ void search(const Section& section, double x_c, double z_c, double R, double sta
     // A search from the hint that keeps its piece's ceiling under a concavity bound (the
     // hint's on a creased section) needs no more: nose_overlap searches that piece again
     // from each crease beside it while the ceiling leaves room above the largest height
-    // found, and those searches settle it by the bound. On the compound eye the secant
-    // would take 0.85 M more evaluations for 0.56 M points, 8 % of the run, to no effect.
+    // found, and those searches settle it by the bound. On the compound eye (2 mm of the
+    // 2M job, 560 k points) the secant here took 0.85 M more evaluations; 59 k remain in
+    // the searches that go on.
     if (!(ceiling && m > 0))
       settle_by_secant(section, x_c, z_c, R, lo, hi, r, last_r, last_h_slope, previous_r,
                        previous_h_slope, evaluated, best);
