@@ -276,7 +276,10 @@ std::vector<std::string> RunReport::messages() const {
 }
 
 void judge_simulated_cut(RunReport& r) {
-  if (!r.simulation) return;
+  // Only a simulation the user asked for: the report's own grid is there for its maps, and
+  // runs that write no report have none, so a verdict that read it would depend on the
+  // outputs chosen.
+  if (!r.simulation || !r.simulated) return;
   const SimulationResult& cut = *r.simulation;
   if (!(cut.min < -kChordDipAllowed)) return;
   ReportWarning w;
@@ -297,9 +300,9 @@ void judge_simulated_cut(RunReport& r) {
 }
 
 void judge(RunReport& r) {
-  // The cut simulated from the program's own blocks is a second witness beside the
-  // planner's figures: a nose it finds below the design is a gouge whatever they say
-  // (a chord measure that fell short once let 45 nm through under a PASS).
+  // The cut simulated from the program's own blocks (when asked for) is a second witness
+  // beside the planner's figures: a nose it finds below the design is a gouge whatever they
+  // say (a chord measure that fell short once let 45 nm through under a PASS).
   judge_simulated_cut(r);
   for (const PassFigures& f : r.passes) {
     // The motion between blocks cuts into the design (blocks on the design, chords below

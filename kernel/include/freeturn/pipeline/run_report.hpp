@@ -211,8 +211,9 @@ std::string warning_line(const ReportWarning& w);
 // every pass is done.
 void judge(RunReport& r);
 
-// An UNSAFE `simulated_gouge` warning where the report's simulated cut (if any) lies more
-// than kChordDipAllowed below the design, at its deepest cell.
+// An UNSAFE `simulated_gouge` warning where the simulated cut the user asked for (`simulated`:
+// simulate, --simulate; not the report's own grid) lies more than kChordDipAllowed below
+// the design, at its deepest cell.
 void judge_simulated_cut(RunReport& r);
 
 }  // namespace freeturn
