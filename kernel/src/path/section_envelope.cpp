@@ -80,6 +80,36 @@ bool offsets_meet(const Section& section, double R, double a_lo, double a_hi, do
   return false;
 }
 
+// h(ρ) = g(ρ) − z_c + √(R² − (ρ − x_c)²) and h'(ρ) at r from the section's value g and slope
+// there, the largest h kept in `best`. s = √(R² − (r − x_c)²); false at the end of the arc
+// (s = 0), where no step can be taken.
+bool arc_height(double r, double g, double slope, double x_c, double z_c, double R,
+                NoseOverlap& best, double& h, double& s, double& h_slope) {
+  const double d = r - x_c;
+  s = std::sqrt(std::max(R * R - d * d, 0.0));
+  h = g - z_c + s;
+  if (h > best.height) best = {h, r, slope};
+  if (!(s > 0)) return false;
+  h_slope = slope - d / s;
+  return true;
+}
+
+// The last two points a search evaluated and h' there: the secant's h'' (settle_by_secant).
+struct SecantPoints {
+  double last_r = 0, last_h_slope = 0, previous_r = 0, previous_h_slope = 0;
+  int evaluated = 0;
+  void add(double r, double h_slope) {
+    previous_r = last_r, previous_h_slope = last_h_slope;
+    last_r = r, last_h_slope = h_slope, ++evaluated;
+  }
+  // (h'₂ − h'₁)/(ρ₂ − ρ₁); NaN before two distinct points.
+  double curvature() const {
+    return evaluated >= 2 && last_r != previous_r
+               ? (last_h_slope - previous_h_slope) / (last_r - previous_r)
+               : std::numeric_limits<double>::quiet_NaN();
+  }
+};
+
 // The steps of `search` take h'' as the nose's alone (−R²/s³). Where the section bends
 // toward the tool nearly as much as the nose (g'' close to 1/R: a concave design under a
 // nose that just fits it), the true h'' is a small fraction of that, each step covers only
@@ -93,28 +123,22 @@ bool offsets_meet(const Section& section, double R, double a_lo, double a_hi, do
 // near the hint, and the search stops as before. The peak at an end of [lo, hi] (h'
 // pointing out of it) is settled there.
 void settle_by_secant(const Section& section, double x_c, double z_c, double R, double lo,
-                      double hi, double next, double last_r, double last_h_slope, double previous_r,
-                      double previous_h_slope, int evaluated, NoseOverlap& best) {
+                      double hi, double next, SecantPoints points, NoseOverlap& best) {
   const auto gain = [&] {
-    if ((last_r <= lo && last_h_slope <= 0) || (last_r >= hi && last_h_slope >= 0)) return 0.0;
-    if (evaluated < 2 || last_r == previous_r) return 0.0;
-    const double curvature = (last_h_slope - previous_h_slope) / (last_r - previous_r);
-    return curvature < 0 ? last_h_slope * last_h_slope / (-2 * curvature) : 0.0;
+    const double r = points.last_r, h_slope = points.last_h_slope;
+    if ((r <= lo && h_slope <= 0) || (r >= hi && h_slope >= 0)) return 0.0;
+    const double curvature = points.curvature();
+    return curvature < 0 ? h_slope * h_slope / (-2 * curvature) : 0.0;
   };
   for (int it = 0; it < 32 && gain() > kSettled; ++it) {
-    if (std::abs(next - last_r) <= 1e-15 * (1 + std::abs(last_r))) return;
-    double g, slope;
+    if (std::abs(next - points.last_r) <= 1e-15 * (1 + std::abs(points.last_r))) return;
+    double g, slope, h, s, h_slope;
     if (!section.at(next, g, slope)) return;
-    const double d = next - x_c, s = std::sqrt(std::max(R * R - d * d, 0.0));
-    const double h = g - z_c + s;
-    if (h > best.height) best = {h, next, slope};
-    if (!(s > 0)) return;
-    const double h_slope = slope - d / s;
-    previous_r = last_r, previous_h_slope = last_h_slope;
-    last_r = next, last_h_slope = h_slope, ++evaluated;
-    const double curvature = (last_h_slope - previous_h_slope) / (last_r - previous_r);
+    if (!arc_height(next, g, slope, x_c, z_c, R, best, h, s, h_slope)) return;
+    points.add(next, h_slope);
+    const double curvature = points.curvature();
     if (!(curvature < 0)) return;
-    next = std::clamp(last_r - h_slope / curvature, lo, hi);
+    next = std::clamp(next - h_slope / curvature, lo, hi);
   }
 }
 
@@ -138,19 +162,12 @@ void search(const Section& section, double x_c, double z_c, double R, double sta
   double r = std::clamp(start, lo, hi);
   // The least bound of the piece's maximum the values met give (m > 0, as `ceiling`).
   double bound = std::numeric_limits<double>::infinity();
-  // The last two points evaluated and h' there, for the secant's h'' below.
-  double last_r = 0, last_h_slope = 0, previous_r = 0, previous_h_slope = 0;
-  int evaluated = 0;
+  SecantPoints points;  // for settle_by_secant
   for (int it = 0; it < steps; ++it) {
-    double g, slope;
+    double g, slope, h, s, h_slope;
     if (!section.at(r, g, slope)) return;
-    const double d = r - x_c, s = std::sqrt(std::max(R * R - d * d, 0.0));
-    const double h = g - z_c + s;
-    if (h > best.height) best = {h, r, slope};
-    if (!(s > 0)) return;
-    const double h_slope = slope - d / s;
-    previous_r = last_r, previous_h_slope = last_h_slope;
-    last_r = r, last_h_slope = h_slope, ++evaluated;
+    if (!arc_height(r, g, slope, x_c, z_c, R, best, h, s, h_slope)) return;
+    points.add(r, h_slope);
     if (m > 0) {
       const double rise = (r == lo && h_slope < 0) || (r == hi && h_slope > 0) ? 0.0 : h_slope;
       bound = std::min(bound, h + rise * rise / (2 * m));
@@ -180,20 +197,14 @@ void search(const Section& section, double x_c, double z_c, double R, double sta
     // found, and those searches settle it by the bound. On the compound eye (2 mm of the
     // 2M job, 560 k points) the secant here took 0.85 M more evaluations; 59 k remain in
     // the searches that go on.
-    if (!(ceiling && m > 0))
-      settle_by_secant(section, x_c, z_c, R, lo, hi, r, last_r, last_h_slope, previous_r,
-                       previous_h_slope, evaluated, best);
+    if (!(ceiling && m > 0)) settle_by_secant(section, x_c, z_c, R, lo, hi, r, points, best);
     return;
   }
   if (!(m > 0) || settled()) return;
   for (int it = 0; it < 40; ++it) {
-    double g, slope, bend;
+    double g, slope, bend, h, s, h_slope;
     if (!section.at(r, g, slope, bend)) return;
-    const double d = r - x_c, s = std::sqrt(std::max(R * R - d * d, 0.0));
-    const double h = g - z_c + s;
-    if (h > best.height) best = {h, r, slope};
-    if (!(s > 0)) return;
-    const double h_slope = slope - d / s;
+    if (!arc_height(r, g, slope, x_c, z_c, R, best, h, s, h_slope)) return;
     const double rise = (r == lo && h_slope < 0) || (r == hi && h_slope > 0) ? 0.0 : h_slope;
     bound = std::min(bound, h + rise * rise / (2 * m));
     if (ceiling) *ceiling = std::min(*ceiling, bound);
