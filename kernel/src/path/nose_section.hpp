@@ -54,12 +54,19 @@ class NoseSection {
       const double curvature = bend / std::pow(1 + slope * slope, 1.5);
       if (std::isfinite(curvature) && curvature > sharpest) sharpest = curvature, where = rho;
     }
-    if (!(sharpest * R_ > 1)) return "";
+    // The nose is placed at its radius plus the stand-off: a section between the two
+    // radii is followed by no placement either.
+    const double placed = R_ + stand_off_;
+    if (!(sharpest * placed > 1)) return "";
+    const std::string nose = sharpest * R_ > 1
+                                 ? significant_text(R_, 6) + " mm"
+                                 : significant_text(R_, 6) + " mm with its stand-off of " +
+                                       significant_text(stand_off_ * 1e3, 3) + " µm";
     return "the design's section bends to a concave radius of " +
            significant_text(1 / sharpest, 4) + " mm at r = " + fixed_text(std::abs(where), 4) +
-           " mm, tighter than the nose radius " + significant_text(R_, 6) +
-           " mm: no nose position follows it (use a nose radius under " +
-           significant_text(1 / sharpest, 3) + " mm)";
+           " mm, tighter than the nose radius " + nose +
+           ": no nose position follows it (use a nose radius under " +
+           significant_text(1 / sharpest - stand_off_, 3) + " mm)";
   }
 
   // The axes of the point that touches the design at signed radius contact_r in the radial

@@ -64,6 +64,13 @@ struct AxisState {
   bool held = false;  // the nose is held at a crease (section_envelope.hpp)
   double uncut = 0;   // mm: the material it leaves there
   double crease_rho = 0;  // the crease it is held at (held only)
+  // The nose rolls over a ridge (section_envelope.hpp): the touch may stay at the ridge
+  // while the axes move, so the contact the path itself placed there (path_r, before the
+  // nose's touch) measures how far the state moved.
+  bool rolling = false;
+  bool at_ridge = false;  // touching the ridge: `slope` is the nose's tangent there
+  double path_r = 0;
+  double spread = 1;  // how far the touches of neighbouring passes spread (NoseTouch::spread)
   double warm = 0;   // the path's warm start for the next point (a projection distance)
   // What Path::touch_clear has said of this state's own touch (block_touch_clear): clear by
   // any margin up to clear_by, not shown clear by any from not_clear_by. Kept for the touch
@@ -1191,7 +1198,11 @@ void distribute(Path& path, const CutterPointOptions& o, Emit&& emit, double beg
                                                             1 / std::min(local_order, order)));
           failed_step = step;
           failed_error = error;
-          const double contact_move = (trial.point - current.point).norm();
+          // Rolling over a ridge the touch stays put while the axes move along the arc:
+          // the path's own contact moves on, and the centre with it a few times as far.
+          const double contact_move =
+              (trial.point - current.point).norm() +
+              (trial.rolling || current.rolling ? std::abs(trial.path_r - current.path_r) : 0.0);
           const double axes_move = std::hypot(
               trial.x_axis - current.x_axis, trial.z - current.z,
               0.5 * (std::abs(trial.x_axis) + std::abs(current.x_axis)) * (trial.c - current.c));

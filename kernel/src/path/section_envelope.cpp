@@ -627,6 +627,114 @@ NoseTouch hold_at_crease(const Section& section, const SectionCreases& creases, 
   return held;
 }
 
+// How far the centre must move across a ridge before the nose rolls over it: less is
+// rounding of the flanks' slopes at kOffCrease either side (a smooth point listed as a
+// crease), and a jump that small leaves chords a fraction of a picometre deep.
+constexpr double kLeastRoll = 1e-9;  // mm
+// A ridge's window reaches this fraction of R, and of the distance to the next crease (or
+// the axis) either side: so two windows never meet, and each crease within the window's
+// reach lies among those nose_touch finds (within 1.55 R of the ridge).
+constexpr double kWindow = 0.45;
+
+// The centre's abscissa on the offset of the section at a, a − R·g'/√(1 + g'²).
+double offset_x(double a, double slope, double R) {
+  return a - R * slope / std::sqrt(1 + slope * slope);
+}
+
+// The nose rolling over a ridge for the contact rho_p (nose_touch, docs/tool.md, "Ridges"):
+// true with `t` placed where rho_p lies within a ridge's window, false (t as it was)
+// elsewhere or where the section is undefined.
+//
+// Across a ridge at ρ_k the offsets of its two flanks leave a gap: the centre on the inner
+// flank's offset ends at x_in = ρ_k − R·s_in/√(1 + s_in²), the outer one's starts at
+// x_out > x_in (s_in > s_out, the slope falling). The envelope closes it with the arc of
+// radius R about the ridge. Within the window [ρ_k − w_in, ρ_k + w_out] the centre's
+// abscissa moves linearly with the contact from the offset at one end to the offset at
+// the other, so the placement is continuous in the contact and in θ (the window's ends
+// move with the ridge), and every centre touches the design: at the foot on a flank whose
+// offset passes through it, or at the ridge.
+bool roll_over_ridge(const Section& section, const SectionCreases& creases, double R, double rho_p,
+                     NoseTouch& t) {
+  for (int k = 0; k < creases.count; ++k) {
+    const double ridge = creases.rho[k];
+    if (!(ridge > 0) || !(std::abs(ridge - rho_p) < kWindow * R)) continue;
+    double g, s_in, s_out;
+    if (!section.at(ridge - kOffCrease, g, s_in) || !section.at(ridge + kOffCrease, g, s_out))
+      return false;
+    const double x_in = offset_x(ridge, s_in, R), x_out = offset_x(ridge, s_out, R);
+    const double roll = x_out - x_in;
+    if (!(roll > kLeastRoll)) continue;  // a valley (the holds' business), or no ridge
+    const double below = k > 0 ? std::max(creases.rho[k - 1], 0.0) : 0.0;
+    const double above =
+        k + 1 < creases.count ? creases.rho[k + 1] : std::numeric_limits<double>::infinity();
+    const double start = ridge - std::min({roll, kWindow * R, kWindow * (ridge - below)});
+    const double end = ridge + std::min({roll, kWindow * R, kWindow * (above - ridge)});
+    if (!(rho_p > start && rho_p < end)) continue;
+    double s;
+    if (!section.at(start, g, s)) return false;
+    const double x_start = offset_x(start, s, R);
+    if (!section.at(end, g, s)) return false;
+    const double x_end = offset_x(end, s, R);
+    // A flank curving more tightly than the nose turns its offset back: nothing to roll on.
+    if (!(x_start < x_in && x_out < x_end)) return false;
+    const double rate = (x_end - x_start) / (end - start);
+    const double x_c = x_start + (rho_p - start) * rate;
+    // How fast a flank's offset moves with its foot at a (slope s, bend g'').
+    const auto offset_rate = [R](double s, double bend) {
+      const double l = std::sqrt(1 + s * s);
+      return 1 - R * bend / (l * l * l);
+    };
+    t.rolling = true;
+    t.held = false;
+    if (x_c > x_in && x_c < x_out) {
+      // On the arc about the ridge: its tangent at the ridge is the nose's.
+      double bend_in, bend_out;
+      if (!section.at(ridge - kOffCrease, g, s, bend_in) ||
+          !section.at(ridge + kOffCrease, g, s, bend_out) || !section.at(ridge, g, s))
+        return false;
+      t.spread = rate / std::min(offset_rate(s_in, bend_in), offset_rate(s_out, bend_out));
+      const double d = x_c - ridge, rise = std::sqrt(R * R - d * d);
+      t.rho = ridge;
+      t.z = g;
+      t.slope = -d / rise;
+      t.centre_x = x_c;
+      t.centre_z = g + rise;
+      t.at_ridge = true;
+      return true;
+    }
+    // On a flank: the foot a whose offset lies at x_c. The offset's abscissa rises with a
+    // at the rate 1 − R·g''/√(1 + g'²)³ > 0 (the flank's offset does not turn back, shown
+    // at the window's end above), so Newton's method in a shrinking bracket finds it.
+    const bool inner = x_c <= x_in;
+    double lo = inner ? start : ridge + kOffCrease, hi = inner ? ridge - kOffCrease : end;
+    const double x_lo = inner ? x_start : x_out, x_hi = inner ? x_in : x_end;
+    double a = lo + (hi - lo) * std::clamp((x_c - x_lo) / (x_hi - x_lo), 0.0, 1.0);
+    for (int it = 0; it < 60; ++it) {
+      double bend;
+      if (!section.at(a, g, s, bend)) return false;
+      const double miss = offset_x(a, s, R) - x_c;
+      if (miss == 0) break;
+      (miss < 0 ? lo : hi) = a;
+      const double moves = offset_rate(s, bend);
+      double next = moves > 0 ? a - miss / moves : 0.5 * (lo + hi);
+      if (!(next > lo && next < hi)) next = 0.5 * (lo + hi);
+      if (std::abs(next - a) <= 1e-15 * (1 + std::abs(a))) break;
+      a = next;
+    }
+    double bend;
+    if (!section.at(a, g, s, bend)) return false;
+    t.spread = rate / offset_rate(s, bend);
+    const double l = std::sqrt(1 + s * s);
+    t.rho = a;
+    t.z = g;
+    t.slope = s;
+    t.centre_x = a - R * s / l;
+    t.centre_z = g + R / l;
+    return true;
+  }
+  return false;
+}
+
 }  // namespace
 
 NoseTouch nose_touch(const Surface& design, const RadialLine& line, double nose_radius, double rho_p,
@@ -647,6 +755,43 @@ NoseTouch nose_touch(const Surface& design, const RadialLine& line, double nose_
   // the flanks the held nose is solved on (a flank ends at the next crease).
   creases.find(design, line, std::min(rho_p, t.centre_x) - 2 * R,
                std::max(rho_p, t.centre_x) + 2 * R);
+  const auto concavity_under = [&](const NoseTouch& h) {
+    return section_concavity(design, R,
+                             std::max(std::abs(h.centre_x - reach), std::abs(h.centre_x + reach)));
+  };
+  // Whether a held (or rolled) nose overhangs any piece of the section by more than the tolerance:
+  // each piece under it searched from a crease that bounds it (the creases found reach 2R
+  // past the contact and the offset, so past every held nose too); a piece that cannot
+  // rise to the tolerance is left after one value. The piece of its own touch is not: the
+  // nose is the offset of that touch, tangent there, and h is strongly concave on the
+  // piece, so its one peak is the touch. The far touch is a foot found by iteration, and
+  // its piece is searched like the rest.
+  const auto overhangs = [&](const NoseTouch& h, double m) {
+    for (int k = 0; k < creases.count; ++k) {
+      if (!(std::abs(creases.rho[k] - h.centre_x) < reach)) continue;
+      for (const int side : {-1, 1}) {
+        // The piece below the first crease under the nose from its lower side; the others
+        // from their lower crease.
+        if (side < 0 && k > 0 && std::abs(creases.rho[k - 1] - h.centre_x) < reach) continue;
+        double a, b;
+        piece_bounds(creases, k, side, h.centre_x - reach, h.centre_x + reach, a, b);
+        // A touch strictly inside: one at a piece's end may be a crease's corner (a foot
+        // clamped there), which says nothing of the rest of the piece.
+        const auto holds = [&](double rho) { return rho > a && rho < b; };
+        if (holds(h.rho)) continue;
+        NoseOverlap o;
+        search(section, h.centre_x, h.centre_z, R, creases.rho[k] + side * kOffCrease, a, b, 4, o,
+               side, m, tolerance);
+        if (o.height > tolerance) return true;
+      }
+    }
+    return false;
+  };
+  // Over a ridge the nose rolls, where it overhangs nothing else.
+  NoseTouch rolled = t;
+  if (roll_over_ridge(section, creases, R, rho_p, rolled) &&
+      !overhangs(rolled, concavity_under(rolled)))
+    return rolled;
   // Every flank the nose overhangs, and the crease of the one it overhangs most.
   struct Candidate {  // trivial: the buffer is not filled on every call
     int crease, side;
@@ -656,8 +801,7 @@ NoseTouch nose_touch(const Surface& design, const RadialLine& line, double nose_
   int held_at = -1, far = 0, count = 0;
   NoseOverlap worst;
   worst.height = tolerance;
-  const double m = section_concavity(
-      design, R, std::max(std::abs(t.centre_x - reach), std::abs(t.centre_x + reach)));
+  const double m = concavity_under(t);
   for (int k = 0; k < creases.count; ++k) {
     if (!(std::abs(creases.rho[k] - t.centre_x) < reach) &&
         !(std::abs(creases.rho[k] - rho_p) <= kOffCrease))
@@ -694,38 +838,10 @@ NoseTouch nose_touch(const Surface& design, const RadialLine& line, double nose_
   // at a lenslet's far rim, across a flat to the next lenslet, sank into the flat (3.8 µm
   // on a microlens array whose gaps are narrower than the nose). The envelope is the hold
   // that overhangs nothing: the other overhung creases' holds are tried, the most first.
-  // Whether a held nose overhangs any piece of the section by more than the tolerance:
-  // each piece under it searched from a crease that bounds it (the creases found reach 2R
-  // past the contact and the offset, so past every held nose too); a piece that cannot
-  // rise to the tolerance is left after one value. The piece of its own touch is not: the
-  // nose is the offset of that touch, tangent there, and h is strongly concave on the
-  // piece, so its one peak is the touch. The far touch is a foot found by iteration, and
-  // its piece is searched like the rest.
-  const auto overhangs = [&](const NoseTouch& h) {
-    for (int k = 0; k < creases.count; ++k) {
-      if (!(std::abs(creases.rho[k] - h.centre_x) < reach)) continue;
-      for (const int side : {-1, 1}) {
-        // The piece below the first crease under the nose from its lower side; the others
-        // from their lower crease.
-        if (side < 0 && k > 0 && std::abs(creases.rho[k - 1] - h.centre_x) < reach) continue;
-        double a, b;
-        piece_bounds(creases, k, side, h.centre_x - reach, h.centre_x + reach, a, b);
-        // A touch strictly inside: one at a piece's end may be a crease's corner (a foot
-        // clamped there), which says nothing of the rest of the piece.
-        const auto holds = [&](double rho) { return rho > a && rho < b; };
-        if (holds(h.rho)) continue;
-        NoseOverlap o;
-        search(section, h.centre_x, h.centre_z, R, creases.rho[k] + side * kOffCrease, a, b, 4, o,
-               side, m, tolerance);
-        if (o.height > tolerance) return true;
-      }
-    }
-    return false;
-  };
   // A nose that overhung one flank alone is held clear of the rest (the trough on its own
   // side is checked in hold_at_crease); checking every hold cost 7 % of the compound eye's
   // chord cut, whose holds never needed another crease.
-  if (count < 2 || !overhangs(held)) return held;
+  if (count < 2 || !overhangs(held, m)) return held;
   std::sort(overhung.begin(), overhung.begin() + count,
             [](const Candidate& a, const Candidate& b) { return a.height > b.height; });
   for (int i = 0; i < count; ++i) {
@@ -733,7 +849,7 @@ NoseTouch nose_touch(const Surface& design, const RadialLine& line, double nose_
     if (c.crease == held_at && c.side == far) continue;
     const NoseTouch other = hold_at_crease(section, creases, t, rho_p, R, nose_radius, m, tolerance,
                                            c.crease, c.side, c.rho);
-    if (other.held && !overhangs(other)) return other;
+    if (other.held && !overhangs(other, m)) return other;
   }
   return held;  // none overhangs nothing: the global gouge check reports what is left
 }

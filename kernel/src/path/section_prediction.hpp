@@ -14,15 +14,26 @@ namespace freeturn::detail {
 // normal curvature along T = (e_r + z_r e_z)/√(1 + z_r²):
 //   κ = e_rᵀ ∇²z e_r / ((1 + z_r²) √(1 + |∇z|²)), > 0 concave as seen from the tool.
 // Returns z_r, the radial slope.
-inline double fill_section(const Surface& design, ContactPoint& p) {
+//
+// radial_slope (optional): the slope the tool sees in the radial plane where it is not the
+// design's, at a ridge the nose rolls over (section_envelope.hpp): the normal then takes
+// it in place of the design's radial slope, so that compensation puts the centre where
+// the planner placed it; the tangential slope and the curvature stay the design's.
+inline double fill_section(const Surface& design, ContactPoint& p,
+                           const double* radial_slope = nullptr) {
   const HeightDerivatives h = design.height_derivatives(p.point.x(), p.point.y());
   const double c = std::cos(p.theta), s = std::sin(p.theta);
   p.normal = Eigen::Vector3d(-h.zx, -h.zy, 1).normalized();
   const double zr = h.zx * c + h.zy * s;
+  if (radial_slope) {
+    const double zt = -h.zx * s + h.zy * c;
+    p.normal = Eigen::Vector3d(-(*radial_slope * c - zt * s), -(*radial_slope * s + zt * c), 1)
+                   .normalized();
+  }
   const double zrr = h.zxx * c * c + 2 * h.zxy * c * s + h.zyy * s * s;
   p.section_curvature =
       zrr / ((1 + zr * zr) * std::sqrt(1 + h.zx * h.zx + h.zy * h.zy));
-  return zr;
+  return radial_slope ? *radial_slope : zr;
 }
 
 // Scallop height between passes f apart on a section of curvature κ cut by a nose of

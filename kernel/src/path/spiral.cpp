@@ -170,6 +170,10 @@ class SpiralPath {
     s.held = touch.held;
     s.uncut = touch.held ? touch.uncut : 0.0;
     s.crease_rho = touch.held ? touch.crease_rho : 0.0;
+    s.rolling = touch.rolling;
+    s.at_ridge = touch.at_ridge;
+    s.path_r = contact_r;
+    s.spread = touch.spread;
     nose_.axes(touch.rho, touch.z, touch.slope, s.x_axis, s.z, s.b);
   }
 
@@ -297,13 +301,14 @@ PathSummary plan_spiral(const Surface& design, const BaseSurface& base,
     p.r = s.contact_r;
     p.point = s.point;
     detail::set_chord(p, s, error, jump, piece.stand_off());
-    const double zr = detail::fill_section(design, p);
+    const double zr = detail::fill_section(design, p, s.at_ridge ? &s.slope : nullptr);
     // Adjacent turns are p apart along the base's generating curve; on the design
     // they are p / cos β apart, β the angle between the two sections' tangents.
     const BasePoint bp = piece.base_point(s.c);
     const double cos_beta = (1 + bp.slope * zr) /
                             (std::sqrt(1 + bp.slope * bp.slope) * std::sqrt(1 + zr * zr));
-    p.pass_spacing = o.pitch / cos_beta;
+    // Rolling over a ridge the touches spread further apart (NoseTouch::spread).
+    p.pass_spacing = o.pitch / cos_beta * s.spread;
     p.scallop = detail::scallop_height(p.pass_spacing, p.section_curvature, o.tool.nose_radius);
     return p;
   };
