@@ -67,8 +67,7 @@ struct AxisState {
   // The nose rolls over a ridge (section_envelope.hpp): the touch may stay at the ridge
   // while the axes move, so the contact the path itself placed there (path_r, before the
   // nose's touch) measures how far the state moved.
-  bool rolling = false;
-  bool at_ridge = false;  // touching the ridge: `slope` is the nose's tangent there
+  bool rolling = false;  // `slope` is then the nose's tangent at the touch
   double path_r = 0;
   double spread = 1;  // how far the touches of neighbouring passes spread (NoseTouch::spread)
   double warm = 0;   // the path's warm start for the next point (a projection distance)

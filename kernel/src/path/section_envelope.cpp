@@ -631,9 +631,9 @@ NoseTouch hold_at_crease(const Section& section, const SectionCreases& creases, 
 // rounding of the flanks' slopes at kOffCrease either side (a smooth point listed as a
 // crease), and a jump that small leaves chords a fraction of a picometre deep.
 constexpr double kLeastRoll = 1e-9;  // mm
-// A ridge's window reaches this fraction of R, and of the distance to the next crease (or
-// the axis) either side: so two windows never meet, and each crease within the window's
-// reach lies among those nose_touch finds (within 1.55 R of the ridge).
+// A ridge's window reaches this fraction of R, and of the distance to the next crease
+// that is no ridge (or to the axis), either side: so no window reaches a valley's, and
+// every crease that can bound one lies within 1.45 R of a contact in it.
 constexpr double kWindow = 0.45;
 
 // The centre's abscissa on the offset of the section at a, a − R·g'/√(1 + g'²).
@@ -641,157 +641,181 @@ double offset_x(double a, double slope, double R) {
   return a - R * slope / std::sqrt(1 + slope * slope);
 }
 
-// The nose rolling over a ridge for the contact rho_p (nose_touch, docs/tool.md, "Ridges"):
-// true with `t` placed where rho_p lies within a ridge's window, false (t as it was)
-// elsewhere or where the section is undefined.
-//
-// Across a ridge at ρ_k the offsets of its two flanks leave a gap: the centre on the inner
-// flank's offset ends at x_in = ρ_k − R·s_in/√(1 + s_in²), the outer one's starts at
-// x_out > x_in (s_in > s_out, the slope falling). The envelope closes it with the arc of
-// radius R about the ridge. Within the window [ρ_k − w_in, ρ_k + w_out] the centre's
-// abscissa moves linearly with the contact from the offset at one end to the offset at
-// the other, so the placement is continuous in the contact and in θ (the window's ends
-// move with the ridge), and every centre touches the design: at the foot on a flank whose
-// offset passes through it, or at the ridge.
-bool roll_over_ridge(const Section& section, const SectionCreases& creases, double R, double rho_p,
-                     NoseTouch& t) {
-  for (int k = 0; k < creases.count; ++k) {
-    const double ridge = creases.rho[k];
-    if (!(ridge > 0) || !(std::abs(ridge - rho_p) < kWindow * R)) continue;
-    double g, s_in, s_out;
-    if (!section.at(ridge - kOffCrease, g, s_in) || !section.at(ridge + kOffCrease, g, s_out))
-      return false;
-    const double x_in = offset_x(ridge, s_in, R), x_out = offset_x(ridge, s_out, R);
-    const double roll = x_out - x_in;
-    if (!(roll > kLeastRoll)) continue;  // a valley (the holds' business), or no ridge
-    const double below = k > 0 ? std::max(creases.rho[k - 1], 0.0) : 0.0;
-    const double above =
-        k + 1 < creases.count ? creases.rho[k + 1] : std::numeric_limits<double>::infinity();
-    const double start = ridge - std::min({roll, kWindow * R, kWindow * (ridge - below)});
-    const double end = ridge + std::min({roll, kWindow * R, kWindow * (above - ridge)});
-    if (!(rho_p > start && rho_p < end)) continue;
-    double s;
-    if (!section.at(start, g, s)) return false;
-    const double x_start = offset_x(start, s, R);
-    if (!section.at(end, g, s)) return false;
-    const double x_end = offset_x(end, s, R);
-    // A flank curving more tightly than the nose turns its offset back: nothing to roll on.
-    if (!(x_start < x_in && x_out < x_end)) return false;
-    const double rate = (x_end - x_start) / (end - start);
-    const double x_c = x_start + (rho_p - start) * rate;
-    // How fast a flank's offset moves with its foot at a (slope s, bend g'').
-    const auto offset_rate = [R](double s, double bend) {
-      const double l = std::sqrt(1 + s * s);
-      return 1 - R * bend / (l * l * l);
-    };
-    t.rolling = true;
-    t.held = false;
-    if (x_c > x_in && x_c < x_out) {
-      // On the arc about the ridge: its tangent at the ridge is the nose's.
-      double bend_in, bend_out;
-      if (!section.at(ridge - kOffCrease, g, s, bend_in) ||
-          !section.at(ridge + kOffCrease, g, s, bend_out) || !section.at(ridge, g, s))
-        return false;
-      t.spread = rate / std::min(offset_rate(s_in, bend_in), offset_rate(s_out, bend_out));
-      const double d = x_c - ridge, rise = std::sqrt(R * R - d * d);
-      t.rho = ridge;
-      t.z = g;
-      t.slope = -d / rise;
-      t.centre_x = x_c;
-      t.centre_z = g + rise;
-      t.at_ridge = true;
-      return true;
-    }
-    // On a flank: the foot a whose offset lies at x_c. The offset's abscissa rises with a
-    // at the rate 1 − R·g''/√(1 + g'²)³ > 0 (the flank's offset does not turn back, shown
-    // at the window's end above), so Newton's method in a shrinking bracket finds it.
-    const bool inner = x_c <= x_in;
-    double lo = inner ? start : ridge + kOffCrease, hi = inner ? ridge - kOffCrease : end;
-    const double x_lo = inner ? x_start : x_out, x_hi = inner ? x_in : x_end;
-    double a = lo + (hi - lo) * std::clamp((x_c - x_lo) / (x_hi - x_lo), 0.0, 1.0);
-    for (int it = 0; it < 60; ++it) {
-      double bend;
-      if (!section.at(a, g, s, bend)) return false;
-      const double miss = offset_x(a, s, R) - x_c;
-      if (miss == 0) break;
-      (miss < 0 ? lo : hi) = a;
-      const double moves = offset_rate(s, bend);
-      double next = moves > 0 ? a - miss / moves : 0.5 * (lo + hi);
-      if (!(next > lo && next < hi)) next = 0.5 * (lo + hi);
-      if (std::abs(next - a) <= 1e-15 * (1 + std::abs(a))) break;
-      a = next;
-    }
-    double bend;
-    if (!section.at(a, g, s, bend)) return false;
-    t.spread = rate / offset_rate(s, bend);
-    const double l = std::sqrt(1 + s * s);
-    t.rho = a;
-    t.z = g;
-    t.slope = s;
-    t.centre_x = a - R * s / l;
-    t.centre_z = g + R / l;
-    return true;
-  }
-  return false;
+// How fast a flank's offset moves with its foot (slope s, bend g''), kept off 0 for the
+// spread, which it divides.
+double offset_rate(double s, double bend, double R) {
+  const double l = std::sqrt(1 + s * s);
+  return std::max(1 - R * bend / (l * l * l), 1e-6);
 }
 
-}  // namespace
+// The ridges' windows about a contact (nose_touch; docs/tool.md, "Ridges").
+//
+// Along the section the contact's own placement (its offset, or its hold) jumps forward
+// at each ridge ρ_k by the roll J_k = x_out − x_in: the inner flank's offset at the ridge
+// ends at x_in = ρ_k − R·s_in/√(1 + s_in²), the outer one's starts at x_out (s_in > s_out,
+// the slope falling). Each ridge gets a window [ρ_k − w_in, ρ_k + w_out], w the lesser of
+// kWindow·R and kWindow times the distance to the next crease that is no ridge (or to the
+// axis), and across it the jump is spread into a ramp: the centre's abscissa is the
+// contact's own plus Σ_k J_k·(ramp_k(ρ) − step_k(ρ)), continuous in the contact, and in θ
+// while the rolls and windows are (a ridge appears with no roll, where a section grazes a
+// rim). The window does not depend on the roll, so the ramps of ridges close together (two
+// rims through one point, a land narrower than the nose) add up to the ramp of their
+// joint roll as the ridges meet: their windows were the roll wide at first, and a section
+// through the point where two bowls touch jumped between the two.
+struct RidgeWindows {
+  bool inside = false;  // the contact lies in a window
+  double shift = 0;     // mm: Σ J_k (ramp_k − step_k) at the contact
+  double rate = 0;      // Σ J_k / (w_in + w_out) over the windows it lies in
+  // The contact lies within kOffCrease of a ridge, where its own placement may carry
+  // either flank's slope or neither (two rims through one point, evaluated on the plane
+  // between): it is placed from just inside the ridge instead, this contact.
+  double on_ridge = std::numeric_limits<double>::quiet_NaN();
+};
 
-NoseTouch nose_touch(const Surface& design, const RadialLine& line, double nose_radius, double rho_p,
-                     double z_p, double slope_p, double stand_off, double tolerance) {
-  const double R = nose_radius + stand_off;  // the envelope's radius
-  NoseTouch t;
-  t.rho = rho_p;
-  t.z = z_p;
-  t.slope = slope_p;
-  const double length = std::sqrt(1 + slope_p * slope_p);
-  t.centre_x = rho_p - R * slope_p / length;
-  t.centre_z = z_p + R / length;
-  if (!(R > 0) || !design.has_creases()) return t;
-  const Section section(design, line);
-  const double reach = 0.999 * R;
-  SectionCreases creases;
-  // Every crease within 2R: those under the nose may be overhung, and the ones beyond bound
-  // the flanks the held nose is solved on (a flank ends at the next crease).
-  creases.find(design, line, std::min(rho_p, t.centre_x) - 2 * R,
-               std::max(rho_p, t.centre_x) + 2 * R);
-  const auto concavity_under = [&](const NoseTouch& h) {
-    return section_concavity(design, R,
-                             std::max(std::abs(h.centre_x - reach), std::abs(h.centre_x + reach)));
+RidgeWindows ridge_windows(const Section& section, const SectionCreases& creases, double R,
+                           double rho_p) {
+  RidgeWindows out;
+  // The roll across the creases k..last (within 2·kOffCrease of each other: one crease,
+  // two rims through one point), the slopes taken either side of the group.
+  const auto roll_across = [&](int k, int last, double& roll) {
+    double g, s_in, s_out;
+    if (!section.at(creases.rho[k] - kOffCrease, g, s_in) ||
+        !section.at(creases.rho[last] + kOffCrease, g, s_out))
+      return false;
+    roll = offset_x(creases.rho[k], s_out, R) - offset_x(creases.rho[k], s_in, R);
+    return true;
   };
-  // Whether a held (or rolled) nose overhangs any piece of the section by more than the tolerance:
-  // each piece under it searched from a crease that bounds it (the creases found reach 2R
-  // past the contact and the offset, so past every held nose too); a piece that cannot
-  // rise to the tolerance is left after one value. The piece of its own touch is not: the
-  // nose is the offset of that touch, tangent there, and h is strongly concave on the
-  // piece, so its one peak is the touch. The far touch is a foot found by iteration, and
-  // its piece is searched like the rest.
-  const auto overhangs = [&](const NoseTouch& h, double m) {
-    for (int k = 0; k < creases.count; ++k) {
-      if (!(std::abs(creases.rho[k] - h.centre_x) < reach)) continue;
-      for (const int side : {-1, 1}) {
-        // The piece below the first crease under the nose from its lower side; the others
-        // from their lower crease.
-        if (side < 0 && k > 0 && std::abs(creases.rho[k - 1] - h.centre_x) < reach) continue;
-        double a, b;
-        piece_bounds(creases, k, side, h.centre_x - reach, h.centre_x + reach, a, b);
-        // A touch strictly inside: one at a piece's end may be a crease's corner (a foot
-        // clamped there), which says nothing of the rest of the piece.
-        const auto holds = [&](double rho) { return rho > a && rho < b; };
-        if (holds(h.rho)) continue;
-        NoseOverlap o;
-        search(section, h.centre_x, h.centre_z, R, creases.rho[k] + side * kOffCrease, a, b, 4, o,
-               side, m, tolerance);
-        if (o.height > tolerance) return true;
+  const auto group_end = [&](int k) {
+    while (k + 1 < creases.count && creases.rho[k + 1] - creases.rho[k] <= 2 * kOffCrease) ++k;
+    return k;
+  };
+  // Most contacts near creases are near valleys alone: those within kWindow·R first.
+  bool ridge_near = false;
+  for (int k = 0; k < creases.count && !ridge_near; k = group_end(k) + 1) {
+    double roll;
+    if (!(std::abs(creases.rho[k] - rho_p) < kWindow * R)) continue;
+    if (!roll_across(k, group_end(k), roll)) return out;
+    ridge_near = roll > kLeastRoll;
+  }
+  if (!ridge_near) return out;
+  // Each crease within 1.45 R, with its roll: the ridges within kWindow·R and every crease
+  // that can bound their windows.
+  struct Crease {  // trivial: the buffer is not filled on every call
+    double rho, roll;
+  };
+  std::array<Crease, SectionCreases::kCapacity> near;
+  int count = 0;
+  for (int k = 0; k < creases.count; k = group_end(k) + 1) {
+    double roll;
+    if (!(std::abs(creases.rho[k] - rho_p) < (1 + kWindow) * R)) continue;
+    if (!roll_across(k, group_end(k), roll)) return out;
+    near[static_cast<std::size_t>(count++)] = {creases.rho[k], roll};
+  }
+  const auto ridge = [&](int i) { return near[static_cast<std::size_t>(i)].roll > kLeastRoll; };
+  for (int i = 0; i < count; ++i) {
+    const Crease& c = near[static_cast<std::size_t>(i)];
+    if (!ridge(i) || !(c.rho > 0) || !(std::abs(c.rho - rho_p) < kWindow * R)) continue;
+    double below = c.rho, above = std::numeric_limits<double>::infinity();  // the axis
+    for (int j = i - 1; j >= 0; --j)
+      if (!ridge(j)) {
+        below = std::min(below, c.rho - near[static_cast<std::size_t>(j)].rho);
+        break;
       }
+    for (int j = i + 1; j < count; ++j)
+      if (!ridge(j)) {
+        above = near[static_cast<std::size_t>(j)].rho - c.rho;
+        break;
+      }
+    const double start = c.rho - kWindow * std::min(R, below);
+    const double end = c.rho + kWindow * std::min(R, above);
+    if (!(rho_p > start && rho_p < end)) continue;
+    if (!(std::abs(rho_p - c.rho) > kOffCrease)) {
+      out.on_ridge = c.rho - 2 * kOffCrease;
+      return out;
     }
-    return false;
-  };
-  // Over a ridge the nose rolls, where it overhangs nothing else.
-  NoseTouch rolled = t;
-  if (roll_over_ridge(section, creases, R, rho_p, rolled) &&
-      !overhangs(rolled, concavity_under(rolled)))
-    return rolled;
+    out.inside = true;
+    out.shift += c.roll * ((rho_p - start) / (end - start) - (rho_p > c.rho ? 1.0 : 0.0));
+    out.rate += c.roll / (end - start);
+  }
+  return out;
+}
+
+// The nose over the ridges' windows (nose_touch): the contact's own placement moved along
+// the section by windows.shift and dropped onto the design there, touching it at the
+// section's highest point over the nose's lower arc (nose_overlap). The slope handed on is
+// the nose's tangent at the touch (at a ridge, no flank's), so that the offset along it
+// is the centre. False where the section is undefined.
+bool roll_over_ridges(const Surface& design, const Section& section, const SectionCreases& creases,
+                      const RadialLine& line, double R, double rho_p, const RidgeWindows& windows,
+                      NoseTouch& t) {
+  const double x_c = t.centre_x + windows.shift;
+  NoseOverlap o = nose_overlap(design, line, x_c, t.centre_z, R, rho_p);
+  // The searches start kOffCrease off each crease, a few 1e-11 mm below a ridge's peak;
+  // the section's value at the crease itself (its slope is either flank's, its height
+  // both) makes the touch there exact.
+  bool at_crease = false;
+  for (int k = 0; k < creases.count; ++k) {
+    const double d = creases.rho[k] - x_c;
+    double g, s;
+    if (!(std::abs(d) < 0.999 * R) || !section.at(creases.rho[k], g, s)) continue;
+    const double h = g - t.centre_z + std::sqrt(R * R - d * d);
+    if (h >= o.height - 1e-12) at_crease = true;  // the touch lies at (or within 1e-12 of) it
+    if (h > o.height) o.height = h, o.rho = creases.rho[k];
+  }
+  // On a flank the search settles the peak to 1 pm; Newton's steps with the flank's own
+  // curvature (h'' = g'' − R²/s³) take it to rounding, so the dropped nose is not that far
+  // into the design. A step that would cross a crease is not taken.
+  for (int it = 0; it < 3 && !at_crease; ++it) {
+    double g, s, bend;
+    const double d = o.rho - x_c, arc = std::sqrt(R * R - d * d);
+    if (!section.at(o.rho, g, s, bend) || !(arc > 0)) break;
+    const double h_slope = s - d / arc, h_bend = bend - R * R / (arc * arc * arc);
+    if (!(h_bend < 0)) break;
+    const double next = o.rho - h_slope / h_bend;
+    bool crosses = false;
+    for (int k = 0; k < creases.count; ++k)
+      crosses = crosses || (creases.rho[k] - o.rho) * (creases.rho[k] - next) <= 0;
+    double g_next, s_next;
+    if (crosses || !section.at(next, g_next, s_next)) break;
+    const double d_next = next - x_c;
+    if (!(std::abs(d_next) < R)) break;
+    const double h = g_next - t.centre_z + std::sqrt(R * R - d_next * d_next);
+    if (!(h > o.height)) break;
+    o.height = h;
+    o.rho = next;
+  }
+  const double d = o.rho - x_c, rise = std::sqrt(std::max(R * R - d * d, 0.0));
+  if (!(o.height > -1e300) || !(rise > 0)) return false;
+  const double z_c = t.centre_z + o.height;
+  // How far the touches of neighbouring passes spread: the centre moves (the contact's own
+  // offset's rate + the windows') per unit of contact, the touch 1/(its offset's rate) as
+  // far as the centre; at a ridge, the slower of its flanks.
+  double g, s, bend;
+  if (!section.at(rho_p, g, s, bend)) return false;
+  const double centre_rate = offset_rate(s, bend, R) + windows.rate;
+  double touch_rate = 1e300;
+  for (const double side : {-1.0, 1.0}) {
+    if (!section.at(o.rho + side * kOffCrease, g, s, bend)) return false;
+    touch_rate = std::min(touch_rate, offset_rate(s, bend, R));
+  }
+  t.rolling = true;
+  t.held = false;
+  t.uncut = 0;
+  t.rho = o.rho;
+  t.z = z_c - rise;
+  t.slope = d / rise;
+  t.centre_x = x_c;
+  t.centre_z = z_c;
+  t.spread = centre_rate / touch_rate;
+  return true;
+}
+
+// The contact's own placement (nose_touch without the ridges): its offset t, or the nose
+// held at a concave crease where that would overhang one.
+NoseTouch offset_or_hold(const Surface& design, const Section& section,
+                         const SectionCreases& creases, NoseTouch t, double rho_p, double R,
+                         double nose_radius, double tolerance) {
+  const double reach = 0.999 * R;
   // Every flank the nose overhangs, and the crease of the one it overhangs most.
   struct Candidate {  // trivial: the buffer is not filled on every call
     int crease, side;
@@ -801,7 +825,8 @@ NoseTouch nose_touch(const Surface& design, const RadialLine& line, double nose_
   int held_at = -1, far = 0, count = 0;
   NoseOverlap worst;
   worst.height = tolerance;
-  const double m = concavity_under(t);
+  const double m = section_concavity(
+      design, R, std::max(std::abs(t.centre_x - reach), std::abs(t.centre_x + reach)));
   for (int k = 0; k < creases.count; ++k) {
     if (!(std::abs(creases.rho[k] - t.centre_x) < reach) &&
         !(std::abs(creases.rho[k] - rho_p) <= kOffCrease))
@@ -838,10 +863,38 @@ NoseTouch nose_touch(const Surface& design, const RadialLine& line, double nose_
   // at a lenslet's far rim, across a flat to the next lenslet, sank into the flat (3.8 µm
   // on a microlens array whose gaps are narrower than the nose). The envelope is the hold
   // that overhangs nothing: the other overhung creases' holds are tried, the most first.
+  // Whether a held nose overhangs any piece of the section by more than the tolerance:
+  // each piece under it searched from a crease that bounds it (the creases found reach 2R
+  // past the contact and the offset, so past every held nose too); a piece that cannot
+  // rise to the tolerance is left after one value. The piece of its own touch is not: the
+  // nose is the offset of that touch, tangent there, and h is strongly concave on the
+  // piece, so its one peak is the touch. The far touch is a foot found by iteration, and
+  // its piece is searched like the rest.
+  const auto overhangs = [&](const NoseTouch& h) {
+    for (int k = 0; k < creases.count; ++k) {
+      if (!(std::abs(creases.rho[k] - h.centre_x) < reach)) continue;
+      for (const int side : {-1, 1}) {
+        // The piece below the first crease under the nose from its lower side; the others
+        // from their lower crease.
+        if (side < 0 && k > 0 && std::abs(creases.rho[k - 1] - h.centre_x) < reach) continue;
+        double a, b;
+        piece_bounds(creases, k, side, h.centre_x - reach, h.centre_x + reach, a, b);
+        // A touch strictly inside: one at a piece's end may be a crease's corner (a foot
+        // clamped there), which says nothing of the rest of the piece.
+        const auto holds = [&](double rho) { return rho > a && rho < b; };
+        if (holds(h.rho)) continue;
+        NoseOverlap o;
+        search(section, h.centre_x, h.centre_z, R, creases.rho[k] + side * kOffCrease, a, b, 4, o,
+               side, m, tolerance);
+        if (o.height > tolerance) return true;
+      }
+    }
+    return false;
+  };
   // A nose that overhung one flank alone is held clear of the rest (the trough on its own
   // side is checked in hold_at_crease); checking every hold cost 7 % of the compound eye's
   // chord cut, whose holds never needed another crease.
-  if (count < 2 || !overhangs(held, m)) return held;
+  if (count < 2 || !overhangs(held)) return held;
   std::sort(overhung.begin(), overhung.begin() + count,
             [](const Candidate& a, const Candidate& b) { return a.height > b.height; });
   for (int i = 0; i < count; ++i) {
@@ -849,9 +902,47 @@ NoseTouch nose_touch(const Surface& design, const RadialLine& line, double nose_
     if (c.crease == held_at && c.side == far) continue;
     const NoseTouch other = hold_at_crease(section, creases, t, rho_p, R, nose_radius, m, tolerance,
                                            c.crease, c.side, c.rho);
-    if (other.held && !overhangs(other, m)) return other;
+    if (other.held && !overhangs(other)) return other;
   }
   return held;  // none overhangs nothing: the global gouge check reports what is left
+}
+
+}  // namespace
+
+NoseTouch nose_touch(const Surface& design, const RadialLine& line, double nose_radius,
+                     double rho_p, double z_p, double slope_p, double stand_off, double tolerance) {
+  const double R = nose_radius + stand_off;  // the envelope's radius
+  NoseTouch t;
+  t.rho = rho_p;
+  t.z = z_p;
+  t.slope = slope_p;
+  const double length = std::sqrt(1 + slope_p * slope_p);
+  t.centre_x = rho_p - R * slope_p / length;
+  t.centre_z = z_p + R / length;
+  if (!(R > 0) || !design.has_creases()) return t;
+  const Section section(design, line);
+  SectionCreases creases;
+  // Every crease within 2R: those under the nose may be overhung, and the ones beyond bound
+  // the flanks the held nose is solved on (a flank ends at the next crease).
+  creases.find(design, line, std::min(rho_p, t.centre_x) - 2 * R,
+               std::max(rho_p, t.centre_x) + 2 * R);
+  // Within a ridge's window the nose rolls over it instead of jumping across.
+  RidgeWindows windows = ridge_windows(section, creases, R, rho_p);
+  if (!std::isnan(windows.on_ridge)) {
+    rho_p = windows.on_ridge;
+    if (!section.at(rho_p, t.z, t.slope)) return t;
+    const double l = std::sqrt(1 + t.slope * t.slope);
+    t.rho = rho_p;
+    t.centre_x = rho_p - R * t.slope / l;
+    t.centre_z = t.z + R / l;
+    windows = ridge_windows(section, creases, R, rho_p);
+  }
+  const NoseTouch placed =
+      offset_or_hold(design, section, creases, t, rho_p, R, nose_radius, tolerance);
+  NoseTouch rolled = placed;
+  if (windows.inside && roll_over_ridges(design, section, creases, line, R, rho_p, windows, rolled))
+    return rolled;
+  return placed;
 }
 
 }  // namespace freeturn

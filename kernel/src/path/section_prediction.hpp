@@ -16,7 +16,7 @@ namespace freeturn::detail {
 // Returns z_r, the radial slope.
 //
 // radial_slope (optional): the slope the tool sees in the radial plane where it is not the
-// design's, at a ridge the nose rolls over (section_envelope.hpp): the normal then takes
+// design's, over a ridge the nose rolls over (section_envelope.hpp): the normal then takes
 // it in place of the design's radial slope, so that compensation puts the centre where
 // the planner placed it; the tangential slope and the curvature stay the design's.
 inline double fill_section(const Surface& design, ContactPoint& p,

@@ -171,7 +171,6 @@ class SpiralPath {
     s.uncut = touch.held ? touch.uncut : 0.0;
     s.crease_rho = touch.held ? touch.crease_rho : 0.0;
     s.rolling = touch.rolling;
-    s.at_ridge = touch.at_ridge;
     s.path_r = contact_r;
     s.spread = touch.spread;
     nose_.axes(touch.rho, touch.z, touch.slope, s.x_axis, s.z, s.b);
@@ -301,7 +300,7 @@ PathSummary plan_spiral(const Surface& design, const BaseSurface& base,
     p.r = s.contact_r;
     p.point = s.point;
     detail::set_chord(p, s, error, jump, piece.stand_off());
-    const double zr = detail::fill_section(design, p, s.at_ridge ? &s.slope : nullptr);
+    const double zr = detail::fill_section(design, p, s.rolling ? &s.slope : nullptr);
     // Adjacent turns are p apart along the base's generating curve; on the design
     // they are p / cos β apart, β the angle between the two sections' tangents.
     const BasePoint bp = piece.base_point(s.c);

@@ -94,18 +94,17 @@ struct NoseTouch {
   double far_rho = 0;     // the touch on the other flank (held only)
   double uncut = 0;       // mm: material left above the crease, vertical (held only)
   // Rolling over a ridge (a convex crease, where the section's slope falls): the contact
-  // lies in the ridge's window, across which the centre moves along the envelope from one
-  // flank's offset, over the arc of radius R about the ridge, to the other's. Otherwise
-  // the centre would jump across the ridge and every chord over it would cut into it.
+  // lies in a ridge's window, across which the centre moves along the envelope from one
+  // flank's offset, over the arc of radius R about the ridge, to the other's, instead of
+  // jumping across the ridge (every chord over a jump cuts into the ridge). `slope` is
+  // then the nose's tangent at the touch, not the design's, so that the offset along it
+  // is the centre (at the ridge itself no flank's slope is).
   bool rolling = false;
-  // Touching at the ridge itself (rolling only): `slope` is then the nose's tangent there,
-  // not the design's, so that the offset along it is the centre.
-  bool at_ridge = false;
   // How far apart the touches of neighbouring passes lie, per unit of their contacts'
   // spacing (rolling only, else 1): the window moves the centre faster than the contact,
   // and a flank's offset moves 1 − R·κ times as fast as its foot (κ the section's
   // curvature, > 0 concave), so the touches spread and the scallop between them grows. At
-  // the ridge, the larger of its two flanks'.
+  // a ridge, the slower of its two flanks'.
   double spread = 1;
 };
 
@@ -121,13 +120,12 @@ struct NoseTouch {
 // so every point of it stays at least h above the design; `uncut` is still measured
 // under the real nose.
 //
-// Where the contact lies within a ridge's window (docs/tool.md, "Ridges": w either side,
-// the least of the centre's roll over the ridge, 0.45 R and 0.45 of the distance to the
-// next crease or the axis), the centre is placed on the envelope instead, at the abscissa
-// that moves linearly with the contact from the offset at one end of the window to the
-// offset at the other: on a flank's offset where it lies beyond that flank's offset at
-// the ridge, else on the arc about the ridge. A rolled nose that would overhang another
-// piece of the section is not used (the contact's offset or hold stands, as before).
+// Where the contact lies within a ridge's window (docs/tool.md, "Ridges"), the centre is
+// the placement above moved along the section so that it ramps across the ridge's roll
+// instead of jumping (w either side: the least of the roll, 0.45 R and 0.45 of the
+// distance to the next crease that is no ridge, or the axis; windows of ridges close
+// together add up), and dropped onto the design there: it touches the section's highest
+// point under the nose's lower arc (nose_overlap), a flank or the ridge.
 NoseTouch nose_touch(const Surface& design, const RadialLine& line, double R, double rho_p, double z_p,
                      double slope_p, double stand_off = 0, double tolerance = 1e-10);
 
