@@ -927,6 +927,8 @@ NoseTouch nose_touch(const Surface& design, const RadialLine& line, double nose_
   creases.find(design, line, std::min(rho_p, t.centre_x) - 2 * R,
                std::max(rho_p, t.centre_x) + 2 * R);
   // Within a ridge's window the nose rolls over it instead of jumping across.
+  if (!design.may_have_ridges())
+    return offset_or_hold(design, section, creases, t, rho_p, R, nose_radius, tolerance);
   RidgeWindows windows = ridge_windows(section, creases, R, rho_p);
   if (!std::isnan(windows.on_ridge)) {
     rho_p = windows.on_ridge;

@@ -58,6 +58,7 @@ class CorrectedSurface final : public Surface {
   }
   // The corrections are smooth (Zernike polynomials): the creases are the design's.
   bool has_creases() const override { return design_->has_creases(); }
+  bool may_have_ridges() const override { return design_->may_have_ridges(); }
   int section_creases(const RadialLine& line, double lo, double hi, std::span<double> out) const override {
     return design_->section_creases(line, lo, hi, out);
   }

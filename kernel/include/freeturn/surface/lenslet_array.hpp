@@ -40,6 +40,8 @@ class LensletArray final : public Surface {
   HeightDerivatives height_derivatives(double x, double y) const override;
   double defined_radius() const override;
   bool has_creases() const override { return true; }
+  // A bowl's rim is a ridge; domes meet each other and the base in valleys.
+  bool may_have_ridges() const override { return o_.lens_radius > 0; }
   // The base sphere's bend within `radius` and every lenslet's within its footprint.
   double max_bend(double radius) const override;
   // Where the radial line crosses the lenslets' rims, in closed form (a circle on a plane

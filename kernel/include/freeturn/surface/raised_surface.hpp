@@ -23,6 +23,7 @@ class RaisedSurface final : public Surface {
   }
   double defined_radius() const override { return s_.defined_radius(); }
   bool has_creases() const override { return s_.has_creases(); }
+  bool may_have_ridges() const override { return s_.may_have_ridges(); }
   int section_creases(const RadialLine& line, double lo, double hi, std::span<double> out) const override {
     return s_.section_creases(line, lo, hi, out);
   }

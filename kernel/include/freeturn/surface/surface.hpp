@@ -85,6 +85,11 @@ class Surface {
   // vertex). Chord errors across a crease peak sharply, so they are sampled more densely.
   virtual bool has_creases() const { return false; }
 
+  // False where no crease can be a ridge (a convex crease, the slope falling across it
+  // along a section), which the nose rolls over (path/section_envelope.hpp): the planner
+  // then does not look for one (domes meet in valleys alone). True may be answered freely.
+  virtual bool may_have_ridges() const { return has_creases(); }
+
   // The creases met along the radial section at angle θ, as signed radii ρ in [rho_lo,
   // rho_hi] (ρ < 0 lies at θ + π), ascending; writes at most out.size() of them and returns
   // how many it wrote. The nose's envelope (path/section_envelope.hpp) is exact only at
