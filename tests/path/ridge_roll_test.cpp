@@ -153,6 +153,57 @@ TEST_SUITE("path") {
     }
   }
 
+  TEST_CASE("domes have no ridge: skipping the search for one changes no placement") {
+    // LensletArray::may_have_ridges is false for domes; a view that does not say so makes
+    // the planner look for ridges, and it must find none: every placement the same bits.
+    struct Looking final : Surface {
+      const Surface& s;
+      explicit Looking(const Surface& surface) : s(surface) {}
+      const char* type() const override { return s.type(); }
+      void sag_gradient(double x, double y, double& z, double& zx, double& zy) const override {
+        s.sag_gradient(x, y, z, zx, zy);
+      }
+      HeightDerivatives height_derivatives(double x, double y) const override {
+        return s.height_derivatives(x, y);
+      }
+      bool has_creases() const override { return true; }
+      int section_creases(const RadialLine& line, double lo, double hi,
+                          std::span<double> out) const override {
+        return s.section_creases(line, lo, hi, out);
+      }
+      double max_bend(double radius) const override { return s.max_bend(radius); }
+    };
+    for (const double lens_radius : {-0.3, -0.6}) {
+      LensletArrayOptions lo;
+      lo.lens_radius = lens_radius;
+      lo.lens_diameter = 0.2;
+      lo.pitch = 0.25;
+      lo.pattern = LensletArrayOptions::Pattern::kHexagonal;
+      lo.extent = 1.0;
+      const LensletArray domes(lo);
+      REQUIRE(!domes.may_have_ridges());
+      const Looking looking(domes);
+      long compared = 0;
+      for (int line = 0; line < 24; ++line) {
+        const RadialLine c(0.37 + line * 2 * std::numbers::pi / 24);
+        for (int i = 0; i <= 2000; ++i) {
+          const double rho = 0.9 * i / 2000;
+          double z, zx, zy;
+          domes.sag_gradient(rho * c.cos, rho * c.sin, z, zx, zy);
+          const double slope = zx * c.cos + zy * c.sin;
+          const NoseTouch a = nose_touch(domes, c, 0.2, rho, z, slope, 1e-4);
+          const NoseTouch b = nose_touch(looking, c, 0.2, rho, z, slope, 1e-4);
+          CHECK(!b.rolling);
+          CHECK(a.centre_x == b.centre_x);
+          CHECK(a.centre_z == b.centre_z);
+          CHECK(a.held == b.held);
+          ++compared;
+        }
+      }
+      CHECK(compared == 24 * 2001);
+    }
+  }
+
   SpiralOptions ridge_spiral(double outer, double pitch, double tolerance, double R) {
     SpiralOptions o;
     o.outer_radius = outer;
