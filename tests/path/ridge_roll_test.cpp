@@ -247,6 +247,37 @@ TEST_SUITE("path") {
     check_rolling_spiral(roof, ridge_spiral(2.6, 0.05, 2e-4, 0.2), 50);
   }
 
+  TEST_CASE("a roof's ridge with B following about a pivot: the nose rolls, B turns, no gouge") {
+    // B follows the nose's tangent at the touch, so the edge point that touches stays the
+    // same point of the tool; the pivot 60 mm behind the centre swings with B, and the
+    // sampler finds the centre from the interpolated X, Z and B.
+    const Roof roof(0.3, -0.2);
+    const double R = 0.2, L = 60;
+    SpiralOptions o = ridge_spiral(2.6, 0.05, 2e-4, R);
+    o.tool.axis_offset = L;
+    o.tool.b_follows = true;
+    CompensationOptions c;
+    c.tool.nose_radius = R;
+    c.b_mode = BMode::kFollow;
+    c.pivot_distance = L;
+    ContactCollector out;
+    const PathSummary summary = plan_spiral(roof, BaseSurface::plane(2.6), o, out);
+    std::vector<CutterLocation> cls;
+    for (const ContactPoint& p : out.points) cls.push_back(compensate(p, c));
+    const test::DenseNoseFigures f = test::dense_nose_figures(roof, cls, R, 12, 240, &c);
+    double b_lo = 1e300, b_hi = -1e300;
+    for (const CutterLocation& cl : cls) b_lo = std::min(b_lo, cl.b), b_hi = std::max(b_hi, cl.b);
+    MESSAGE("points ", cls.size(), ", B from ", b_lo * 180 / std::numbers::pi, "° to ",
+            b_hi * 180 / std::numbers::pi, "°, deepest ", f.gouge * 1e6, " nm, chord ",
+            f.worst * 1e6, " nm");
+    CHECK(summary.jumps == 0);
+    CHECK(f.gouge <= 1e-6);
+    CHECK(f.worst <= o.points.tolerance * 1.02);
+    // B turns through the whole roll: from the inner plane's normal to the outer one's.
+    CHECK(b_lo <= -std::atan(0.3) + 1e-9);
+    CHECK(b_hi >= std::atan(0.2) - 1e-9);
+  }
+
   TEST_CASE("a NURBS ridge, found from its knots: no jump, no gouge") {
     // The V-groove of the seam tests turned over: z = −0.1115·|x − 0.5|, a cubic with a
     // triple knot on the ridge line. The library before: 29 jumps, the nose 1.13 µm into

@@ -35,6 +35,9 @@ class NoseSection {
 
   double nose_radius() const { return R_; }
   double stand_off() const { return stand_off_; }
+  // How far the programmed point lies from the nose centre along B (a pivot's distance,
+  // −R for the tip) where B follows the normal; 0 otherwise (a fixed B drops out).
+  double axis_offset() const { return offset_; }
   bool b_follows() const { return b_follows_; }
 
   // Where the design's section curves toward the tool more tightly than the nose (its
@@ -93,9 +96,11 @@ class NoseSection {
 
   // Where the nose touches for the contact (contact_r, z) with section slope f_r at angle
   // c: the contact itself, or, where the nose would overhang a crease, the touch on the
-  // contact's flank of the nose held at that crease (path/section_envelope.hpp). With B
-  // following the normal the nose is not held (its edge point is fixed, not its centre).
+  // contact's flank of the nose held at that crease, and over a ridge's window the nose
+  // rolling over it (path/section_envelope.hpp). With B following the normal the nose is
+  // not held (its edge point is fixed, not its centre), but it rolls.
   NoseTouch touch(const RadialLine& c, double contact_r, double z, double f_r) const {
+    if (b_follows_ && R_ > 0) return nose_roll(design_, c, R_, contact_r, z, f_r, stand_off_);
     if (R_ == 0 || b_follows_) {
       NoseTouch t;
       t.rho = contact_r;

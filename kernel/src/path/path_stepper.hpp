@@ -35,6 +35,8 @@
 //                                           // the larger of its rises at two ends (`ends`)
 //   double stand_off() const;               // where the blocks stand off the design (mm):
 //                                           // the centre of the tolerance band
+//   double axis_offset() const;             // the programmed point's distance from the
+//                                           // nose centre along B (0 unless B follows)
 //   std::string why_not_smooth(const AxisState& s) const;
 //                                           // where no step meets the tolerance from s:
 //                                           // what about the design makes it so, if the
@@ -1202,9 +1204,15 @@ void distribute(Path& path, const CutterPointOptions& o, Emit&& emit, double beg
           const double contact_move =
               (trial.point - current.point).norm() +
               (trial.rolling || current.rolling ? std::abs(trial.path_r - current.path_r) : 0.0);
+          // The nose centre's move: a pivot L behind it swings L·ΔB where B follows a
+          // turning normal (over a ridge, 60 mm × 0.5 rad), which is no jump.
+          const double off = path.axis_offset();
+          const double trial_x = trial.x_axis - off * std::sin(trial.b),
+                       current_x = current.x_axis - off * std::sin(current.b);
           const double axes_move = std::hypot(
-              trial.x_axis - current.x_axis, trial.z - current.z,
-              0.5 * (std::abs(trial.x_axis) + std::abs(current.x_axis)) * (trial.c - current.c));
+              trial_x - current_x,
+              (trial.z - off * std::cos(trial.b)) - (current.z - off * std::cos(current.b)),
+              0.5 * (std::abs(trial_x) + std::abs(current_x)) * (trial.c - current.c));
           if (axes_move > kJumpRatio * contact_move) {
             // This step crosses the jump. A shorter accepted one would only end before it,
             // and the next search would close in on it without end.

@@ -30,6 +30,7 @@ class ProfilePath {
   bool holds_still() const { return true; }  // C is fixed: a held nose may not move
   bool prune_samples() const { return false; }  // one short pass: every sample is taken
   double stand_off() const { return nose_.stand_off(); }
+  double axis_offset() const { return nose_.axis_offset(); }
   std::string why_not_smooth(const detail::AxisState& s) const {
     return nose_.nose_larger_than_section(RadialLine{}, s.contact_r);
   }

@@ -909,8 +909,13 @@ NoseTouch offset_or_hold(const Surface& design, const Section& section,
 
 }  // namespace
 
-NoseTouch nose_touch(const Surface& design, const RadialLine& line, double nose_radius,
-                     double rho_p, double z_p, double slope_p, double stand_off, double tolerance) {
+namespace {
+
+// nose_touch and nose_roll: the contact's own placement held at concave creases or not,
+// and rolled over ridges.
+NoseTouch place_nose(const Surface& design, const RadialLine& line, double nose_radius,
+                     double rho_p, double z_p, double slope_p, double stand_off, double tolerance,
+                     bool hold) {
   const double R = nose_radius + stand_off;  // the envelope's radius
   NoseTouch t;
   t.rho = rho_p;
@@ -926,9 +931,13 @@ NoseTouch nose_touch(const Surface& design, const RadialLine& line, double nose_
   // the flanks the held nose is solved on (a flank ends at the next crease).
   creases.find(design, line, std::min(rho_p, t.centre_x) - 2 * R,
                std::max(rho_p, t.centre_x) + 2 * R);
+  const auto own_placement = [&](const NoseTouch& offset, double contact) {
+    return hold ? offset_or_hold(design, section, creases, offset, contact, R, nose_radius,
+                                 tolerance)
+                : offset;
+  };
   // Within a ridge's window the nose rolls over it instead of jumping across.
-  if (!design.may_have_ridges())
-    return offset_or_hold(design, section, creases, t, rho_p, R, nose_radius, tolerance);
+  if (!design.may_have_ridges()) return own_placement(t, rho_p);
   RidgeWindows windows = ridge_windows(section, creases, R, rho_p);
   if (!std::isnan(windows.on_ridge)) {
     rho_p = windows.on_ridge;
@@ -939,12 +948,23 @@ NoseTouch nose_touch(const Surface& design, const RadialLine& line, double nose_
     t.centre_z = t.z + R / l;
     windows = ridge_windows(section, creases, R, rho_p);
   }
-  const NoseTouch placed =
-      offset_or_hold(design, section, creases, t, rho_p, R, nose_radius, tolerance);
+  const NoseTouch placed = own_placement(t, rho_p);
   NoseTouch rolled = placed;
   if (windows.inside && roll_over_ridges(design, section, creases, line, R, rho_p, windows, rolled))
     return rolled;
   return placed;
+}
+
+}  // namespace
+
+NoseTouch nose_touch(const Surface& design, const RadialLine& line, double nose_radius,
+                     double rho_p, double z_p, double slope_p, double stand_off, double tolerance) {
+  return place_nose(design, line, nose_radius, rho_p, z_p, slope_p, stand_off, tolerance, true);
+}
+
+NoseTouch nose_roll(const Surface& design, const RadialLine& line, double nose_radius, double rho_p,
+                    double z_p, double slope_p, double stand_off) {
+  return place_nose(design, line, nose_radius, rho_p, z_p, slope_p, stand_off, 0.0, false);
 }
 
 }  // namespace freeturn

@@ -55,6 +55,7 @@ class SpiralPath {
   // one the contact's own distance kinks either way at a crease.
   bool prune_samples() const { return nose_.nose_radius() > 0 && !o_.take_every_sample; }
   double stand_off() const { return nose_.stand_off(); }
+  double axis_offset() const { return nose_.axis_offset(); }
   double pitch() const { return o_.pitch; }
   std::string why_not_smooth(const detail::AxisState& s) const {
     return nose_.nose_larger_than_section(RadialLine(s.c), s.contact_r);

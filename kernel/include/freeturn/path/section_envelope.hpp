@@ -122,11 +122,18 @@ struct NoseTouch {
 //
 // Where the contact lies within a ridge's window (docs/tool.md, "Ridges"), the centre is
 // the placement above moved along the section so that it ramps across the ridge's roll
-// instead of jumping (w either side: the least of the roll, 0.45 R and 0.45 of the
-// distance to the next crease that is no ridge, or the axis; windows of ridges close
-// together add up), and dropped onto the design there: it touches the section's highest
+// instead of jumping (w either side: the lesser of 0.45 R and 0.45 of the distance to the
+// next crease that is no ridge, or the axis; the ramps of ridges close together add up),
+// and dropped onto the design there: it touches the section's highest
 // point under the nose's lower arc (nose_overlap), a flank or the ridge.
 NoseTouch nose_touch(const Surface& design, const RadialLine& line, double R, double rho_p, double z_p,
                      double slope_p, double stand_off = 0, double tolerance = 1e-10);
+
+// nose_touch for a nose whose B axis follows the normal: rolled over ridges the same way,
+// and held nowhere. Its edge point that touches is fixed on the tool (B turns with the
+// touch's normal), which a hold, touching two flanks away from it, is not; a rolling nose
+// touches the ridge, and B turns with the nose's tangent there.
+NoseTouch nose_roll(const Surface& design, const RadialLine& line, double R, double rho_p,
+                    double z_p, double slope_p, double stand_off = 0);
 
 }  // namespace freeturn
