@@ -17,6 +17,7 @@
 #include "freeturn/surface/lenslet_array.hpp"
 #include "freeturn/surface/nurbs_height_field.hpp"
 #include "freeturn/tool/compensation.hpp"
+#include "nose_brute_force.hpp"
 #include "nurbs/fixtures.hpp"
 
 namespace freeturn {
@@ -53,34 +54,8 @@ class Roof final : public Surface {
   double in_, out_;
 };
 
-// The largest height of the section at θ = 0 above the lower arc of the nose at (x, z),
-// by brute force: n values of ρ across the nose, then ternary search about the best.
-double brute_overlap(const Surface& s, double x, double z, double R, int n = 20000) {
-  const auto h = [&](double rho) {
-    const double d = rho - x;
-    return s.sag(rho, 0) - (z - std::sqrt(std::max(0.0, R * R - d * d)));
-  };
-  double best = -1e300, at = x;
-  for (int i = 0; i <= n; ++i) {
-    const double rho = x - 0.999 * R + 1.998 * R * i / n;
-    if (h(rho) > best) best = h(rho), at = rho;
-  }
-  double lo = at - 1.998 * R / n, hi = at + 1.998 * R / n;
-  for (int it = 0; it < 80; ++it) {
-    const double m1 = lo + (hi - lo) / 3, m2 = hi - (hi - lo) / 3;
-    if (h(m1) > h(m2))
-      hi = m2;
-    else
-      lo = m1;
-  }
-  return std::max(best, h(0.5 * (lo + hi)));
-}
-
-NoseTouch touch_at(const Surface& s, double rho, double R) {
-  double z, zx, zy;
-  s.sag_gradient(rho, 0, z, zx, zy);
-  return nose_touch(s, 0.0, R, rho, z, zx);
-}
+using test::brute_overlap;
+using test::touch_at;
 
 TEST_SUITE("path") {
   TEST_CASE("a ridge of two planes: the nose rolls over it as the closed form places it") {

@@ -20,10 +20,14 @@
 #include "freeturn/surface/sinusoidal.hpp"
 #include "freeturn/surface/zernike.hpp"
 #include "freeturn/tool/compensation.hpp"
+#include "nose_brute_force.hpp"
 #include "nurbs/fixtures.hpp"
 
 namespace freeturn {
 namespace {
+
+using test::brute_overlap;
+using test::touch_at;
 
 // Two convex spherical domes meeting at the crease line x = x_k: dome A (radius RA, its
 // centre e_A before the crease) for x < x_k, dome B (radius RB, e_B beyond it) for x ≥ x_k,
@@ -38,7 +42,8 @@ class TwoDomes final : public Surface {
   }
   const char* type() const override { return "two_domes"; }
   bool has_creases() const override { return true; }
-  int section_creases(const RadialLine& line, double lo, double hi, std::span<double> out) const override {
+  int section_creases(const RadialLine& line, double lo, double hi,
+                      std::span<double> out) const override {
     const double c = line.cos;
     if (std::abs(c) < 1e-12) return 0;
     const double rho = kCrease / c;
@@ -76,8 +81,6 @@ Eigen::Vector2d upper_intersection(Eigen::Vector2d a, double ra, Eigen::Vector2d
   return p.y() > q.y() ? p : q;
 }
 
-// The largest height of the section g(ρ) at θ above the lower arc of the nose at
-// (x, z), by brute force: n values of ρ across the nose, then ternary search.
 // A view of another surface: its shape and section creases, and the defaults for the
 // bounds (no max_bend, no creases_near) unless a view below gives them.
 struct SurfaceView : Surface {
@@ -97,29 +100,6 @@ struct SurfaceView : Surface {
     return s.section_creases(line, lo, hi, out);
   }
 };
-
-double brute_overlap(const Surface& s, double x, double z, double R, double theta = 0,
-                     int n = 20000) {
-  const double ct = std::cos(theta), st = std::sin(theta);
-  const auto h = [&](double rho) {
-    const double d = rho - x;
-    return s.sag(rho * ct, rho * st) - (z - std::sqrt(std::max(0.0, R * R - d * d)));
-  };
-  double best = -1e300, at = x;
-  for (int i = 0; i <= n; ++i) {
-    const double rho = x - 0.999 * R + 1.998 * R * i / n;
-    if (h(rho) > best) best = h(rho), at = rho;
-  }
-  double lo = at - 1.998 * R / n, hi = at + 1.998 * R / n;
-  for (int it = 0; it < 80; ++it) {
-    const double m1 = lo + (hi - lo) / 3, m2 = hi - (hi - lo) / 3;
-    if (h(m1) > h(m2))
-      hi = m2;
-    else
-      lo = m1;
-  }
-  return std::max(best, h(0.5 * (lo + hi)));
-}
 
 SpiralOptions spiral_options(double outer, double pitch, double tolerance, double nose_radius) {
   SpiralOptions o;
@@ -157,12 +137,6 @@ std::vector<CutterLocation> plan_compound_eye(const LensletArray& eye, double pi
   o.measure_every_crease = measure_every_crease;
   return plan_with_nose(eye, fit_base_least_squares(sample_aperture(eye, 0, 1.6)), o, contacts,
                         summary);
-}
-
-NoseTouch touch_at(const Surface& s, double rho, double R) {
-  double z, zx, zy;
-  s.sag_gradient(rho, 0, z, zx, zy);
-  return nose_touch(s, 0.0, R, rho, z, zx);
 }
 
 // What every spiral whose nose is held at creases must show: no jump, no point of the nose
@@ -709,7 +683,8 @@ TEST_SUITE("path") {
       PathSummary summary;
       const std::vector<CutterLocation> cls = plan_with_nose(eye, base, o, &plans[every], &summary);
       CHECK(summary.jumps == 0);
-      const test::DenseNoseFigures f = test::dense_nose_figures(eye, cls, R, 50, 240, nullptr, true);
+      const test::DenseNoseFigures f =
+          test::dense_nose_figures(eye, cls, R, 50, 240, nullptr, true);
       MESSAGE("points ", cls.size(), ", deepest ", f.gouge * 1e6, " nm, chord ", f.worst * 1e6,
               " nm");
       CHECK(f.gouge <= 10e-6);
@@ -735,7 +710,8 @@ TEST_SUITE("path") {
       double z, zx, zy;
       s.sag_gradient(rho * ct, rho * st, z, zx, zy);
       const double slope = zx * ct + zy * st, l = std::sqrt(1 + slope * slope);
-      return brute_overlap(s, rho - lifted * slope / l, z + lifted / l, lifted, theta, 1000) > 1e-10;
+      return brute_overlap(s, rho - lifted * slope / l, z + lifted / l, lifted, theta, 1000) >
+             1e-10;
     };
     int changes = 0, on_block = 0;
     for (std::size_t k = 1; k < contacts.size(); ++k) {
