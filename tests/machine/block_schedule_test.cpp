@@ -89,6 +89,21 @@ TEST_SUITE("machine") {
     CHECK(report.cycle_time == doctest::Approx(40.0).epsilon(1e-12));
   }
 
+  TEST_CASE("schedule: a nominal time between whole µs is written rounded up and not slowed") {
+    // 3.6° in 1/30 s (18 rpm): each block is written as 0.033334 s, the nominal time rounded
+    // up to the µs, and the machine's limits (C at 108°/s) slow none of them.
+    std::vector<AxisRecord> in;
+    for (int k = 0; k <= 2000; ++k)
+      in.push_back({4 - 1e-3 * k, 1.0, std::fmod(3.6 * k, 360.0), 0, k ? 1.0 / 30 : 0.0});
+    ScheduleReport report;
+    const auto out = schedule(machine(), in, 4096, {}, &report);
+    REQUIRE(out.size() == in.size());
+    for (std::size_t k = 1; k < out.size(); ++k)
+      CHECK(out[k].time == doctest::Approx(0.033334).epsilon(1e-12));
+    CHECK(report.slowed_blocks == 0);
+    CHECK(report.cycle_time == doctest::Approx(2000 * 0.033334).epsilon(1e-12));
+  }
+
   TEST_CASE("schedule: a burst of fast X motion is slowed there only, within every limit") {
     // 2000 blocks at 0.01 s; blocks 900-1100 move X by ±0.4 mm (a 40 mm/s request,
     // alternating: the hardest case for acceleration).
