@@ -120,4 +120,39 @@ TEST_SUITE("plugins") {
     CHECK(refused("G01 F.0\n").find("F.0 is 0") != std::string::npos);
     CHECK(refused("G1 X1 F0.000001\nG93 F100.000\n").empty());
   }
+
+  TEST_CASE("the NC guard refuses words after the program's end: the controller never runs them") {
+    const MachineDescription m = lathe();
+    const auto refused = [&](const std::string& text) {
+      NcGuard guard(m);
+      return refusal_of(guard, text);
+    };
+    // A header that carries M30 ends the program before the cut the report describes.
+    CHECK(refused("%\nG71\nM30\nM03 S20\nG1 X1 Z1\n") ==
+          "p.nc:4: words after the program's end (M30 on line 3), which the controller never "
+          "runs: M03 S20");
+    CHECK(refused("G1 X1\nM02\nG1 X2\n").find("(M02 on line 2)") != std::string::npos);
+    CHECK(refused("G1 X1\nm2 (end)\nG1 X2\n").find("(M2 on line 2)") != std::string::npos);
+    CHECK(refused("G1 X1\nM099\nG1 X2\n").find("(M099 on line 2)") != std::string::npos);
+    // What may follow an end: nothing a controller runs (a tape mark, comments, blank lines).
+    CHECK(refused("G1 X1\nM30\n%\n(done)\n\n; X5\n").empty());
+    CHECK(refused("G1 X1 M30\n").empty());  // its own line's words run
+    // Codes that only look like ends: M3, M300, M29, M2.5 (no integer), M98 (a call).
+    CHECK(refused("M3\nM300\nM29\nM2.5\nM98(child.nc)\nG1 X1\n").empty());
+    // Each file ends on its own: a child's M99 does not end the main program.
+    NcGuard guard(m);
+    guard.select_file(0, "main.nc");
+    guard.feed("G1 X1\nM98(child.nc)\n");
+    guard.select_file(1, "child.nc");
+    guard.feed("G1 X1\nM99\n");
+    guard.select_file(0, "");
+    guard.feed("G1 X2\nM30\n");
+    guard.end_files();
+    CHECK(guard.ok());
+    guard.select_file(1, "");
+    guard.feed("G1 X3\n");
+    CHECK(guard.reason() ==
+          "child.nc:3: words after the program's end (M99 on line 2), which the controller never "
+          "runs: G1 X3");
+  }
 }

@@ -2,6 +2,7 @@
 
 #include <cmath>
 #include <cstdlib>
+#include <filesystem>
 #include <numbers>
 
 #include "freeturn/core/error.hpp"
@@ -266,6 +267,12 @@ TEST_SUITE("plugins") {
           std::string::npos);
     CHECK(refusal("precitech-nanoform-250", "precitech", "; end of data", "; fin\xC3\xA9")
               .find("dialect setting 'footer' holds the byte 0xC3") != std::string::npos);
+    // A header that ends the program: the controller would stop before the cut. Refused as
+    // the header is written (line 8 of the main program: the title, then seven lines).
+    const std::string ended =
+        refusal("moore-nanotech-250upl", "moore", "G92 C0.0", "G92 C0.0\\nM30");
+    CHECK(ended.find("p.nc:9: words after the program's end (M30 on line 8)") != std::string::npos);
+    CHECK(std::filesystem::is_empty(dir.path()));
   }
 
   TEST_CASE("iso X-Z profile with feed per minute: G94 and the path feed, no G93") {

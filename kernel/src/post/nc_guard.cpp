@@ -18,6 +18,12 @@ constexpr bool ascii_letter(char c) { return (c >= 'a' && c <= 'z') || (c >= 'A'
 constexpr char ascii_lower(char c) { return c >= 'A' && c <= 'Z' ? static_cast<char>(c + 32) : c; }
 constexpr char ascii_upper(char c) { return c >= 'a' && c <= 'z' ? static_cast<char>(c - 32) : c; }
 
+std::string ascii_upper_text(std::string_view word) {
+  std::string out(word);
+  for (char& ch : out) ch = ascii_upper(ch);
+  return out;
+}
+
 }  // namespace
 
 NcGuard::NcGuard(const MachineDescription& machine) {
@@ -161,7 +167,8 @@ void NcGuard::check_line(std::string_view line) {
   // (G92) are not in the work frame the travel is given in: their numbers need only be
   // finite. Such a word may follow the axis words, so a word outside the travel is
   // refused only once the whole line is read.
-  bool work_frame = true;
+  bool work_frame = true, words = false;
+  std::string_view end_word;
   char outside_letter = 0;
   std::string_view outside_number;
   double outside_value = 0;
@@ -204,6 +211,7 @@ void NcGuard::check_line(std::string_view line) {
                       " without a number after it: " + std::string(line));
       continue;
     }
+    words = true;
     const char letter = ascii_upper(lower);
     std::string_view number(c + i + 1, j - i - 1);
     if (lower == 'g' && number.size() >= 2 && (number.size() == 2 || !ascii_digit(number[2]))) {
@@ -213,6 +221,11 @@ void NcGuard::check_line(std::string_view line) {
     if (!number.empty() && number.front() == '+') number.remove_prefix(1);
     if (points > 1 || digit_count == 0)
       return refuse(std::string(1, letter) + std::string(number) + " is not a number");
+    if (lower == 'm' && points == 0) {
+      std::string_view code = number;
+      while (code.size() > 1 && code.front() == '0') code.remove_prefix(1);
+      if (code == "2" || code == "30" || code == "99") end_word = std::string_view(c + i, j - i);
+    }
     // F is a feed, or a block's time or its inverse: none of them can be 0 in any mode (a
     // feed of 0 stalls or alarms the machine, an inverse time of 0 has no block time). A
     // job's tiny feed, or a long block, can round to it at the word's decimals.
@@ -238,6 +251,15 @@ void NcGuard::check_line(std::string_view line) {
       outside_value = v;
     }
     i = j - 1;
+  }
+  File& file = files_[current_];
+  if (words && file.ended_at > 0)
+    return refuse("words after the program's end (" + file.end_word + " on line " +
+                  std::to_string(file.ended_at) +
+                  "), which the controller never runs: " + std::string(line));
+  if (!end_word.empty()) {
+    file.ended_at = file.lines;
+    file.end_word = ascii_upper_text(end_word);
   }
   if (outside_letter != 0 && work_frame) {
     const Range& r = ranges_[outside_letter - 'A'];

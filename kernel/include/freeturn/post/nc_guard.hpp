@@ -7,8 +7,9 @@
 // read back outside its comments: each number must be finite and parse whole, the text
 // must hold no "nan" or "inf", no F word may read 0 (a feed or a block time), and each
 // axis word of the machine's layout must lie inside the travel within half a unit of its
-// declared decimals (except on lines that leave the work frame: G53, G28, G30, G92). The
-// first violation is kept
+// declared decimals (except on lines that leave the work frame: G53, G28, G30, G92), and
+// no line with a word may follow the file's end (M02, M30, M99: a controller never runs
+// it, so the cut the report describes would not be made). The first violation is kept
 // with its file and line; PostProgram turns it into an error naming the plugin, and no NC
 // file is committed.
 
@@ -59,6 +60,8 @@ class NcGuard {
   struct File {
     std::string name, line;  // the line being written
     long long lines = 0, bytes = 0;
+    long long ended_at = 0;  // the line with the file's end word (M02, M30, M99), 0: none yet
+    std::string end_word;
   };
   Range ranges_[26];  // per letter A…Z
   std::vector<File> files_;
