@@ -16,6 +16,7 @@
 #include "freeturn/path/spiral.hpp"
 #include "freeturn/surface/lenslet_array.hpp"
 #include "freeturn/surface/nurbs_height_field.hpp"
+#include "freeturn/surface/odd_asphere.hpp"
 #include "freeturn/tool/compensation.hpp"
 #include "nose_brute_force.hpp"
 #include "nurbs/fixtures.hpp"
@@ -117,6 +118,60 @@ TEST_SUITE("path") {
     // The arc takes (x_out − x_in)/(x_end − x_start) = 35 % of the window's 2000 samples.
     CHECK(on_arc == doctest::Approx(2000 * (x_out - x_in) / (x_end - x_start)).epsilon(0.01));
     CHECK(on_flanks > 1200);
+  }
+
+  TEST_CASE("a cone's apex pointing at the tool: the nose rolls over it and ends over the apex") {
+    // z = −β r (an axicon). The axis is the section's ridge: its flanks' offsets end at
+    // ±R sin ψ (tan ψ = β), a roll of J = 2R sin ψ across a window of ±0.45 R. The contacts
+    // come from ρ > 0 alone, so the centre's abscissa ramps from the offset's ρ + R sin ψ at
+    // ρ = w to 0 at the axis: x = ρ (1 + R sin ψ / w). Where x < R sin ψ the dropped nose
+    // touches the apex, z = √(R² − x²); beyond, the flank, z = −β (x − R sin ψ) + R cos ψ.
+    const double beta = 0.3, R = 0.2, w = 0.45 * R;
+    const OddAsphere cone(0, 0, {-beta});
+    const double sin_psi = beta / std::sqrt(1 + beta * beta),
+                 cos_psi = 1 / std::sqrt(1 + beta * beta);
+    const double rate = 1 + R * sin_psi / w;
+    double on_apex = 0, last_x = 0, last_z = 0, largest_move = 0;
+    const int n = 3000;
+    for (int i = 0; i <= n; ++i) {
+      const double rho = 1.5 * w * i / n;
+      const NoseTouch t = touch_at(cone, rho, R);
+      double x, z;
+      if (rho >= w) {
+        x = rho + R * sin_psi;  // the contact's own offset
+        z = -beta * rho + R * cos_psi;
+        CHECK(!t.rolling);
+      } else {
+        // A contact on the apex itself is placed as the one 2e-10 mm past it (on the far
+        // flank, whose offset the ramp moves the same way).
+        x = (rho == 0 ? -2e-10 : rho) * rate;
+        if (x >= R * sin_psi) {
+          z = -beta * (x - R * sin_psi) + R * cos_psi;
+        } else {
+          z = std::sqrt(R * R - x * x);
+          on_apex += 1;
+          CHECK(std::abs(t.rho) <= 1e-12);  // touching the apex
+        }
+        CHECK(t.rolling);
+        CHECK(!t.held);
+      }
+      CHECK(t.centre_x == doctest::Approx(x).epsilon(1e-12));
+      CHECK(t.centre_z == doctest::Approx(z).epsilon(1e-12));
+      CHECK(std::abs(brute_overlap(cone, t.centre_x, t.centre_z, R)) <= 1e-12);
+      if (i > 0)
+        largest_move = std::max(largest_move, std::hypot(t.centre_x - last_x, t.centre_z - last_z));
+      last_x = t.centre_x;
+      last_z = t.centre_z;
+    }
+    // At the axis the centre stands over the apex, R above it.
+    const NoseTouch end = touch_at(cone, 0.0, R);
+    CHECK(std::abs(end.centre_x) <= 1e-9);
+    CHECK(end.centre_z == doctest::Approx(R).epsilon(1e-12));
+    // No jump: a step of the contact moves the centre at most rate·√(1 + β²) times as far
+    // (it had jumped R sin ψ = 57.5 µm onto the axis at the spiral's last block).
+    CHECK(largest_move <= 1.5 * w / n * rate * std::sqrt(1 + beta * beta) * 1.001);
+    // The apex holds the touch for x < R sin ψ: ρ < R sin ψ / rate, of the n / 1.5 samples.
+    CHECK(on_apex == doctest::Approx(n / 1.5 * R * sin_psi / rate / w).epsilon(0.01));
   }
 
   TEST_CASE("a valley of the same planes is held, not rolled") {
@@ -251,6 +306,14 @@ TEST_SUITE("path") {
     // B turns through the whole roll: from the inner plane's normal to the outer one's.
     CHECK(b_lo <= -std::atan(0.3) + 1e-9);
     CHECK(b_hi >= std::atan(0.2) - 1e-9);
+  }
+
+  TEST_CASE("a spiral to an axicon's apex: the nose rolls over it, no jump, no gouge") {
+    // The cone z = −0.3 r under a 0.2 mm nose. Before the axis's ridge was rolled (the
+    // library before, run with this test): the last block jumped the centre 57.5 µm onto
+    // the axis, and its chord cut 1.96 µm into the apex.
+    const OddAsphere cone(0, 0, {-0.3});
+    check_rolling_spiral(cone, ridge_spiral(1.0, 0.01, 2e-4, 0.2), 100);
   }
 
   TEST_CASE("a NURBS ridge, found from its knots: no jump, no gouge") {

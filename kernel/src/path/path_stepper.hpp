@@ -739,6 +739,10 @@ double segment_error(const Path& path, const Segment& segment, Interpolation mod
         return std::max(above_path, 0.0);  // a nose below rises nowhere
       },
       true, target, false, prune ? &pruning : nullptr);
+  // A gap below the design is a gouge whatever the slide: its sign is what the verdict
+  // reads (chord_below). Only an unbounded measure (a step taken over the target) gets here
+  // with one; the slide had hidden an axicon's apex cut 0.98 µm deep as a chord above it.
+  if (gap < -path.stand_off()) return gap;
   return slide > std::abs(gap) ? slide : gap;
 }
 
@@ -1296,7 +1300,10 @@ void distribute(Path& path, const CutterPointOptions& o, Emit&& emit, double beg
     const double sliver = o.rule == CutterPointRule::kEqualArcLength ? 1e-2 : 1e-6;
     if (end - trial.tau < sliver * step && trial.tau < end) {
       path.at(end, trial);
-      measure(trial, kFull);
+      // A sliver is short along τ, not always along the axes: where the centre jumps in
+      // it (nothing rolled it over a ridge), the joined segment misses the tolerance, and
+      // is counted as the jump it is.
+      if (measure(trial, kFull) > target) jump = true;
     }
     path.commit(trial);
     // A nose held still at a crease over the whole step (a profile's trough narrower than

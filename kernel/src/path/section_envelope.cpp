@@ -714,8 +714,13 @@ RidgeWindows ridge_windows(const Section& section, const SectionCreases& creases
   const auto ridge = [&](int i) { return near[static_cast<std::size_t>(i)].roll > kLeastRoll; };
   for (int i = 0; i < count; ++i) {
     const Crease& c = near[static_cast<std::size_t>(i)];
-    if (!ridge(i) || !(c.rho > 0) || !(std::abs(c.rho - rho_p) < kWindow * R)) continue;
-    double below = c.rho, above = std::numeric_limits<double>::infinity();  // the axis
+    if (!ridge(i) || !(c.rho >= 0) || !(std::abs(c.rho - rho_p) < kWindow * R)) continue;
+    // A ridge off the axis keeps its window on its own side of it. The axis's own ridge
+    // (a cone's apex pointing at the tool) is the section's fold: the path's contacts
+    // reach it from ρ > 0 alone, and halfway through its roll, at the axis itself, the
+    // centre stands over the apex (on the axis where the apex is symmetric).
+    double below = c.rho > 0 ? c.rho : std::numeric_limits<double>::infinity(),
+           above = std::numeric_limits<double>::infinity();
     for (int j = i - 1; j >= 0; --j)
       if (!ridge(j)) {
         below = std::min(below, c.rho - near[static_cast<std::size_t>(j)].rho);
