@@ -99,6 +99,61 @@ TEST_SUITE("machine") {
                          InputError);
   }
 
+  TEST_CASE("PVT dynamics are the controller's cubics: twice the acceleration at a kink") {
+    // X steps s1 per block, then s2 from block 100 on; C 3.6° a block at 20 rpm (h = 0.03 s).
+    // The controller's velocities are central differences, so at the kink's block the
+    // velocity is (s1 + s2)/2h, and the cubics either side accelerate by 2(s2 − s1)/h²
+    // at the kink (pvt_rule.hpp: a(0) = (6Δ − 4va − 2vb)/h), twice what linear motion
+    // reads back, (s2 − s1)/h². The block after the kink overshoots: its velocity
+    // a u² + b u + va peaks at u = 2/3 at s2 + (s2 − s1)/6, per h.
+    const double s1 = 1e-3, s2 = 3e-3, h = 0.03;
+    std::vector<CutterLocation> cls(301);
+    double x = 4;
+    for (int k = 0; k <= 300; ++k) {
+      CutterLocation& cl = cls[static_cast<std::size_t>(k)];
+      cl.contact.theta = cl.c = k * 3.6 * std::numbers::pi / 180;
+      cl.contact.r = cl.x = x;
+      x -= k < 100 ? s1 : s2;
+    }
+    MotionOptions motion;
+    motion.spindle_rpm = 20;
+    motion.enforce_dynamics = false;
+    const auto peaks = [&](Interpolation interpolation) {
+      MachineDescription m = xzc();
+      m.interpolation = interpolation;
+      m.axes[0].max_acceleration = 4;  // mm/s²: X sets the highest rpm
+      AxisCollector axes;
+      AxisMapper mapper(m, motion, axes);
+      for (std::size_t k = 0; k < cls.size(); k += 64)
+        mapper.write(std::span<const CutterLocation>(cls.data() + k,
+                                                     std::min<std::size_t>(64, cls.size() - k)));
+      mapper.finish();
+      REQUIRE(axes.records.size() == cls.size());
+      CHECK(axes.records.back().time == doctest::Approx(h).epsilon(1e-12));
+      return mapper.report();
+    };
+    const DynamicsReport linear = peaks(Interpolation::kLinear);
+    const DynamicsReport cubic = peaks(Interpolation::kCubic);
+    // The kink, not the start from rest (s1/h² = 1.1 mm/s²), sets X's figure.
+    CHECK(linear.peak_acceleration[0] == doctest::Approx((s2 - s1) / (h * h)).epsilon(1e-9));
+    CHECK(cubic.peak_acceleration[0] == doctest::Approx(2 * (s2 - s1) / (h * h)).epsilon(1e-9));
+    CHECK(linear.peak_velocity[0] == doctest::Approx(s2 / h).epsilon(1e-9));
+    CHECK(cubic.peak_velocity[0] == doctest::Approx((s2 + (s2 - s1) / 6) / h).epsilon(1e-9));
+    // Acceleration ∝ rpm²: the highest rpm is 20·√(m·4 / a).
+    CHECK(cubic.max_rpm ==
+          doctest::Approx(20 * std::sqrt(motion.margin * 4 / (2 * (s2 - s1) / (h * h))))
+              .epsilon(1e-9));
+    CHECK(cubic.limiting.find("X acceleration at θ = 6.2831") == 0);  // at the kink's block
+    CHECK(cubic.max_rpm == doctest::Approx(linear.max_rpm / std::sqrt(2.0)).epsilon(1e-9));
+    // Enforced at 20 rpm (a 4.44 mm/s² kink against 0.98 × 4), the cubic's kink is
+    // refused where linear motion's (2.22 mm/s²) passes.
+    motion.enforce_dynamics = true;
+    CHECK_NOTHROW(peaks(Interpolation::kLinear));
+    CHECK_THROWS_WITH_AS(peaks(Interpolation::kCubic),
+                         doctest::Contains("X acceleration exceeds the machine's limit at 20 rpm"),
+                         InputError);
+  }
+
   TEST_CASE("travel limits and a B the machine does not have are errors with their place") {
     MachineDescription m = xzc();
     m.axes[1].max = 0.2;  // Z travel

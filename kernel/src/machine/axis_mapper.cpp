@@ -7,16 +7,20 @@
 
 #include "freeturn/core/error.hpp"
 #include "freeturn/core/number_text.hpp"
+#include "freeturn/path/pvt_rule.hpp"
 
 namespace freeturn {
 namespace {
 
 constexpr double kDegrees = 180 / std::numbers::pi;
 
+std::string where(double theta, double r) {
+  return "θ = " + fixed_text(theta, 6) + " rad (" + fixed_text(theta * kDegrees, 4) +
+         "°), r = " + fixed_text(r, 6) + " mm";
+}
+
 std::string where(const CutterLocation& cl) {
-  return "θ = " + fixed_text(cl.contact.theta, 6) + " rad (" +
-         fixed_text(cl.contact.theta * kDegrees, 4) + "°), r = " + fixed_text(cl.contact.r, 6) +
-         " mm";
+  return where(cl.contact.theta, cl.contact.r);
 }
 
 // A limit crossed is reported where the machine file states it, then the bound and the
@@ -84,6 +88,66 @@ void AxisMapper::check_block(const AxisRecord& r, const CutterLocation& cl) {
   }
 }
 
+void AxisMapper::judge_block(const double speed[4], const double acceleration[4], double theta,
+                             double r) {
+  const bool spiral = motion_.spindle_rpm > 0;
+  const double m = motion_.margin;
+  double rpm_limit = std::numeric_limits<double>::infinity();
+  const AxisSpec* limiting = nullptr;
+  bool by_acceleration = false;
+  for (const AxisSpec& s : machine_.axes) {
+    const int i = static_cast<int>(s.axis);
+    report_.peak_velocity[i] = std::max(report_.peak_velocity[i], speed[i]);
+    report_.peak_acceleration[i] = std::max(report_.peak_acceleration[i], acceleration[i]);
+    if (speed[i] > 0 && std::isfinite(s.max_velocity)) {
+      const double candidate = motion_.spindle_rpm * m * s.max_velocity / speed[i];
+      if (candidate < rpm_limit) rpm_limit = candidate, limiting = &s, by_acceleration = false;
+    }
+    if (acceleration[i] > 0 && std::isfinite(s.max_acceleration)) {
+      const double candidate =
+          motion_.spindle_rpm * std::sqrt(m * s.max_acceleration / acceleration[i]);
+      if (candidate < rpm_limit) rpm_limit = candidate, limiting = &s, by_acceleration = true;
+    }
+  }
+  if (!limiting || !spiral) return;
+  const bool lowest = rpm_limit < report_.max_rpm;
+  const bool refused = motion_.enforce_dynamics && rpm_limit < motion_.spindle_rpm;
+  if (!lowest && !refused) return;
+  const std::string what =
+      std::string(axis_letter(limiting->axis)) + (by_acceleration ? " acceleration" : " velocity");
+  if (lowest) {
+    report_.max_rpm = rpm_limit;
+    report_.limiting = what + " at " + where(theta, r);
+  }
+  if (refused)
+    throw CheckFailure(where(theta, r),
+                       what + " exceeds the machine's limit at " + number(motion_.spindle_rpm) +
+                           " rpm; this block allows at most " + number(rpm_limit) + " rpm");
+}
+
+void AxisMapper::judge_cubic(const Placed& a, const double va[4], const Placed& b,
+                             const double vb[4], bool from_rest) {
+  double speed[4], acceleration[4];
+  for (int i = 0; i < 4; ++i) {
+    speed[i] = pvt::peak_speed(a.q[i], va[i], b.q[i], vb[i], b.time);
+    double at_start, at_end;
+    pvt::end_accelerations(a.q[i], va[i], b.q[i], vb[i], b.time, at_start, at_end);
+    acceleration[i] = std::max(std::abs(at_start), std::abs(at_end));
+    // The program starts at rest: the first block's velocity is reached over its time.
+    if (from_rest) acceleration[i] = std::max(acceleration[i], std::abs(va[i]) / b.time);
+  }
+  judge_block(speed, acceleration, b.theta, b.r);
+}
+
+void AxisMapper::finish() {
+  if (machine_.interpolation != Interpolation::kCubic || cubic_blocks_ < 2) return;
+  // The program's last block: its velocity one-sided, from the block before it.
+  double velocity[4];
+  for (int i = 0; i < 4; ++i)
+    velocity[i] = pvt::velocity(cubic_before_.q[i], cubic_last_.q[i], cubic_last_.time);
+  judge_cubic(cubic_before_, cubic_velocity_before_, cubic_last_, velocity, cubic_blocks_ == 2);
+}
+
 void AxisMapper::write(std::span<const CutterLocation> chunk) {
   buffer_.clear();
   const bool spiral = motion_.spindle_rpm > 0;
@@ -114,52 +178,59 @@ void AxisMapper::write(std::span<const CutterLocation> chunk) {
         throw InputError(where(cl), "two consecutive blocks at the same place (zero block time)");
     }
     check_block(r, cl);
+    const Placed placed{
+        {r.x, r.z, c, r.b}, has_previous_ ? r.time : 0.0, cl.contact.theta, cl.contact.r};
     if (has_previous_) {
-      // Dynamics per axis from the unwrapped values.
-      const double now[4] = {r.x, r.z, c, r.b};
-      const double before[4] = {previous_.x, previous_.z, previous_.c, previous_.b};
       const double rate = 1 / r.time;
       report_.peak_block_rate = std::max(report_.peak_block_rate, rate);
-      double rpm_limit = std::numeric_limits<double>::infinity();
-      std::string limiting;
-      const auto limit_by = [&](double candidate, const std::string& what) {
-        if (candidate < rpm_limit) {
-          rpm_limit = candidate;
-          limiting = what;
+      if (std::isfinite(machine_.max_block_rate)) {
+        const double rpm_limit =
+            motion_.spindle_rpm * motion_.margin * machine_.max_block_rate / rate;
+        if (spiral && rpm_limit < report_.max_rpm) {
+          report_.max_rpm = rpm_limit;
+          report_.limiting = "block rate at " + where(cl);
         }
-      };
-      if (std::isfinite(machine_.max_block_rate))
-        limit_by(motion_.spindle_rpm * motion_.margin * machine_.max_block_rate / rate, "block rate");
-      // Acceleration as a program is read back: the change of velocity over the shorter of
-      // the two blocks' times (from rest before the first block).
-      const double faster = std::max(rate, previous_rate_);
-      for (const AxisSpec& s : machine_.axes) {
-        const int i = static_cast<int>(s.axis);
-        const double velocity = (now[i] - before[i]) * rate;
-        const double acceleration = (velocity - previous_velocity_[i]) * faster;
-        previous_velocity_[i] = velocity;
-        report_.peak_velocity[i] = std::max(report_.peak_velocity[i], std::abs(velocity));
-        report_.peak_acceleration[i] = std::max(report_.peak_acceleration[i], std::abs(acceleration));
-        const double m = motion_.margin;
-        if (std::abs(velocity) > 0 && std::isfinite(s.max_velocity))
-          limit_by(motion_.spindle_rpm * m * s.max_velocity / std::abs(velocity),
-                   std::string(axis_letter(s.axis)) + " velocity");
-        if (std::abs(acceleration) > 0 && std::isfinite(s.max_acceleration))
-          limit_by(motion_.spindle_rpm * std::sqrt(m * s.max_acceleration / std::abs(acceleration)),
-                   std::string(axis_letter(s.axis)) + " acceleration");
+        if (motion_.enforce_dynamics && spiral && rpm_limit < motion_.spindle_rpm)
+          throw CheckFailure(where(cl), "block rate exceeds the machine's limit at " +
+                                            number(motion_.spindle_rpm) +
+                                            " rpm; this block allows at most " + number(rpm_limit) +
+                                            " rpm");
+      }
+      if (machine_.interpolation == Interpolation::kCubic) {
+        // The velocity the controller gives the block before this one: the central
+        // difference over its neighbours (one-sided at the program's start). Its cubic, from
+        // the block before it, is judged now that both its ends' velocities are known.
+        double velocity[4];
+        const Placed& before = cubic_blocks_ >= 2 ? cubic_before_ : cubic_last_;
+        for (int i = 0; i < 4; ++i)
+          velocity[i] = pvt::velocity(before.q[i], placed.q[i],
+                                      (cubic_blocks_ >= 2 ? cubic_last_.time : 0.0) + placed.time);
+        if (cubic_blocks_ >= 2)
+          judge_cubic(cubic_before_, cubic_velocity_before_, cubic_last_, velocity,
+                      cubic_blocks_ == 2);
+        std::copy(velocity, velocity + 4, cubic_velocity_before_);
+      } else {
+        // Dynamics per axis from the unwrapped values, as a program is read back: the change
+        // of velocity over the shorter of the two blocks' times (from rest before the first).
+        const double now[4] = {r.x, r.z, c, r.b};
+        const double before[4] = {previous_.x, previous_.z, previous_.c, previous_.b};
+        const double faster = std::max(rate, previous_rate_);
+        double speed[4], acceleration[4];
+        for (int i = 0; i < 4; ++i) {
+          const double velocity = (now[i] - before[i]) * rate;
+          speed[i] = std::abs(velocity);
+          acceleration[i] = std::abs(velocity - previous_velocity_[i]) * faster;
+          previous_velocity_[i] = velocity;
+        }
+        judge_block(speed, acceleration, cl.contact.theta, cl.contact.r);
       }
       previous_rate_ = rate;
-      if (spiral && rpm_limit < report_.max_rpm) {
-        report_.max_rpm = rpm_limit;
-        report_.limiting = limiting + " at " + where(cl);
-      }
-      if (motion_.enforce_dynamics && spiral && rpm_limit < motion_.spindle_rpm)
-        throw CheckFailure(where(cl), limiting + " exceeds the machine's limit at " +
-                                        number(motion_.spindle_rpm) + " rpm; this block allows at most " +
-                                        number(rpm_limit) + " rpm");
       report_.cycle_time += r.time;
       report_.turns += (cl.contact.theta - previous_theta_) / (2 * std::numbers::pi);
     }
+    cubic_before_ = cubic_last_;
+    cubic_last_ = placed;
+    ++cubic_blocks_;
     report_.blocks++;
     previous_ = r;
     previous_.c = c;  // unwrapped, for the next velocity

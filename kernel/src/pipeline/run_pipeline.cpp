@@ -566,6 +566,7 @@ RunResult execute_job(const Job& job, const PreparedJob& prepared, const std::st
       o.points.interpolation = machine.interpolation;
       summary = plan_profile(surface, o, compensator);
     }
+    mapper.finish();
     if (scheduler) scheduler->finish();
     if (observer) observer->pass_done(figures.name);
     figures.finish(summary, mapper.report(), compensator.report());

@@ -7,6 +7,15 @@
 // them. Dynamics (velocity, acceleration, block rate) scale with the spindle speed, so
 // the mapper also finds the highest rpm at which every block stays within the limits:
 // velocity and block rate ∝ rpm, acceleration ∝ rpm².
+//
+// The dynamics are those of the motion the controller makes of the blocks. Linear
+// interpolation: each block's velocity Δq/t, and the change between blocks over the
+// shorter one's time (from rest before the first). PVT (`interpolation: pvt`): the cubic
+// Hermite of path/pvt_rule.hpp, whose velocities at the blocks are central differences:
+// its largest speed and its accelerations at both ends of every block (from rest before
+// the first too). Where the axes turn sharply (a nose held at a lenslet's rim) the
+// cubic's acceleration is up to twice the linear figure, and three times where they
+// reverse.
 
 #include <string>
 #include <vector>
@@ -48,6 +57,10 @@ class AxisMapper final : public CutterSink {
   // enforce_dynamics, the first beyond a dynamic limit), naming the axis, the value, the
   // limit and where.
   void write(std::span<const CutterLocation> chunk) override;
+  // The path is done: under PVT its last block's cubic (which waits for the block after it,
+  // whose place sets the velocity it ends with) is judged now, with the one-sided velocity
+  // of the program's end. Nothing to do for linear interpolation.
+  void finish();
 
   const DynamicsReport& report() const { return report_; }
 
@@ -56,6 +69,17 @@ class AxisMapper final : public CutterSink {
 
  private:
   void check_block(const AxisRecord& r, const CutterLocation& cl);
+  // The peaks of one block's motion (per Axis: its largest speed and acceleration), into
+  // the report and the highest rpm; with enforce_dynamics, an error where the requested
+  // speed asks more of an axis than it allows. θ and r: the block's place on the path.
+  void judge_block(const double speed[4], const double acceleration[4], double theta, double r);
+  // PVT: the cubic from block `a` to block `b`, ending velocities va and vb, time h.
+  struct Placed {
+    double q[4] = {0, 0, 0, 0};  // the axes, C unwrapped
+    double time = 0, theta = 0, r = 0;
+  };
+  void judge_cubic(const Placed& a, const double va[4], const Placed& b, const double vb[4],
+                   bool from_rest);
 
   const MachineDescription& machine_;
   MotionOptions motion_;
@@ -67,6 +91,11 @@ class AxisMapper final : public CutterSink {
   double previous_theta_ = 0, previous_velocity_[4] = {0, 0, 0, 0};
   double previous_rate_ = 0;  // 1/s of the block before (0: the program starts at rest)
   double previous_c_unwrapped_ = 0;
+  // PVT: the last two blocks placed, the velocity at the one before the last, and how many
+  // blocks there have been (its cubic is judged once the block after it is known).
+  Placed cubic_before_, cubic_last_;
+  double cubic_velocity_before_[4] = {0, 0, 0, 0};
+  long cubic_blocks_ = 0;
   Eigen::Vector3d previous_point_ = Eigen::Vector3d::Zero();
 };
 
