@@ -312,9 +312,16 @@ void judge(RunReport& r) {
       w.kind = "chord_below";
       w.severity = ReportWarning::Severity::kUnsafe;
       w.pass = f.name;
+      // Under the chord rule the blocks stand off the design and no measured chord dips
+      // below it: what does is a jump the chord rule could not hold (reported beside this).
       w.message = "the motion between blocks cuts up to " + fixed_text(f.chord_below_max * 1e6, 1) +
-                  " nm into the design (equal-angle or equal-arc points sit on the design and "
-                  "their chords dip below it; use points: chord)";
+                  " nm into the design" +
+                  (r.parameters.chord_tolerance > 0
+                       ? std::string(" where the nose centre jumps across a crease the planner "
+                                     "does not roll over or hold at (a creased surface decentred "
+                                     "or tilted is not searched for its creases)")
+                       : std::string(" (equal-angle or equal-arc points sit on the design and "
+                                     "their chords dip below it; use points: chord)"));
       w.value = f.chord_below_max * 1e6;
       w.limit = kChordDipAllowed * 1e6;
       w.unit = "nm";
