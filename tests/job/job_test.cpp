@@ -235,6 +235,13 @@ TEST_SUITE("job") {
         // z = ((x + 30)² + y² − 900) / (2R).
         {"{type: conic, radius: 200, conic: -1, decenter: {x: 30}}", 2, 3,
          (32.0 * 32 + 9 - 900) / 400},
+        // A segment of a bowl array: the parent point (0.5, 0), a bowl's centre, on the axis.
+        // (4.55, 0) is (5.05, 0) in the parent, 0.05 mm from the bowl at (5, 0), past the
+        // aperture's 5 mm about the parent's axis: the array fills the moved aperture, and
+        // z = (the bowl's depth there) − (its depth at its centre).
+        {"{type: microlens_array, lens_radius: 0.6, lens_diameter: 0.2, pitch: 0.25, "
+         "lattice: square, decenter: {x: 0.5}}",
+         4.55, 0, 0.6 - std::sqrt(0.36 - 0.0025)},
     };
     for (const Case& c : cases) {
       TempDir dir;

@@ -101,7 +101,8 @@ LensletArrayOptions::Pattern read_pattern(MapReader& map, const std::string& key
                     "'");
 }
 
-std::unique_ptr<Surface> read_lenslets(MapReader& map, bool compound_eye, double outer_radius) {
+// reach: the radius about the array's own axis its lenslets fill (placed_reach).
+std::unique_ptr<Surface> read_lenslets(MapReader& map, bool compound_eye, double reach) {
   LensletArrayOptions o;
   if (compound_eye) {
     const double rb = map.number("base_radius");
@@ -114,7 +115,7 @@ std::unique_ptr<Surface> read_lenslets(MapReader& map, bool compound_eye, double
   o.lens_diameter = map.positive("lens_diameter");
   o.pitch = map.positive("pitch");
   o.pattern = read_pattern(map, compound_eye ? "pattern" : "lattice", compound_eye);
-  o.extent = outer_radius;
+  o.extent = reach;
   try {
     return std::make_unique<LensletArray>(o);
   } catch (const InputError& e) {
@@ -122,7 +123,7 @@ std::unique_ptr<Surface> read_lenslets(MapReader& map, bool compound_eye, double
   }
 }
 
-std::unique_ptr<Surface> read_base(MapReader& map, const std::string& type, double outer_radius) {
+std::unique_ptr<Surface> read_base(MapReader& map, const std::string& type, double reach) {
   if (type == "plane") return std::make_unique<EvenAsphere>(0.0, 0.0);
   if (type == "sphere") {
     const double radius = map.number("radius");
@@ -219,13 +220,35 @@ std::unique_ptr<Surface> read_base(MapReader& map, const std::string& type, doub
     return std::make_unique<SinusoidalGrid>(amplitude, map.positive("wavelength_x"),
                                             map.positive("wavelength_y"));
   }
-  if (type == "compound_eye") return read_lenslets(map, true, outer_radius);
-  if (type == "microlens_array") return read_lenslets(map, false, outer_radius);
+  if (type == "compound_eye") return read_lenslets(map, true, reach);
+  if (type == "microlens_array") return read_lenslets(map, false, reach);
   if (type == "nurbs") return detail::read_nurbs_surface(map);
   if (type == "height_grid") return detail::read_height_grid(map);
   if (type == "point_cloud") return detail::read_point_cloud(map);
   if (type == "alvarez") return std::make_unique<Alvarez>(map.number("A"), map.number("D", 0.0));
   map.fail("type", "unknown surface type '" + type + "' (known: " + kKnownTypes + ")");
+}
+
+// How far from the parent's axis an aperture of radius `outer_radius` reaches once the
+// placement (below) has moved it: the decentre's distance added, and as much again for a
+// tilt (to 60°). A lenslet array fills this radius, so that a segment of one has its
+// lenslets out to the aperture's edge (until December 2026 those past the aperture's
+// radius about the parent's axis were missing: a flat where the array was asked for).
+// The placement's values are read, and refused, by read_placement; here only numbers
+// count.
+double placed_reach(const YAML::Node& surface, double outer_radius) {
+  double reach = outer_radius;
+  const auto number = [](const YAML::Node& n, const char* key) {
+    double v = 0;
+    if (n.IsMap() && n[key] && n[key].IsScalar() && YAML::convert<double>::decode(n[key], v) &&
+        std::isfinite(v))
+      return v;
+    return 0.0;
+  };
+  if (surface.IsMap() && surface["decenter"])
+    reach += std::hypot(number(surface["decenter"], "x"), number(surface["decenter"], "y"));
+  if (surface.IsMap() && (surface["tilt_deg"] || surface["align_normal"])) reach += outer_radius;
+  return reach;
 }
 
 // Optional decentre and tilt around any surface (an off-axis segment).
@@ -269,7 +292,7 @@ std::unique_ptr<Surface> surface_from_yaml(const YAML::Node& node, const std::st
   const std::string type = map.text("type");
   std::unique_ptr<Surface> surface;
   try {
-    surface = read_base(map, type, outer_radius);
+    surface = read_base(map, type, placed_reach(node, outer_radius));
   } catch (const InputError& e) {
     // Constructors name the parameter; point at it in the file. An error already placed
     // (at a line, or at the file where its nodes carry none: a spec built in memory) is not

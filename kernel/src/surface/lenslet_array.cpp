@@ -341,10 +341,18 @@ int LensletArray::lenslet_at(double x, double y) const {
 
 int LensletArray::section_creases(const RadialLine& line, double rho_lo, double rho_hi,
                                   std::span<double> out) const {
-  if (!(rho_lo <= rho_hi) || !std::isfinite(rho_lo) || !std::isfinite(rho_hi)) return 0;
-  const double ct = line.cos, st = line.sin;
+  return LensletArray::line_creases(0.0, 0.0, line, rho_lo, rho_hi, out);
+}
+
+int LensletArray::line_creases(double ox, double oy, const RadialLine& line, double rho_lo,
+                               double rho_hi, std::span<double> out) const {
   const double half = 0.5 * o_.lens_diameter, cb = o_.base_curvature;
-  const double x0 = rho_lo * ct, x1 = rho_hi * ct, y0 = rho_lo * st, y1 = rho_hi * st;
+  if (cb != 0 && (ox != 0 || oy != 0)) return -1;
+  if (!(rho_lo <= rho_hi) || !std::isfinite(rho_lo) || !std::isfinite(rho_hi)) return 0;
+  if (!std::isfinite(ox) || !std::isfinite(oy)) return -1;
+  const double ct = line.cos, st = line.sin;
+  const double x0 = ox + rho_lo * ct, x1 = ox + rho_hi * ct, y0 = oy + rho_lo * st,
+               y1 = oy + rho_hi * st;
   CreaseCandidates& c = crease_candidates;
   const double pad_squared = c.pad * c.pad;
   if (c.owner != id_.value ||
@@ -386,14 +394,15 @@ int LensletArray::section_creases(const RadialLine& line, double rho_lo, double 
   };
   for (const int i : c.lenslets) {
     const LookupEntry& l = by_lenslet_[static_cast<std::size_t>(i)];
-    const double along = l.px * ct + l.py * st;  // the centre's projection on the line
+    // The base point from the line's origin (the axis but for a decentred array).
+    const double cx = l.px - ox, cy = l.py - oy;
+    const double along = cx * ct + cy * st;  // the centre's projection on the line
     // A footprint lies within crease_reach_ of its centre in (x, y): a lenslet farther
     // from the line, or beside the stretch, has no rim on it there. Most candidates end
     // here, before the roots below.
-    if (!(std::abs(l.py * ct - l.px * st) <= crease_reach_ && along >= rho_lo - crease_reach_ &&
+    if (!(std::abs(cy * ct - cx * st) <= crease_reach_ && along >= rho_lo - crease_reach_ &&
           along <= rho_hi + crease_reach_))
       continue;
-    const double cx = l.px, cy = l.py;
     if (cb == 0) {
       // |ρ e_r − c|² = (D/2)²: ρ² − 2ρ·along + |c|² − (D/2)² = 0.
       const double disc = along * along - (cx * cx + cy * cy) + half * half;

@@ -24,6 +24,12 @@ int Surface::section_creases(const RadialLine&, double rho_lo, double rho_hi, st
   return 1;
 }
 
+int Surface::line_creases(double x0, double y0, const RadialLine& line, double rho_lo,
+                          double rho_hi, std::span<double> out) const {
+  if (x0 == 0 && y0 == 0) return section_creases(line, rho_lo, rho_hi, out);
+  return has_creases() ? -1 : 0;
+}
+
 double Surface::max_bend(double) const { return std::numeric_limits<double>::infinity(); }
 
 int Surface::creases_near(double, double, double, std::span<NearbyCrease>) const {

@@ -9,6 +9,25 @@ TransformedSurface::TransformedSurface(std::unique_ptr<Surface> parent, double d
                                        double decentre_y, const Eigen::Matrix3d& rotation)
     : parent_(std::move(parent)), r_(rotation), rt_(rotation.transpose()) {
   origin_ = {decentre_x, decentre_y, parent_->sag(decentre_x, decentre_y)};
+  untilted_ = r_ == Eigen::Matrix3d::Identity();
+}
+
+int TransformedSurface::section_creases(const RadialLine& line, double rho_lo, double rho_hi,
+                                        std::span<double> out) const {
+  if (!untilted_) return 0;
+  const int count = parent_->line_creases(origin_.x(), origin_.y(), line, rho_lo, rho_hi, out);
+  return count < 0 ? 0 : count;  // not known: none reported, as for a tilt
+}
+
+int TransformedSurface::creases_near(double x, double y, double radius,
+                                     std::span<NearbyCrease> out) const {
+  if (!untilted_) return Surface::creases_near(x, y, radius, out);
+  return parent_->creases_near(x + origin_.x(), y + origin_.y(), radius, out);
+}
+
+double TransformedSurface::max_bend(double radius) const {
+  if (!untilted_) return Surface::max_bend(radius);
+  return parent_->max_bend(radius + std::hypot(origin_.x(), origin_.y()));
 }
 
 Eigen::Matrix3d TransformedSurface::rotation_aligning_normal(const Surface& parent, double x,

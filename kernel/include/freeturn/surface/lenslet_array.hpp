@@ -48,6 +48,10 @@ class LensletArray final : public Surface {
   // base; on a sphere, a cone about the lenslet's axis through the sphere's centre).
   int section_creases(const RadialLine& line, double rho_lo, double rho_hi,
                       std::span<double> out) const override;
+  // Along any line on a plane base (a decentred array's radial sections); on a sphere only
+  // through the axis (−1 off it: the rim's closed form there is the radial one).
+  int line_creases(double x0, double y0, const RadialLine& line, double rho_lo, double rho_hi,
+                   std::span<double> out) const override;
   // Each lenslet's rim within `radius`: its distance from the angle at the base sphere's
   // centre between the point and the lenslet's axis (exact on a plane), the slope's jump
   // from the angle between the lens's and the base's normals there. −1 where footprints

@@ -98,6 +98,14 @@ class Surface {
   virtual int section_creases(const RadialLine& line, double rho_lo, double rho_hi,
                               std::span<double> out) const;
 
+  // The same along the line through (x0, y0) in the direction of `line`: the creases at
+  // signed distances ρ ∈ [rho_lo, rho_hi] from (x0, y0), ascending. A surface decentred
+  // without a tilt (TransformedSurface) asks this of its parent for its radial sections.
+  // −1 where they are not known off the axis: the default, for a line not through the
+  // origin on a surface with creases.
+  virtual int line_creases(double x0, double y0, const RadialLine& line, double rho_lo,
+                           double rho_hi, std::span<double> out) const;
+
   // An upper bound of the surface's second derivative along any straight line in (x, y)
   // (d²z/dt² for a unit direction; the largest eigenvalue of the Hessian) at the points
   // within `radius` of the z axis, away from creases: the most a section can bend toward

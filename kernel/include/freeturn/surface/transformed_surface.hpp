@@ -34,10 +34,18 @@ class TransformedSurface final : public Surface {
   void sag_gradient(double x, double y, double& z, double& zx, double& zy) const override;
   HeightDerivatives height_derivatives(double x, double y) const override;
   bool has_creases() const override { return parent_->has_creases(); }
-  // The parent's creases are not mapped into the new frame's radial sections (a tilted
-  // lenslet rim is no longer the closed form the parent knows): none is reported, so the
-  // planner does not envelope them and the global gouge check judges those places.
-  int section_creases(const RadialLine&, double, double, std::span<double>) const override { return 0; }
+  bool may_have_ridges() const override { return parent_->may_have_ridges(); }
+  // Decentred without a tilt, the world is the parent moved in (x, y) (and down by the
+  // decentred point's sag): a radial section is the parent's line through the decentred
+  // point, whose creases the parent may know (Surface::line_creases: a microlens array's
+  // rims), and the creases near a point and the bend are the parent's there. Tilted, a
+  // lenslet rim is no longer the closed form the parent knows: no crease is reported, so
+  // the planner neither holds nor rolls the nose there, counts the jumps it finds
+  // (UNSAFE), and the global gouge check judges those places.
+  int section_creases(const RadialLine& line, double rho_lo, double rho_hi,
+                      std::span<double> out) const override;
+  int creases_near(double x, double y, double radius, std::span<NearbyCrease> out) const override;
+  double max_bend(double radius) const override;
 
   const Surface& parent() const { return *parent_; }
   // The parent-frame point of world point w.
@@ -51,6 +59,7 @@ class TransformedSurface final : public Surface {
   std::unique_ptr<Surface> parent_;
   Eigen::Vector3d origin_;
   Eigen::Matrix3d r_, rt_;
+  bool untilted_ = false;  // R is the identity: a translation alone
 };
 
 }  // namespace freeturn
