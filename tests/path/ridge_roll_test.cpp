@@ -12,6 +12,7 @@
 #include <vector>
 
 #include "dense_check.hpp"
+#include "freeturn/core/error.hpp"
 #include "freeturn/path/base_surface.hpp"
 #include "freeturn/path/section_envelope.hpp"
 #include "freeturn/path/spiral.hpp"
@@ -316,6 +317,30 @@ TEST_SUITE("path") {
     // the axis, and its chord cut 1.96 µm into the apex.
     const OddAsphere cone(0, 0, {-0.3});
     check_rolling_spiral(cone, ridge_spiral(1.0, 0.01, 2e-4, 0.2), 100);
+  }
+
+  TEST_CASE("a valley with B following: refused with the reason and the way out") {
+    // With B following, the nose is held at no crease (nose_roll): the offset of a contact
+    // beside the valley overhangs the far plane, and no step holds the tolerance. The
+    // refusal says so, and names b_axis: fixed; it had said "the path is not smooth here".
+    const Roof valley(-0.2, 0.3);
+    SpiralOptions o = ridge_spiral(2.6, 0.05, 2e-4, 0.2);
+    o.tool.axis_offset = 60;
+    o.tool.b_follows = true;
+    ContactCollector out;
+    CHECK_THROWS_WITH_AS(plan_spiral(valley, BaseSurface::plane(2.6), o, out),
+                         doctest::Contains("with B following the normal the nose is held at no "
+                                           "crease, and near r = "),
+                         InputError);
+    CHECK_THROWS_WITH_AS(plan_spiral(valley, BaseSurface::plane(2.6), o, out),
+                         doctest::Contains("a valley of the design is sharper than the nose, "
+                                           "whose offset would cut into the far flank (cut it "
+                                           "with b_axis: fixed"),
+                         InputError);
+    // B fixed, the same valley is held and planned.
+    o.tool.b_follows = false;
+    o.tool.axis_offset = 0;
+    CHECK_NOTHROW(plan_spiral(valley, BaseSurface::plane(2.6), o, out));
   }
 
   TEST_CASE("a NURBS ridge, found from its knots: no jump, no gouge") {

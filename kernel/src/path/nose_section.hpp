@@ -72,6 +72,21 @@ class NoseSection {
            significant_text(1 / sharpest - stand_off_, 3) + " mm)";
   }
 
+  // Why no step of a path through contact_r on the line c holds the chord tolerance, as far
+  // as the nose can tell: a section tighter than the nose (above), or, with B following
+  // the normal on a creased design, a valley: the nose is held at no crease then (one edge
+  // point touches, and B turns with its normal), so where a crease is sharper than the nose
+  // its offset overhangs the far flank. "" where neither explains it.
+  std::string why_not_smooth(const RadialLine& c, double contact_r) const {
+    std::string why = nose_larger_than_section(c, contact_r);
+    if (why.empty() && b_follows_ && R_ > 0 && design_.has_creases())
+      why = "with B following the normal the nose is held at no crease, and near r = " +
+            fixed_text(std::abs(contact_r), 4) +
+            " mm a valley of the design is sharper than the nose, whose offset would cut into "
+            "the far flank (cut it with b_axis: fixed, which holds the nose in the valley)";
+    return why;
+  }
+
   // The axes of the point that touches the design at signed radius contact_r in the radial
   // plane, height z, with section slope f_r = dz/dρ: the centre c = p + R·n̂_p, n̂_p the
   // section normal (−f_r, 1)/√(1 + f_r²) (as compensate() places it, tool/compensation).

@@ -32,7 +32,7 @@ class ProfilePath {
   double stand_off() const { return nose_.stand_off(); }
   double axis_offset() const { return nose_.axis_offset(); }
   std::string why_not_smooth(const detail::AxisState& s) const {
-    return nose_.nose_larger_than_section(RadialLine{}, s.contact_r);
+    return nose_.why_not_smooth(RadialLine{}, s.contact_r);
   }
 
   double deviation(double x_axis, const RadialLine&, double z, double b, double hint_r) const {

@@ -58,7 +58,7 @@ class SpiralPath {
   double axis_offset() const { return nose_.axis_offset(); }
   double pitch() const { return o_.pitch; }
   std::string why_not_smooth(const detail::AxisState& s) const {
-    return nose_.nose_larger_than_section(RadialLine(s.c), s.contact_r);
+    return nose_.why_not_smooth(RadialLine(s.c), s.contact_r);
   }
 
   double deviation(double x_axis, const RadialLine& c, double z, double b, double hint_r) const {
