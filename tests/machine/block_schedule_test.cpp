@@ -104,6 +104,38 @@ TEST_SUITE("machine") {
     CHECK(report.cycle_time == doctest::Approx(2000 * 0.033334).epsilon(1e-12));
   }
 
+  TEST_CASE("schedule: a block the next one's speed would leave crawling slows the next instead") {
+    // X creeps −1 µm a block, jumps −0.3 mm in one (a pivot's swing), then steps +10 µm a
+    // block at the speed s₁ where 0.01·s₁² sits 1e-9 under X's 490 mm/s²: at s₁ the swing's
+    // block may run at most 0.3·v·s₁ ≤ 490·1e-9, v = 7e-9 /s, a block of 4.5 years. With
+    // the next block at s₁/2 the swing runs at v = (4.43 − 1.11)/0.3 = 11 /s: the pair in
+    // 0.1 s. (Seen with B following on an ISO lathe: a cycle of 400 000 years.)
+    const double a = 0.98 * 500, s1 = std::sqrt(a * (1 - 1e-9) / 0.01);
+    std::vector<AxisRecord> in;
+    double x = 4;
+    for (int k = 0; k <= 400; ++k) {
+      double t = k ? 0.02 : 0.0;
+      if (k <= 200) {
+        x -= k ? 1e-3 : 0.0;
+      } else if (k == 201) {
+        x -= 0.3;
+      } else {
+        x += 0.01;
+        t = 1 / s1;
+      }
+      in.push_back({x, 0.0, 0.0, 0, t});
+    }
+    double nominal = 0;
+    for (const AxisRecord& r : in) nominal += r.time;
+    ScheduleReport report;
+    const auto out = schedule(machine(), in, 4096, {}, &report);
+    const Figures f = read_back(out);
+    check_within(f, machine());
+    CHECK(out[201].time + out[202].time <= 0.2);
+    CHECK(report.cycle_time <= nominal + 1.0);
+    CHECK(report.cycle_time == doctest::Approx(f.total).epsilon(1e-12));
+  }
+
   TEST_CASE("schedule: a burst of fast X motion is slowed there only, within every limit") {
     // 2000 blocks at 0.01 s; blocks 900-1100 move X by ±0.4 mm (a 40 mm/s request,
     // alternating: the hardest case for acceleration).

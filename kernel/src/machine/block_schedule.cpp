@@ -12,6 +12,8 @@ namespace freeturn {
 namespace {
 
 constexpr double kInfinity = std::numeric_limits<double>::infinity();
+// A block planned slower than this share of the next one's speed is a crawl (plan).
+constexpr double kCrawl = 1.0 / 64;
 
 // Bisection between a feasible speed lo and an infeasible hi > lo, up to the boundary.
 template <class Ok>
@@ -140,6 +142,19 @@ void BlockScheduler::plan(bool /*final*/) {
       next_s *= 0.5;
       pending_[k + 1].speed = next_s;
       s = largest_feasible(b.upper, [&](double v) { return pair_ok(b.d, v, next_d, next_s); });
+    }
+    // A speed of the next block that leaves this one only a crawl (a pivot's swing between
+    // B-following blocks: 4.8e12 s for one block, so that an ISO program carried F0 and
+    // the report a cycle of 400 000 years): slowing the next block instead, where that
+    // takes less time over the two, as the fallback above does where nothing is left.
+    while (k + 1 < pending_.size() && s > 0 && s < kCrawl * next_s) {
+      const double slower = 0.5 * next_s;
+      const double t =
+          largest_feasible(b.upper, [&](double v) { return pair_ok(b.d, v, next_d, slower); });
+      if (!(t > 0) || !(1 / t + 1 / slower < 1 / s + 1 / next_s)) break;
+      next_s = slower;
+      pending_[k + 1].speed = next_s;
+      s = t;
     }
     if (!(s > 0))
       throw CheckFailure(place_of(b.record), "no block time lets the machine follow it",
