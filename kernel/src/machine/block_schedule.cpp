@@ -148,13 +148,13 @@ void BlockScheduler::plan(bool /*final*/) {
     // the report a cycle of 400 000 years): slowing the next block instead, where that
     // takes less time over the two, as the fallback above does where nothing is left.
     while (k + 1 < pending_.size() && s > 0 && s < kCrawl * next_s) {
-      const double slower = 0.5 * next_s;
-      const double t =
-          largest_feasible(b.upper, [&](double v) { return pair_ok(b.d, v, next_d, slower); });
-      if (!(t > 0) || !(1 / t + 1 / slower < 1 / s + 1 / next_s)) break;
-      next_s = slower;
+      const double slower_next = 0.5 * next_s;
+      const double own =
+          largest_feasible(b.upper, [&](double v) { return pair_ok(b.d, v, next_d, slower_next); });
+      if (!(own > 0) || !(1 / own + 1 / slower_next < 1 / s + 1 / next_s)) break;
+      next_s = slower_next;
       pending_[k + 1].speed = next_s;
-      s = t;
+      s = own;
     }
     if (!(s > 0))
       throw CheckFailure(place_of(b.record), "no block time lets the machine follow it",
