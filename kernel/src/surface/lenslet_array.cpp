@@ -431,6 +431,16 @@ int LensletArray::line_creases(double ox, double oy, const RadialLine& line, dou
   return count;
 }
 
+bool LensletArray::crease_circles(std::vector<CreaseCircle>& out) const {
+  const double cb = o_.base_curvature, half = 0.5 * o_.lens_diameter;
+  // The base point lies 1/c along −axis from the base's centre; the rim, cos α of that.
+  const double lift =
+      cb != 0 ? (1 - std::sqrt(std::max(0.0, 1 - half * half * cb * cb))) / cb : 0.0;
+  out.reserve(out.size() + lenslets_.size());
+  for (const Lenslet& l : lenslets_) out.push_back({l.base_point + lift * l.axis, l.axis, half});
+  return true;
+}
+
 int LensletArray::creases_near(double x, double y, double radius,
                                std::span<NearbyCrease> out) const {
   if (!disjoint_ || !std::isfinite(crease_jump_)) return -1;

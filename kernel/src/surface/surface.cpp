@@ -24,6 +24,10 @@ int Surface::section_creases(const RadialLine&, double rho_lo, double rho_hi, st
   return 1;
 }
 
+bool Surface::crease_circles(std::vector<CreaseCircle>&) const {
+  return !has_creases();
+}
+
 int Surface::line_creases(double x0, double y0, const RadialLine& line, double rho_lo,
                           double rho_hi, std::span<double> out) const {
   if (x0 == 0 && y0 == 0) return section_creases(line, rho_lo, rho_hi, out);

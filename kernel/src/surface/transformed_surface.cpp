@@ -10,13 +10,25 @@ TransformedSurface::TransformedSurface(std::unique_ptr<Surface> parent, double d
     : parent_(std::move(parent)), r_(rotation), rt_(rotation.transpose()) {
   origin_ = {decentre_x, decentre_y, parent_->sag(decentre_x, decentre_y)};
   untilted_ = r_ == Eigen::Matrix3d::Identity();
+  // The rims' ellipses, where the parent's own lines cannot give the sections' creases.
+  if (parent_->has_creases()) {
+    double probe[1];
+    const bool lines_known =
+        untilted_ &&
+        parent_->line_creases(origin_.x(), origin_.y(), RadialLine(0.0), 0.0, 0.0, probe) >= 0;
+    std::vector<CreaseCircle> circles;
+    if (!lines_known && parent_->crease_circles(circles)) rims_.build(circles, r_, origin_);
+  }
 }
 
 int TransformedSurface::section_creases(const RadialLine& line, double rho_lo, double rho_hi,
                                         std::span<double> out) const {
-  if (!untilted_) return 0;
-  const int count = parent_->line_creases(origin_.x(), origin_.y(), line, rho_lo, rho_hi, out);
-  return count < 0 ? 0 : count;  // not known: none reported, as for a tilt
+  if (untilted_) {
+    const int count = parent_->line_creases(origin_.x(), origin_.y(), line, rho_lo, rho_hi, out);
+    if (count >= 0) return count;
+  }
+  // The rims seen along z; none known: none reported.
+  return rims_.crossings(0.0, 0.0, line, rho_lo, rho_hi, out);
 }
 
 int TransformedSurface::creases_near(double x, double y, double radius,

@@ -57,6 +57,9 @@ class LensletArray final : public Surface {
   // from the angle between the lens's and the base's normals there. −1 where footprints
   // overlap (a rim inside another footprint meets two lenses, not a lens and the base).
   int creases_near(double x, double y, double radius, std::span<NearbyCrease> out) const override;
+  // Each lenslet's rim: the circle of radius D/2 about its axis where its sphere meets the
+  // base (on a sphere of radius R_b, cos α·R_b from the base's centre, sin α = D/(2R_b)).
+  bool crease_circles(std::vector<CreaseCircle>& out) const override;
 
   int lenslet_count() const { return static_cast<int>(lenslets_.size()); }
   // Index of the lenslet whose footprint holds (x, y), or −1 on the base.

@@ -9,6 +9,7 @@
 #include <cmath>
 #include <limits>
 #include <span>
+#include <vector>
 
 namespace freeturn {
 
@@ -62,6 +63,15 @@ struct NearbyCrease {
   double centre_distance = 0;
   double normal_slack = 0;  // rad
   double curvature = 0;
+};
+
+// A crease that is a circle in space: a lenslet's rim, where its sphere meets the base
+// (Surface::crease_circles). Seen along z it is an ellipse, and a surface moved and tilted
+// (TransformedSurface) finds where a section crosses it in closed form.
+struct CreaseCircle {
+  Eigen::Vector3d centre = Eigen::Vector3d::Zero();  // mm
+  Eigen::Vector3d axis = Eigen::Vector3d::UnitZ();   // unit normal of the circle's plane
+  double radius = 0;                                 // mm
 };
 
 class Surface {
@@ -121,6 +131,12 @@ class Surface {
   // below the truth, would let the planner measure a segment as smooth where a crease lies
   // under the nose: each bound must hold everywhere it is asked.
   virtual int creases_near(double x, double y, double radius, std::span<NearbyCrease> out) const;
+
+  // Every crease of the surface as a circle in space, appended to `out`; false when its
+  // creases are not all circles (the default for a surface with creases: a cone's apex is
+  // a point). A surface without creases has none (true, nothing appended). A circle left
+  // out would let the planner cross a crease unseen where the surface is moved or tilted.
+  virtual bool crease_circles(std::vector<CreaseCircle>& out) const;
 
   double sag(double x, double y) const;
   // (x, y, z(x, y)).

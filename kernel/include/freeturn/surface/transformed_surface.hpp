@@ -13,6 +13,7 @@
 #include <Eigen/Geometry>
 #include <memory>
 
+#include "freeturn/surface/projected_rims.hpp"
 #include "freeturn/surface/surface.hpp"
 
 namespace freeturn {
@@ -38,10 +39,13 @@ class TransformedSurface final : public Surface {
   // Decentred without a tilt, the world is the parent moved in (x, y) (and down by the
   // decentred point's sag): a radial section is the parent's line through the decentred
   // point, whose creases the parent may know (Surface::line_creases: a microlens array's
-  // rims), and the creases near a point and the bend are the parent's there. Tilted, a
-  // lenslet rim is no longer the closed form the parent knows: no crease is reported, so
-  // the planner neither holds nor rolls the nose there, counts the jumps it finds
-  // (UNSAFE), and the global gouge check judges those places.
+  // rims), and the creases near a point and the bend are the parent's there. Tilted (or
+  // where the parent knows no line off its axis: a compound eye's sphere), a parent whose
+  // creases are circles in space (Surface::crease_circles: lenslet rims) has them moved
+  // and seen along z as ellipses (ProjectedRims), and a section's crossings are found in
+  // closed form. Otherwise no crease is reported: the planner neither holds nor rolls the
+  // nose there, counts the jumps it finds (UNSAFE), and the global gouge check judges
+  // those places. Tilted, the creases near a point and the bend are not known.
   int section_creases(const RadialLine& line, double rho_lo, double rho_hi,
                       std::span<double> out) const override;
   int creases_near(double x, double y, double radius, std::span<NearbyCrease> out) const override;
@@ -60,6 +64,8 @@ class TransformedSurface final : public Surface {
   Eigen::Vector3d origin_;
   Eigen::Matrix3d r_, rt_;
   bool untilted_ = false;  // R is the identity: a translation alone
+  // The parent's crease circles as the world sees them, where line_creases cannot serve.
+  ProjectedRims rims_;
 };
 
 }  // namespace freeturn
