@@ -798,7 +798,7 @@ TEST_SUITE("path") {
     o.points.rule = CutterPointRule::kEqualAngle;
     o.points.points_per_revolution = 20000;
     o.tool.nose_radius = envelope;
-    REQUIRE(stand_off_for(o.points, o.tool.nose_radius) == 0);
+    REQUIRE(stand_off_for(o.points, o.tool, eye) == 0);
     const std::vector<CutterLocation> along = plan_with_nose(eye, base, o, &path_points);
     std::size_t j = 0;
     int over = 0, sampled = 0;

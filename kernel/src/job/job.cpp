@@ -81,7 +81,7 @@ Job load_job(const std::string& path, std::uintmax_t max_bytes) {
   if (const auto compensation = map.optional_child("compensation"))
     job.surface = detail::read_compensation(*compensation, path, std::move(job.surface),
                                             job.aperture, job.compensation);
-  job.plan = detail::read_job_plan(map, job.aperture);
+  job.plan = detail::read_job_plan(map, job.aperture, *job.surface);
   map.finish();
   record_places(root, "", path, job.places);
   return job;

@@ -260,7 +260,8 @@ void read_limits(MapReader& job, JobPlan& plan) {
 
 }  // namespace
 
-std::optional<JobPlan> read_job_plan(MapReader& job, const Aperture& aperture) {
+std::optional<JobPlan> read_job_plan(MapReader& job, const Aperture& aperture,
+                                     const Surface& design) {
   const bool any = job.has("tool") || job.has("strategy") || job.has("cutting") || job.has("machine");
   if (!any) {
     if (job.has("outputs")) job.fail("outputs", "outputs need tool, strategy, cutting and machine");
@@ -271,6 +272,21 @@ std::optional<JobPlan> read_job_plan(MapReader& job, const Aperture& aperture) {
   StepEstimate estimate;
   read_tool(job, plan, aperture);
   read_strategy(job, plan, aperture, estimate);
+  // On a creased design the chord rule keeps the round nose at least the waviness's span
+  // above it (stand_off_for): a span near the tolerance leaves the chords no band.
+  const double span = plan.tool.tool.waviness_span();
+  const CutterPointOptions& points = plan.strategy.points;
+  if (design.has_creases() && points.rule == CutterPointRule::kChordError &&
+      plan.tool.tool.nose_radius > 0 && !(span <= 0.9 * points.tolerance))
+    throw InputError(location_of(job.node()["tool"]["waviness"], job.file()),
+                     "tool.waviness varies by " + significant_text(span * 1e6, 4) +
+                         " nm over the edge, more than 0.9 × the chord tolerance " +
+                         significant_text(points.tolerance * 1e6, 4) +
+                         " nm: compensated at each contact's angle, the edge at another angle "
+                         "(the far flank of a crease the nose is held at) reaches that far past "
+                         "the round nose, and the chords keep it above the design only within "
+                         "a band of ε minus the span; give a chord tolerance above " +
+                         significant_text(span / 0.9 * 1e6, 4) + " nm");
   read_cutting(job, plan);
   plan.machine = job.text("machine");
   read_outputs(job, plan);

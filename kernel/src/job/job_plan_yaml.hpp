@@ -7,7 +7,9 @@
 namespace freeturn::detail {
 
 // Reads every run section of `job`; all of tool, strategy, cutting and machine must be
-// present when any is. Returns nothing when none is.
-std::optional<JobPlan> read_job_plan(MapReader& job, const Aperture& aperture);
+// present when any is. Returns nothing when none is. `design`: what the tool settings are
+// judged against (a waviness on a creased design).
+std::optional<JobPlan> read_job_plan(MapReader& job, const Aperture& aperture,
+                                     const Surface& design);
 
 }  // namespace freeturn::detail

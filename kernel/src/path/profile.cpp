@@ -18,7 +18,7 @@ namespace {
 class ProfilePath {
  public:
   ProfilePath(const Surface& design, const ProfileOptions& o)
-      : design_(design), o_(o), nose_(design, o.tool, stand_off_for(o.points, o.tool.nose_radius)) {}
+      : design_(design), o_(o), nose_(design, o.tool, stand_off_for(o.points, o.tool, design)) {}
 
   double tau_end() const { return o_.outer_radius - o_.inner_radius; }
   double cap() const { return o_.points.max_radial_step; }

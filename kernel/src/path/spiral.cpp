@@ -28,7 +28,10 @@ std::string where(double theta, double r) {
 class SpiralPath {
  public:
   SpiralPath(const Surface& design, const BaseSurface& base, const SpiralOptions& o)
-      : design_(design), base_(base), o_(o), nose_(design, o.tool, stand_off_for(o.points, o.tool.nose_radius)),
+      : design_(design),
+        base_(base),
+        o_(o),
+        nose_(design, o.tool, stand_off_for(o.points, o.tool, design)),
         b_(o.pitch / (2 * std::numbers::pi)) {
     s_outer_ = base.arc_length(o.outer_radius);
     s_inner_ = base.arc_length(o.inner_radius);

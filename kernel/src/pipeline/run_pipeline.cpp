@@ -242,7 +242,7 @@ double kernel_ceiling(const Job& job, const CompensationOptions& compensation, c
   const JobPlan& plan = *job.plan;
   return program_z_ceiling(design, job.aperture.inner_radius, job.aperture.outer_radius,
                            compensation,
-                           stand_off_for(plan.strategy.points, plan.tool.tool.nose_radius));
+                           stand_off_for(plan.strategy.points, tool_motion(compensation), design));
 }
 
 double machine_z(const MachineDescription& machine, double z) {
@@ -310,7 +310,10 @@ void refuse_oversized_program(const Job& job, const MachineDescription& machine)
 // step, and passed.
 void refuse_coarse_axis_words(const Job& job, const MachineDescription& machine) {
   const JobPlan& plan = *job.plan;
-  const double stand_off = stand_off_for(plan.strategy.points, plan.tool.tool.nose_radius);
+  // The blocks' stand-off beyond what a wavy edge takes of it.
+  const double stand_off =
+      stand_off_for(plan.strategy.points, tool_motion(plan.tool), *job.surface) -
+      (job.surface->has_creases() ? plan.tool.tool.waviness_span() : 0.0);
   const double allowed =
       stand_off > 0 ? std::min(0.5 * stand_off, kChordDipAllowed) : 0.5 * kChordDipAllowed;
   constexpr double kRadian = std::numbers::pi / 180;

@@ -16,6 +16,7 @@ ToolMotion tool_motion(const CompensationOptions& o) {
   m.axis_offset = programmed_point_offset(o);
   m.b_follows = o.b_mode == BMode::kFollow;
   m.edge_angle = o.edge_angle;
+  m.waviness_span = o.tool.waviness_span();
   return m;
 }
 

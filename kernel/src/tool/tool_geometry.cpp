@@ -1,6 +1,7 @@
 #include "freeturn/tool/tool_geometry.hpp"
 
 #include <algorithm>
+#include <cmath>
 
 namespace freeturn {
 
@@ -13,6 +14,19 @@ double ToolGeometry::waviness_at(double psi) const {
   const auto lo = hi - 1;
   const double t = (psi - lo->first) / (hi->first - lo->first);
   return lo->second + t * (hi->second - lo->second);
+}
+
+double ToolGeometry::waviness_span() const {
+  if (waviness.empty()) return 0.0;
+  const double half = 0.5 * included_angle;
+  const bool bounded = half > 0;
+  // δ is piecewise linear: its extremes over [−half, half] lie at the table's angles
+  // inside it or at the ends.
+  double lo = bounded ? std::min(waviness_at(-half), waviness_at(half)) : waviness.front().second;
+  double hi = bounded ? std::max(waviness_at(-half), waviness_at(half)) : waviness.front().second;
+  for (const auto& [psi, delta] : waviness)
+    if (!bounded || std::abs(psi) <= half) lo = std::min(lo, delta), hi = std::max(hi, delta);
+  return hi - lo;
 }
 
 }  // namespace freeturn

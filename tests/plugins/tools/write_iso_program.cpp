@@ -33,7 +33,8 @@ int main(int argc, char** argv) {
     checks.outer_radius = 3;
     MotionOptions motion;
     motion.spindle_rpm = 20;
-    const double ceiling = program_z_ceiling(asphere, 0, 3, c, stand_off_for(o.points, 0.5));
+    const double ceiling =
+        program_z_ceiling(asphere, 0, 3, c, stand_off_for(o.points, tool_motion(c), asphere));
     PostProgram program(*plugin, m, {"asphere", 20, 0, -1, -1, ceiling, 1}, argv[3]);
     AxisMapper mapper(m, motion, program);
     ToolCompensator compensator(asphere, c, checks, mapper);

@@ -25,6 +25,10 @@ struct ToolGeometry {
 
   // δ(ψ), 0 without a table; constant beyond its ends.
   double waviness_at(double psi) const;
+  // max δ − min δ over the edge (ψ within ±half the included angle; the whole table if
+  // that is 0): the most one point of the edge reaches past the round nose compensated at
+  // another (path/cutter_points.hpp, stand_off_for). 0 without a table.
+  double waviness_span() const;
 };
 
 }  // namespace freeturn

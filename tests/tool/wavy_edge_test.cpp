@@ -1,0 +1,136 @@
+// A wavy edge is compensated at each contact's own angle, so the edge at another angle
+// reaches δ(φ) − δ(ψ) past the round nose the planner measured: at a held nose's far
+// flank that is the far touch's angle. The chord band keeps the round nose the waviness's
+// span above the design (stand_off_for). The check here shares nothing with the planner:
+// the compensated centres moved linearly, the edge at every angle at R + δ(φ) from them,
+// against the design's sag.
+#include <doctest/doctest.h>
+
+#include <algorithm>
+#include <cmath>
+#include <numbers>
+#include <vector>
+
+#include "freeturn/path/base_surface.hpp"
+#include "freeturn/path/spiral.hpp"
+#include "freeturn/surface/even_asphere.hpp"
+#include "freeturn/surface/lenslet_array.hpp"
+#include "freeturn/tool/compensation.hpp"
+
+using namespace freeturn;
+
+namespace {
+
+constexpr double kDegree = std::numbers::pi / 180;
+
+// δ: 60 nm at −45°, 0 at 0°, −40 nm at 20°, 30 nm at 45°, all times `scale`.
+ToolGeometry wavy_tool(double included_deg, double scale = 1) {
+  ToolGeometry t;
+  t.nose_radius = 0.2;
+  t.included_angle = included_deg * kDegree;
+  t.waviness = {{-45 * kDegree, 6e-5 * scale},
+                {0, 0},
+                {20 * kDegree, -4e-5 * scale},
+                {45 * kDegree, 3e-5 * scale}};
+  return t;
+}
+
+// The deepest the wavy edge goes below the design (mm, vertical; < 0: above it
+// everywhere), the centres moved linearly in (C, radial, z) between blocks, `samples` a
+// segment, the edge every 0.05° over ±half the included angle.
+double wavy_edge_depth(const Surface& s, const std::vector<CutterLocation>& path,
+                       const ToolGeometry& tool, int samples) {
+  double deepest = -1e300;
+  const double half = 0.5 * tool.included_angle;
+  const int angles = static_cast<int>(std::ceil(2 * half / (0.05 * kDegree)));
+  const auto radial = [](const CutterLocation& cl) {
+    return cl.nose_centre.x() * std::cos(cl.contact.theta) +
+           cl.nose_centre.y() * std::sin(cl.contact.theta);
+  };
+  for (std::size_t k = 1; k < path.size(); ++k) {
+    const CutterLocation &a = path[k - 1], &b = path[k];
+    for (int j = 0; j < samples; ++j) {
+      const double t = static_cast<double>(j) / samples;
+      const double c = a.contact.theta + t * (b.contact.theta - a.contact.theta);
+      const double cr = radial(a) + t * (radial(b) - radial(a));
+      const double cz = a.nose_centre.z() + t * (b.nose_centre.z() - a.nose_centre.z());
+      for (int i = 0; i <= angles; ++i) {
+        const double phi = -half + 2 * half * i / angles;
+        const double r = tool.nose_radius + tool.waviness_at(phi);
+        const double rho = cr - r * std::sin(phi), z = cz - r * std::cos(phi);
+        deepest = std::max(deepest, s.sag(rho * std::cos(c), rho * std::sin(c)) - z);
+      }
+    }
+  }
+  return deepest;
+}
+
+}  // namespace
+
+TEST_SUITE("tool") {
+  TEST_CASE("a waviness's span over the edge, in closed form") {
+    // Over ±45°: the table's own extremes, 60 nm at −45° and −40 nm at 20°.
+    CHECK(wavy_tool(90).waviness_span() == doctest::Approx(1e-4).epsilon(1e-12));
+    // Over ±30°: δ(−30°) = 60·30/45 = 40 nm at the end, −40 nm at 20° inside.
+    CHECK(wavy_tool(60).waviness_span() == doctest::Approx(8e-5).epsilon(1e-12));
+    // Over ±10°: the ends alone, δ(−10°) = 60/4.5 nm and δ(10°) = −20 nm.
+    CHECK(wavy_tool(20).waviness_span() == doctest::Approx(6e-5 / 4.5 + 2e-5).epsilon(1e-12));
+    CHECK(ToolGeometry{}.waviness_span() == 0);
+    CutterPointOptions chord;
+    chord.rule = CutterPointRule::kChordError;
+    chord.tolerance = 2e-4;
+    CompensationOptions c;
+    c.tool = wavy_tool(90);
+    // On a creased design the band is [w, ε]: stand-off (ε + w)/2. On a smooth one the
+    // nose touches at one angle, and the band stays [0, ε].
+    LensletArrayOptions lo;
+    lo.lens_radius = 0.6;
+    lo.lens_diameter = 0.2;
+    lo.pitch = 0.25;
+    lo.extent = 1.0;
+    CHECK(stand_off_for(chord, tool_motion(c), LensletArray(lo)) ==
+          doctest::Approx(1.5e-4).epsilon(1e-12));
+    CHECK(stand_off_for(chord, tool_motion(c), EvenAsphere(1 / 200.0, -1)) ==
+          doctest::Approx(1e-4).epsilon(1e-12));
+  }
+
+  TEST_CASE(
+      "a compound eye cut with a wavy edge: the edge stays above the design at the held rims") {
+    // The demo's lenslets (R_b 20 mm, lenslets −5 mm, 0.9 mm across at a 1 mm pitch) to
+    // r = 1.6 mm, a 0.2 mm nose whose waviness spans 0.18 µm (0.9 ε), ε = 0.2 µm. The
+    // nose is held at every rim, touching the far flank about 6° from its own touch.
+    LensletArrayOptions lo;
+    lo.base_curvature = 1 / 20.0;
+    lo.lens_radius = -5.0;
+    lo.lens_diameter = 0.9;
+    lo.pitch = 1.0;
+    lo.pattern = LensletArrayOptions::Pattern::kRings;
+    lo.extent = 1.6;
+    const LensletArray eye(lo);
+    CompensationOptions c;
+    c.tool = wavy_tool(90, 1.8);
+    SpiralOptions o;
+    o.outer_radius = 1.6;
+    o.pitch = 0.02;
+    o.points.rule = CutterPointRule::kChordError;
+    o.points.tolerance = 2e-4;
+    o.points.max_angle_step = 4 * kDegree;
+    const auto cut = [&](const ToolMotion& motion) {
+      o.tool = motion;
+      ContactCollector out;
+      plan_spiral(eye, BaseSurface::plane(o.outer_radius), o, out);
+      std::vector<CutterLocation> path;
+      for (const ContactPoint& p : out.points) path.push_back(compensate(p, c));
+      return wavy_edge_depth(eye, path, c.tool, 16);
+    };
+    const double depth = cut(tool_motion(c));
+    // The band as it was, [0, ε] for the round nose whatever the edge.
+    ToolMotion round = tool_motion(c);
+    round.waviness_span = 0;
+    const double before = cut(round);
+    MESSAGE("the wavy edge's deepest: ", depth * 1e6,
+            " nm; with the band as it was: ", before * 1e6, " nm");
+    CHECK(depth <= 0);
+    CHECK(before > 2e-6);  // 4.3 nm into the design
+  }
+}
