@@ -5,6 +5,7 @@
 #include <numbers>
 
 #include "freeturn/core/number_text.hpp"
+#include "freeturn/tool/compensation.hpp"
 
 namespace freeturn::detail {
 namespace {
@@ -274,10 +275,10 @@ std::optional<JobPlan> read_job_plan(MapReader& job, const Aperture& aperture,
   read_strategy(job, plan, aperture, estimate);
   // On a creased design the chord rule keeps the round nose at least the waviness's span
   // above it (stand_off_for): a span near the tolerance leaves the chords no band.
-  const double span = plan.tool.tool.waviness_span();
+  const double span = wavy_edge_reach(tool_motion(plan.tool), design);
   const CutterPointOptions& points = plan.strategy.points;
-  if (design.has_creases() && points.rule == CutterPointRule::kChordError &&
-      plan.tool.tool.nose_radius > 0 && !(span <= 0.9 * points.tolerance))
+  if (points.rule == CutterPointRule::kChordError && plan.tool.tool.nose_radius > 0 &&
+      !(span <= 0.9 * points.tolerance))
     throw InputError(location_of(job.node()["tool"]["waviness"], job.file()),
                      "tool.waviness varies by " + significant_text(span * 1e6, 4) +
                          " nm over the edge, more than 0.9 × the chord tolerance " +

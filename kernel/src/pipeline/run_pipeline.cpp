@@ -311,9 +311,9 @@ void refuse_oversized_program(const Job& job, const MachineDescription& machine)
 void refuse_coarse_axis_words(const Job& job, const MachineDescription& machine) {
   const JobPlan& plan = *job.plan;
   // The blocks' stand-off beyond what a wavy edge takes of it.
+  const ToolMotion tool = tool_motion(plan.tool);
   const double stand_off =
-      stand_off_for(plan.strategy.points, tool_motion(plan.tool), *job.surface) -
-      (job.surface->has_creases() ? plan.tool.tool.waviness_span() : 0.0);
+      stand_off_for(plan.strategy.points, tool, *job.surface) - wavy_edge_reach(tool, *job.surface);
   const double allowed =
       stand_off > 0 ? std::min(0.5 * stand_off, kChordDipAllowed) : 0.5 * kChordDipAllowed;
   constexpr double kRadian = std::numbers::pi / 180;
