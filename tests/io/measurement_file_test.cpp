@@ -62,6 +62,10 @@ TEST_SUITE("io") {
     o.format = MeasurementFormat::kZygoXyz;
     CHECK_THROWS_WITH_AS(read_measurement(dir.write("short.xyz", "Zygo XYZ Data File\n1 2 3\n"), o),
                          doctest::Contains("short.xyz:2: the Zygo XYZ header is truncated"), InputError);
+    CHECK_THROWS_WITH_AS(read_measurement(dir.write("short.xyz", "Zygo XYZ Data File\n1 2 3\n"), o),
+                         doctest::Contains("and the file ends after 2 lines"), InputError);
+    CHECK_THROWS_WITH_AS(read_measurement(dir.write("empty.xyz", ""), o),
+                         doctest::Contains("empty.xyz: the measurement file is empty"), InputError);
     CHECK_THROWS_WITH_AS(read_measurement(dir.write("cut.xyz", zygo_file("10 20 3 2", 4)), o),
                          doctest::Contains("holds 4 pixels, the header (line 4) says 3 × 2 = 6: truncated"),
                          InputError);

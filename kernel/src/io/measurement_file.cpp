@@ -69,10 +69,12 @@ std::vector<std::string> read_lines(const std::string& path) {
 Measurement read_zygo_xyz(const std::string& path, double height_scale) {
   const std::vector<std::string> lines = read_lines(path);
   constexpr int kHeaderLines = 14;
+  if (lines.empty()) fail(path, 0, "the measurement file is empty");
   if (lines.size() < kHeaderLines + 1)
     fail(path, static_cast<int>(lines.size()),
-         "the Zygo XYZ header is truncated: it has 14 lines and then '#' (" +
-             std::to_string(lines.size()) + " lines in the file)");
+         "the Zygo XYZ header is truncated: the format's header is 14 lines and a '#' line, and "
+         "the file ends after " +
+             std::to_string(lines.size()) + (lines.size() == 1 ? " line" : " lines"));
   if (lines[0].rfind("Zygo", 0) != 0)
     fail(path, 1, "not a Zygo XYZ file: the first line must start with 'Zygo'");
   // Line 4: phase origin x, origin y, width, height.
