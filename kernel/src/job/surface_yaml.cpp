@@ -1,5 +1,6 @@
 #include "freeturn/job/surface_yaml.hpp"
 
+#include <algorithm>
 #include <array>
 #include <cmath>
 #include <numbers>
@@ -280,6 +281,18 @@ std::unique_ptr<Surface> read_placement(MapReader& map, std::unique_ptr<Surface>
                  ay = t.number("y", 0.0) * std::numbers::pi / 180;
     t.finish();
     rotation = TransformedSurface::rotation_from_tilts(ax, ay);
+    // The parent's +z is the side its material faces the tool from: turned 90° or more
+    // from the spindle axis, the part would face away (at 90° no height is defined; at
+    // 180° the bowls of a mold became domes over material the tool cannot reach, and the
+    // job passed).
+    if (!(rotation(2, 2) > 1e-9))
+      map.fail(
+          "tilt_deg",
+          "the tilt (" + significant_text(ax * 180 / std::numbers::pi, 6) + "° about x, then " +
+              significant_text(ay * 180 / std::numbers::pi, 6) + "° about y) turns the surface " +
+              significant_text(
+                  std::acos(std::clamp(rotation(2, 2), -1.0, 1.0)) * 180 / std::numbers::pi, 6) +
+              "° from the spindle axis: 90° or more, its material would face away from the tool");
   }
   return std::make_unique<TransformedSurface>(std::move(surface), dx, dy, rotation);
 }
