@@ -121,7 +121,7 @@ refused "a 300-character name" "$job" "$job:1:7:" "at most 100"
 job=$(variant waviness 's/^  clearance_angle_deg: 10/&\n  waviness: [[0, 0.6]]/')
 refused "a waviness larger than the nose" "$job" "$job:10:18:" "smaller than a tenth of the nose radius"
 job=$(variant flipped 's/^  radius: 50.0/&\n  tilt_deg: {x: 120}/')
-refused "a tilt that turns the part away from the tool" "$job" "$job:8:" "turns the surface 120° from the spindle axis"
+refused "a tilt that turns the part away from the tool" "$job" "$job:7:13:" "turns the surface 120° from the spindle axis"
 # On a creased design (a cone's vertex) the chord band must hold the waviness's span.
 job=$(variant wavy_cone 's/^  type: sphere/  type: odd_asphere\n  coefficients: [0.01]/; s/^  clearance_angle_deg: 10/&\n  waviness: [[-30, 0.0005], [30, -0.0005]]/')
 refused "a waviness spanning the chord tolerance on a creased design" "$job" "$job:11:13:" "tool.waviness varies by 1000 nm" "give a chord tolerance above 1111 nm"
