@@ -17,6 +17,7 @@
 #include "freeturn/surface/lenslet_array.hpp"
 #include "freeturn/surface/odd_asphere.hpp"
 #include "freeturn/surface/transformed_surface.hpp"
+#include "path/fixtures.hpp"
 
 using namespace freeturn;
 
@@ -180,15 +181,8 @@ TEST_SUITE("surface") {
     // 0.1 µm × its bend (under 1/4 mm), 2.5e-5, between samples on one flank, and by the
     // rim's jump (about 0.11 along its normal) times the cosine of the crossing's angle
     // across a rim.
-    LensletArrayOptions o;
-    o.base_curvature = 1 / 20.0;
-    o.lens_radius = -5.0;
-    o.lens_diameter = 0.9;
-    o.pitch = 1.0;
-    o.pattern = LensletArrayOptions::Pattern::kRings;
-    o.extent = 4.4;
-    const TransformedSurface moved(std::make_unique<LensletArray>(o), 0.3, 0.2,
-                                   Eigen::Matrix3d::Identity());
+    const TransformedSurface moved(std::make_unique<LensletArray>(test::compound_eye_options(4.4)),
+                                   0.3, 0.2, Eigen::Matrix3d::Identity());
     std::mt19937 rng(3);
     std::uniform_real_distribution<double> angle(0, 2 * std::numbers::pi);
     long crossings = 0;

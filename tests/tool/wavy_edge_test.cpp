@@ -16,6 +16,7 @@
 #include "freeturn/surface/even_asphere.hpp"
 #include "freeturn/surface/lenslet_array.hpp"
 #include "freeturn/tool/compensation.hpp"
+#include "path/fixtures.hpp"
 
 using namespace freeturn;
 
@@ -99,14 +100,7 @@ TEST_SUITE("tool") {
     // The demo's lenslets (R_b 20 mm, lenslets −5 mm, 0.9 mm across at a 1 mm pitch) to
     // r = 1.6 mm, a 0.2 mm nose whose waviness spans 0.18 µm (0.9 ε), ε = 0.2 µm. The
     // nose is held at every rim, touching the far flank about 6° from its own touch.
-    LensletArrayOptions lo;
-    lo.base_curvature = 1 / 20.0;
-    lo.lens_radius = -5.0;
-    lo.lens_diameter = 0.9;
-    lo.pitch = 1.0;
-    lo.pattern = LensletArrayOptions::Pattern::kRings;
-    lo.extent = 1.6;
-    const LensletArray eye(lo);
+    const LensletArray eye(test::compound_eye_options(1.6));
     CompensationOptions c;
     c.tool = wavy_tool(90, 1.8);
     SpiralOptions o;
