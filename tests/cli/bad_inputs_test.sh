@@ -91,6 +91,13 @@ done
 refused "aliases of aliases" "$tmp/aliases.yaml" "$tmp/aliases.yaml:19:" "aliases ('*name')"
 printf 'name: plate\0\n' > "$tmp/nul.yaml"
 refused "a NUL byte" "$tmp/nul.yaml" "$tmp/nul.yaml:1:12:" "control character"
+# A scalar carrying a terminal escape and a NUL (YAML's "\e" and "\0"): the message
+# quotes it with the bytes written as \xNN, so none reaches the terminal.
+job=$(variant escape_seq 's/type: sphere/type: "sph\\e[2J\\0ere"/')
+refused "a terminal escape in a scalar" "$job" "$job:5:9:" "'sph\x1b[2J\x00ere'"
+if LC_ALL=C grep -q '[[:cntrl:]]' <(tr -d '\n' < "$tmp/err"); then
+  echo "FAIL: a terminal escape in a scalar: a control byte reached stderr"; fail=1
+fi
 mkdir -p "$tmp/dir.yaml"
 refused "a directory as the job" "$tmp/dir.yaml" "$tmp/dir.yaml:" "is a directory"
 refused "a device as the job" /dev/zero "/dev/zero:" "not a regular file"

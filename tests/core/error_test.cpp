@@ -23,6 +23,18 @@ TEST_SUITE("core") {
           "theta=1.5 rad, r=2 mm: missed");
   }
 
+  TEST_CASE("InputError escapes control bytes quoted from a file") {
+    // A NUL, an escape sequence and a carriage return from a scalar, written byte by byte.
+    const std::string scalar{'a', '\0', '\x1b', '[', '3', '1', 'm', '\r', 'b', '\x7f'};
+    const InputError e("job\n.yaml:1:7", "unknown type '" + scalar + "'\n(second line)");
+    CHECK(e.where() == "job\\x0a.yaml:1:7");
+    CHECK(e.problem() == "unknown type 'a\\x00\\x1b[31m\\x0db\\x7f'\n(second line)");
+    CHECK(freeturn::escape_control_bytes("a\tb\n") == "a\\x09b\\x0a");
+    CHECK(freeturn::escape_control_bytes("a\tb\n", true) == "a\\x09b\n");
+    // Escaping twice changes nothing: a message re-thrown with more text stays readable.
+    CHECK(InputError(e.where(), e.problem()).problem() == e.problem());
+  }
+
   TEST_CASE("Status names") {
     CHECK(std::string(freeturn::to_string(freeturn::Status::kNotConverged)) == "not converged");
     CHECK(std::string(freeturn::to_string(freeturn::Status::kMissed)) == "missed");

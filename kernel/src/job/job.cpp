@@ -74,7 +74,7 @@ Job load_job(const std::string& path, std::uintmax_t max_bytes) {
     map.fail("name", "the job name has " + std::to_string(job.name.size()) +
                          " characters; it names files, so at most 100");
   if (!is_file_name_safe(job.name))
-    map.fail("name", "job name '" + job.name +
+    map.fail("name", "job name '" + escape_control_bytes(job.name) +
                          "' must use only letters, digits, '-', '_' and '.' (it names files)");
   job.aperture = read_aperture(map.child("aperture"), path);
   job.surface = surface_from_yaml(map.child("surface"), path, job.aperture.outer_radius);

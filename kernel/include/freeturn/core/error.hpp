@@ -5,6 +5,7 @@
 
 #include <stdexcept>
 #include <string>
+#include <string_view>
 
 namespace freeturn {
 
@@ -18,6 +19,14 @@ struct SourceLocation {
   std::string to_string() const;
 };
 
+// `text` with every control byte (below 0x20, and DEL) written as \xNN, so that a value
+// quoted from the user's file (a name, a key, a scalar) cannot put a NUL, a carriage
+// return or a terminal escape into a message. `keep_newlines` leaves '\n' alone, for
+// messages that are laid out on several lines.
+std::string escape_control_bytes(std::string_view text, bool keep_newlines = false);
+
+// Its `where` and `what` are kept as given, control bytes escaped (see above; the
+// message's own line breaks stay).
 class InputError : public std::runtime_error {
  public:
   // `where` is free text naming the place ("job.yaml:3:7", "theta=12.5 rad, r=3.2 mm",
@@ -39,6 +48,9 @@ class InputError : public std::runtime_error {
   const std::string& cause() const { return cause_; }
 
  private:
+  // Both already escaped.
+  InputError(std::string where, std::string what, int);
+
   std::string where_;
   std::string problem_;
   std::string cause_;
