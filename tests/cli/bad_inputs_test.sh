@@ -288,7 +288,9 @@ refused "a B-spline smoothing that swamps the measurement" "$tmp/heavy.yaml" "$t
 # SIGTERM and SIGINT mid-run remove the temporaries, as an error does. (Job control on:
 # without it a background job ignores SIGINT, and freeturn leaves an ignored signal so.)
 set -m
-slow=$(variant slow 's/chord: {tolerance: 0.001, max_angle_deg: 5}/equal_arc: {length: 0.00002}/')
+# A run that writes from its first second and goes on for many: 14 M chord points (equal
+# angles and arcs first plan an estimate of their stand-off, writing nothing meanwhile).
+slow=$(variant slow 's/chord: {tolerance: 0.001, max_angle_deg: 5}/chord: {tolerance: 0.001, max_angle_deg: 0.001}/')
 for signal in TERM INT; do
   rm -rf "$tmp/out"
   "$freeturn" run "$slow" -o "$tmp/out" --quiet 2> /dev/null &

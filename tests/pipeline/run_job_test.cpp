@@ -2,11 +2,14 @@
 
 #include <algorithm>
 #include <cmath>
-#include <iterator>
 #include <cstdlib>
 #include <filesystem>
+#include <iterator>
+#include <numbers>
 #include <string>
 #include <vector>
+
+#include <Eigen/Core>
 
 #include "freeturn/core/error.hpp"
 #include "freeturn/io/nc_program.hpp"
@@ -22,7 +25,8 @@ namespace {
 // A concave sphere (R 50 mm) over 2 mm on the LinuxCNC X-Z-C lathe: 40 turns at 0.05 mm.
 std::string sphere_job(const std::string& checks) {
   return "name: plate\naperture: {outer_radius: 2.0}\nsurface: {type: sphere, radius: 50.0}\n"
-         "tool:\n  nose_radius: 0.5\n" + checks +
+         "tool:\n  nose_radius: 0.5\n" +
+         checks +
          "strategy:\n  mode: spiral\n  spiral: planar\n  pitch: 0.05\n"
          "  points: {chord: {tolerance: 0.001, max_angle_deg: 5}}\n"
          "cutting: {spindle_rpm: 20}\nmachine: iso-lathe-xzc\n";
@@ -85,11 +89,12 @@ TEST_SUITE("pipeline") {
     const PluginPaths paths;
     test::TempDir dir;
     // A 0.5 mm nose in a 0.3 mm concave sphere's section cannot follow it.
-    const std::string tight = "name: cup\naperture: {outer_radius: 0.1}\nsurface: {type: sphere, radius: 0.3}\n"
-                              "tool:\n  nose_radius: 0.5\nCHECKS"
-                              "strategy:\n  mode: spiral\n  spiral: planar\n  pitch: 0.01\n"
-                              "  points: {chord: {tolerance: 0.001, max_angle_deg: 5}}\n"
-                              "cutting: {spindle_rpm: 20}\nmachine: iso-lathe-xzc\n";
+    const std::string tight =
+        "name: cup\naperture: {outer_radius: 0.1}\nsurface: {type: sphere, radius: 0.3}\n"
+        "tool:\n  nose_radius: 0.5\nCHECKS"
+        "strategy:\n  mode: spiral\n  spiral: planar\n  pitch: 0.01\n"
+        "  points: {chord: {tolerance: 0.001, max_angle_deg: 5}}\n"
+        "cutting: {spindle_rpm: 20}\nmachine: iso-lathe-xzc\n";
     const auto job_with = [&](const std::string& name, const std::string& checks) {
       std::string text = tight;
       text.replace(text.find("CHECKS"), 6, checks);
@@ -98,8 +103,9 @@ TEST_SUITE("pipeline") {
     CHECK(check_job(load_job(dir.write("plate.yaml", sphere_job("")))).safe());
     CHECK_THROWS_AS(check_job(job_with("stop.yaml", "")), CheckFailure);
     Recorder observer;
-    const RunReport r = check_job(
-        job_with("warn.yaml", "  checks: {gouge: warning, global_gouge: warning}\n"), {}, &observer);
+    const RunReport r =
+        check_job(job_with("warn.yaml", "  checks: {gouge: warning, global_gouge: warning}\n"), {},
+                  &observer);
     REQUIRE_FALSE(r.safe());
     CHECK(r.unsafe_reasons().front().find("gouge") != std::string::npos);
     // The same finding as a record: its kind, where, by how much, against what.
@@ -147,6 +153,92 @@ TEST_SUITE("pipeline") {
       CHECK(std::filesystem::path(b.files[i]).filename() == name);
       CHECK_MESSAGE(test::read_file(a.files[i]) == test::read_file(b.files[i]), name);
     }
+  }
+
+  TEST_CASE("equal-angle blocks stand off the design: the motion between them stays above it") {
+    // A convex sphere (R −5 mm) decentred 0.5 mm in x, 64 blocks a revolution on the X-Z-C
+    // lathe: Z swings with θ, and linear X, C, Z between blocks sags below the nose's path
+    // by about Z''(θ)Δθ²/8, some 0.2 µm, all of it into the dome where the blocks sat on it.
+    const PluginPaths paths;
+    test::TempDir dir;
+    const std::string text =
+        "name: dome\naperture: {outer_radius: 2.0}\n"
+        "surface: {type: sphere, radius: -5.0, decenter: {x: 0.5}}\n"
+        "tool: {nose_radius: 0.5, included_angle_deg: 100, clearance_angle_deg: 10}\n"
+        "strategy:\n  mode: spiral\n  spiral: planar\n  pitch: 0.05\n"
+        "  points: {equal_angle: {per_rev: 64}}\n"
+        "cutting: {spindle_rpm: 20}\nmachine: iso-lathe-xzc\n";
+    RunOptions options;
+    options.output_dir = dir.file("out");
+    const RunResult r = run_job(load_job(dir.write("dome.yaml", text)), options);
+    CHECK(r.safe());
+    const double stand_off = r.report.parameters.stand_off;
+    CHECK(stand_off > 50e-6);  // the dip it covers is a sizeable fraction of a micrometre
+    CHECK(stand_off < 1e-3);
+    // The dome in the part's frame: the parent's centre (0, 0, −5) moved by −(0.5, 0) and
+    // down by the parent's sag at (0.5, 0). The nose's edge is the arc of radius 0.5 about
+    // the programmed centre (X cos C, X sin C, Z) in the radial plane, ±50° about −z; its
+    // height over the dome is |E − c| − 5, found by sampling the arc and refining by golden
+    // sections (the distance is smooth and single-troughed over the arc).
+    const Eigen::Vector3d centre(-0.5, 0.0, -5.0 - (-5.0 + std::sqrt(25.0 - 0.25)));
+    const auto clearance = [&](double x, double c_deg, double z) {
+      const double c = c_deg * std::numbers::pi / 180;
+      const Eigen::Vector3d p(x * std::cos(c), x * std::sin(c), z),
+          radial(std::cos(c), std::sin(c), 0);
+      const auto height = [&](double phi) {
+        const Eigen::Vector3d e =
+            p - 0.5 * (std::sin(phi) * radial + std::cos(phi) * Eigen::Vector3d::UnitZ());
+        return (e - centre).norm() - 5.0;
+      };
+      const double half = 50 * std::numbers::pi / 180;
+      double best = -half;
+      for (int k = 0; k <= 200; ++k) {
+        const double phi = -half + 2 * half * k / 200;
+        if (height(phi) < height(best)) best = phi;
+      }
+      double a = std::max(-half, best - 2 * half / 200), b = std::min(half, best + 2 * half / 200);
+      for (int it = 0; it < 60; ++it) {
+        const double m1 = a + 0.382 * (b - a), m2 = a + 0.618 * (b - a);
+        (height(m1) < height(m2) ? b : a) = height(m1) < height(m2) ? m2 : m1;
+      }
+      return height(0.5 * (a + b));
+    };
+    double x = 0, c = 0, z = 0, lowest = 1e300, lowest_block = 1e300;
+    bool moving = false;
+    long segments = 0;
+    const std::string nc = dir.file("out/dome.iso-lathe-xzc.nc");
+    for (const NcBlock& b : parse_nc(test::read_file(nc), nc)) {
+      double nx = x, nc_deg = c, nz = z;
+      bool g1 = false, g93 = false;
+      for (const NcWord& w : b.words) {
+        if (!w.numeric) continue;
+        if (w.letter == 'G' && w.value == 1) g1 = true;
+        if (w.letter == 'G' && w.value == 93) g93 = true;
+        if (w.letter == 'X') nx = w.value;
+        if (w.letter == 'C') nc_deg = w.value;
+        if (w.letter == 'Z') nz = w.value;
+      }
+      if (g93) moving = true;  // the cut: the approach and plunge come before it
+      if (moving && g1) {
+        for (int k = 1; k <= 16; ++k) {
+          const double t = k / 16.0;
+          lowest =
+              std::min(lowest, clearance(x + t * (nx - x), c + t * (nc_deg - c), z + t * (nz - z)));
+        }
+        lowest_block = std::min(lowest_block, clearance(nx, nc_deg, nz));
+        ++segments;
+      }
+      x = nx, c = nc_deg, z = nz;
+    }
+    CHECK(segments == r.report.passes.back().points - 1);
+    // Every block stands off by the stand-off the report gives, along the radial section's
+    // normal: as a distance in space that is shorter by the cosine of the dome's slope
+    // across the section (below 0.1 here, under 1 %), give or take the words' rounding
+    // (1.2 nm).
+    CHECK(lowest_block <= stand_off + 1.5e-6);
+    CHECK(lowest_block >= 0.99 * stand_off - 1.5e-6);
+    CHECK(lowest >= 0);
+    CHECK(lowest < stand_off);  // the chords do sag: the stand-off is what holds them up
   }
 
   TEST_CASE("an error is an exception with the place of the setting that causes it") {

@@ -10,6 +10,7 @@
 #include <fstream>
 #include <memory>
 #include <numbers>
+#include <span>
 #include <sstream>
 #include <string>
 #include <vector>
@@ -238,11 +239,10 @@ bool scheduling(const Job& job, const MachineDescription& machine) {
 
 // The highest the programmed point rises over the job's aperture (kernel Z, mm): the base
 // of the height a post approaches and retracts at (tool/clearance.hpp).
-double kernel_ceiling(const Job& job, const CompensationOptions& compensation, const Surface& design) {
-  const JobPlan& plan = *job.plan;
+double kernel_ceiling(const Job& job, const CompensationOptions& compensation, const Surface& design,
+                      const CutterPointOptions& points) {
   return program_z_ceiling(design, job.aperture.inner_radius, job.aperture.outer_radius,
-                           compensation,
-                           stand_off_for(plan.strategy.points, tool_motion(compensation), design));
+                           compensation, stand_off_for(points, tool_motion(compensation), design));
 }
 
 double machine_z(const MachineDescription& machine, double z) {
@@ -308,17 +308,11 @@ void refuse_oversized_program(const Job& job, const MachineDescription& machine)
 // arcs, whose chords dip too). Past that the program as written could cut below the
 // design, whatever the planned one does: decimals: 0 had written X2 for X1.97998, a 20 µm
 // step, and passed.
-void refuse_coarse_axis_words(const Job& job, const MachineDescription& machine) {
-  const JobPlan& plan = *job.plan;
-  // The blocks' stand-off beyond what a wavy edge takes of it.
-  const ToolMotion tool = tool_motion(plan.tool);
-  const double stand_off =
-      stand_off_for(plan.strategy.points, tool, *job.surface) - wavy_edge_reach(tool, *job.surface);
-  const double allowed =
-      stand_off > 0 ? std::min(0.5 * stand_off, kChordDipAllowed) : 0.5 * kChordDipAllowed;
+// The most the words' rounding moves the nose's centre (mm), and the axis that moves it most.
+double words_rounding(const Job& job, const MachineDescription& machine,
+                      const AxisSpec** coarsest = nullptr) {
   constexpr double kRadian = std::numbers::pi / 180;
   double moved = 0, largest = -1;
-  const AxisSpec* coarsest = nullptr;
   for (const AxisSpec& a : machine.axes) {
     const double half_unit = 0.5 * std::pow(10.0, -a.decimals);
     const double reach = a.axis == Axis::kC   ? job.aperture.outer_radius * kRadian
@@ -326,8 +320,25 @@ void refuse_coarse_axis_words(const Job& job, const MachineDescription& machine)
                                               : 1.0;
     const double shift = half_unit * reach;  // mm
     moved += shift;
-    if (shift > largest) largest = shift, coarsest = &a;
+    if (shift > largest) {
+      largest = shift;
+      if (coarsest) *coarsest = &a;
+    }
   }
+  return moved;
+}
+
+void refuse_coarse_axis_words(const Job& job, const MachineDescription& machine) {
+  const JobPlan& plan = *job.plan;
+  // The blocks' stand-off beyond what a wavy edge takes of it (the chord rule's: the other
+  // rules' is measured later, and takes the rounding in).
+  const ToolMotion tool = tool_motion(plan.tool);
+  const double stand_off =
+      stand_off_for(plan.strategy.points, tool, *job.surface) - wavy_edge_reach(tool, *job.surface);
+  const double allowed =
+      stand_off > 0 ? std::min(0.5 * stand_off, kChordDipAllowed) : 0.5 * kChordDipAllowed;
+  const AxisSpec* coarsest = nullptr;
+  const double moved = words_rounding(job, machine, &coarsest);
   if (!(moved > allowed) || !coarsest) return;
   const std::string why =
       allowed < kChordDipAllowed && stand_off > 0
@@ -414,19 +425,93 @@ void report_base(RunReport& report, const BasePlanOptions& options, const BasePl
 // Each spiral pass's planned path as the constant-rpm probe made it (contact_tape.hpp),
 // with its summary: the probe records them, the run at the speed found replays the
 // complete ones instead of planning again.
+//
+// The stand-off of equal-angle and equal-arc blocks is carried here too: found before the
+// first run and kept for the ones after it (equal_rule_stand_off).
 struct PlannedPasses {
   std::vector<std::unique_ptr<ContactTape>> tapes;
   std::vector<PathSummary> summaries;
+  double equal_rule_stand_off = -1;  // mm; < 0 until estimated
+  int stand_off_raised = 0;          // times a run found it short and was run again
 };
+
+// The deepest the motion between blocks dips below the design over a planned path (mm).
+class DipGauge final : public ContactSink {
+ public:
+  void write(std::span<const ContactPoint> chunk) override {
+    for (const ContactPoint& p : chunk) deepest = std::max(deepest, p.dip_below_design());
+  }
+  double deepest = 0;
+};
+
+// A run whose equal-angle or equal-arc motion dipped below the design by `dip` (mm) past
+// the blocks' stand-off: run again, higher (execute_with_stand_off).
+struct StandOffShort {
+  double dip = 0;
+};
+
+// How much more than a measured dip the blocks stand off (equal_rule_stand_off).
+double stand_off_over(double dip) {
+  constexpr double kSampledMaximum = 1e-6;  // mm: the measured dip is a sampled maximum
+  return 1.25 * dip + kSampledMaximum;
+}
+
+// Equal-angle and equal-arc blocks are placed by their rule, so nothing keeps the chords
+// between them above the design: on a convex stretch they dip by about L²κ/8 (a chord of
+// length L), and by more where a nose rolls over a ridge or is held at a rim. The blocks
+// stand off the design by the deepest dip a plan with no stand-off finds, a quarter more,
+// a nanometre for the sampled maximum and the words' rounding: the chords then stay above
+// the design, within a band of about twice that. The estimate plans the spiral at a pitch
+// of up to a hundredth of the revolutions' number (at least 96 revolutions, the blocks'
+// angles and arcs as the run's): the run measures every one of its own segments, and one
+// that still dips below the design runs again with its dip added (StandOffShort).
+// Until December 2026 the blocks sat on the design, and the motion was let dip 10 nm below
+// it under a PASS (more was written and called UNSAFE: the demo's compound eye at 360
+// points a revolution, 102 nm). The chord rule needs none of this (stand_off_for), nor a
+// path with no nose.
+double equal_rule_stand_off(const Job& job, const PreparedJob& prepared, const Surface& design,
+                            const BasePlan& base, const CompensationOptions& compensation) {
+  const JobPlan& plan = *job.plan;
+  const ToolMotion tool = tool_motion(compensation);
+  if (plan.strategy.points.rule == CutterPointRule::kChordError || !(tool.nose_radius > 0))
+    return 0.0;
+  DipGauge gauge;
+  CutterPointOptions points = plan.strategy.points;
+  points.interpolation = prepared.machine.interpolation;
+  points.equal_rule_stand_off = 0;
+  if (plan.strategy.mode == Strategy::Mode::kSpiral) {
+    constexpr double kEstimateRevolutions = 96;
+    const double revolutions =
+        (job.aperture.outer_radius - job.aperture.inner_radius) / plan.strategy.pitch;
+    SpiralOptions o;
+    o.pitch = plan.strategy.pitch * std::max(1.0, std::floor(revolutions / kEstimateRevolutions));
+    o.outer_radius = job.aperture.outer_radius;
+    o.inner_radius = job.aperture.inner_radius;
+    o.centre_to_edge = plan.strategy.centre_to_edge;
+    o.tool = tool;
+    o.points = points;
+    o.threads = prepared.threads;
+    plan_spiral(design, base.base, o, gauge);
+  } else {
+    ProfileOptions o;
+    o.outer_radius = job.aperture.outer_radius;
+    o.inner_radius = job.aperture.inner_radius;
+    o.tool = tool;
+    o.points = points;
+    plan_profile(design, o, gauge);
+  }
+  return stand_off_over(gauge.deepest) + words_rounding(job, prepared.machine);
+}
 
 // simulation: when set, the finishing pass is also cut in simulation and its residual
 // written (grid CSV, coloured PLY) with its figures in the report.
 // files: null when nothing is written (check, and the constant-rpm probe).
-// planned: the probe's paths, recorded when `probe`, else replayed where complete.
+// planned: the probe's paths, recorded when `probe`, else replayed where complete; and the
+// equal-angle or equal-arc stand-off, estimated on the first run.
 RunResult execute_job(const Job& job, const PreparedJob& prepared, const std::string& out_dir,
                       RunObserver* observer, RunFiles* files,
-                      const SimulationOptions* simulation = nullptr, double spindle_rpm = 0,
-                      bool probe = false, PlannedPasses* planned = nullptr) {
+                      const SimulationOptions* simulation, double spindle_rpm, bool probe,
+                      PlannedPasses& planned) {
   const bool write = files != nullptr;
   const JobPlan& plan = *job.plan;
   const MachineDescription& machine = prepared.machine;
@@ -481,10 +566,20 @@ RunResult execute_job(const Job& job, const PreparedJob& prepared, const std::st
   report.spindle_rpm = motion.spindle_rpm;
   report.enforce_dynamics = plan.cutting.enforce_dynamics;
 
+  // Estimated once, and raised by the runs that find it short (execute_with_stand_off).
+  if (planned.equal_rule_stand_off < 0)
+    planned.equal_rule_stand_off = equal_rule_stand_off(job, prepared, design, base, compensation);
+  const double stand_off = planned.equal_rule_stand_off;
+  CutterPointOptions points = plan.strategy.points;
+  points.interpolation = machine.interpolation;
+  points.equal_rule_stand_off = stand_off;
+  report.parameters.stand_off = stand_off_for(points, tool_motion(compensation), design);
+
   std::vector<double> stock = plan.cutting.roughing_depths;
   // The clearance base the post approaches and retracts beyond: above every block of
   // every pass (a roughing pass's design is raised by its stock).
-  const double ceiling = write && plan.outputs.nc ? kernel_ceiling(job, compensation, design) : 0.0;
+  const double ceiling =
+      write && plan.outputs.nc ? kernel_ceiling(job, compensation, design, points) : 0.0;
   long long points_so_far = 0;
   stock.push_back(0.0);  // the finishing pass
   std::vector<std::unique_ptr<PostProgram>> programs;
@@ -546,17 +641,16 @@ RunResult execute_job(const Job& job, const PreparedJob& prepared, const std::st
       o.inner_radius = job.aperture.inner_radius;
       o.centre_to_edge = plan.strategy.centre_to_edge;
       o.tool = tool_motion(compensation);
-      o.points = plan.strategy.points;
-      o.points.interpolation = machine.interpolation;
+      o.points = points;
       o.threads = prepared.threads;
-      if (planned && probe) {
-        planned->tapes.push_back(std::make_unique<ContactTape>(prepared.max_replay_bytes));
-        RecordingSink recorder(compensator, *planned->tapes.back());
+      if (probe) {
+        planned.tapes.push_back(std::make_unique<ContactTape>(prepared.max_replay_bytes));
+        RecordingSink recorder(compensator, *planned.tapes.back());
         summary = plan_spiral(surface, base.base, o, recorder);
-        planned->summaries.push_back(summary);
-      } else if (planned && pass < planned->tapes.size() && planned->tapes[pass]->complete()) {
-        planned->tapes[pass]->replay(compensator);
-        summary = planned->summaries[pass];
+        planned.summaries.push_back(summary);
+      } else if (pass < planned.tapes.size() && planned.tapes[pass]->complete()) {
+        planned.tapes[pass]->replay(compensator);
+        summary = planned.summaries[pass];
       } else {
         summary = plan_spiral(surface, base.base, o, compensator);
       }
@@ -565,12 +659,15 @@ RunResult execute_job(const Job& job, const PreparedJob& prepared, const std::st
       o.outer_radius = job.aperture.outer_radius;
       o.inner_radius = job.aperture.inner_radius;
       o.tool = tool_motion(compensation);
-      o.points = plan.strategy.points;
-      o.points.interpolation = machine.interpolation;
+      o.points = points;
       summary = plan_profile(surface, o, compensator);
     }
     mapper.finish();
     if (scheduler) scheduler->finish();
+    // Equal-angle or equal-arc motion below the design past the estimated stand-off: run
+    // again before anything of this pass is reported (the third time, the verdict says so).
+    if (stand_off > 0 && figures.chord_below_max > 0 && planned.stand_off_raised < 2)
+      throw StandOffShort{figures.chord_below_max};
     if (observer) observer->pass_done(figures.name);
     figures.finish(summary, mapper.report(), compensator.report());
     if (scheduler) figures.take_schedule(scheduler->report());
@@ -626,6 +723,26 @@ RunResult run_with_places(const Job& job, const PreparedJob& prepared, const std
   }
 }
 
+// execute_job, run again with the blocks' stand-off raised while an equal-angle or
+// equal-arc run finds its motion below the design (StandOffShort). A run that throws has
+// written nothing (io/output_set.hpp); the tapes a probe recorded are planned again.
+RunResult execute_with_stand_off(const Job& job, const PreparedJob& prepared,
+                                 const std::string& out_dir, RunObserver* observer, RunFiles* files,
+                                 const SimulationOptions* simulation, double spindle_rpm, bool probe,
+                                 PlannedPasses& planned) {
+  for (;;) {
+    try {
+      return execute_job(job, prepared, out_dir, observer, files, simulation, spindle_rpm, probe,
+                         planned);
+    } catch (const StandOffShort& s) {
+      planned.equal_rule_stand_off += stand_off_over(s.dip);
+      ++planned.stand_off_raised;
+      planned.tapes.clear();
+      planned.summaries.clear();
+    }
+  }
+}
+
 RunResult run_job_at_requested_speed(const Job& job, const PreparedJob& prepared,
                                      const std::string& out_dir, RunObserver* observer,
                                      RunFiles* files, const SimulationOptions* simulation) {
@@ -634,17 +751,20 @@ RunResult run_job_at_requested_speed(const Job& job, const PreparedJob& prepared
   if (plan.strategy.mode == Strategy::Mode::kSpiral && plan.cutting.enforce_dynamics &&
       !scheduling(job, prepared.machine)) {
     PlannedPasses planned;
-    const RunResult probe =
-        execute_job(job, prepared, out_dir, nullptr, nullptr, nullptr, requested, true, &planned);
+    const RunResult probe = execute_with_stand_off(job, prepared, out_dir, nullptr, nullptr,
+                                                   nullptr, requested, true, planned);
     // The speed the probe found, less a billionth: the run at that speed computes each
     // block's limit again, and rounding can put it an ulp under the probe's, which its
     // check would then refuse.
     double rpm = requested;
     for (const PassFigures& f : probe.report.passes)
       if (f.dynamics.max_rpm < rpm) rpm = f.dynamics.max_rpm * (1 - 1e-9);
-    return execute_job(job, prepared, out_dir, observer, files, simulation, rpm, false, &planned);
+    return execute_with_stand_off(job, prepared, out_dir, observer, files, simulation, rpm, false,
+                                  planned);
   }
-  return execute_job(job, prepared, out_dir, observer, files, simulation);
+  PlannedPasses planned;
+  return execute_with_stand_off(job, prepared, out_dir, observer, files, simulation, 0, false,
+                                planned);
 }
 
 // The plugin reads its dialect settings when a program is created: check creates one in
@@ -665,7 +785,8 @@ void check_dialect_settings(const Job& job, const PreparedJob& prepared, bool ap
                              ? 0.0
                              : *std::max_element(job.plan->cutting.roughing_depths.begin(),
                                                  job.plan->cutting.roughing_depths.end());
-    const double top = machine_z(m, kernel_ceiling(job, compensation, *job.surface) + stock);
+    const double top = machine_z(m, kernel_ceiling(job, compensation, *job.surface,
+                                                    job.plan->strategy.points) + stock);
     PostProgram probe(*prepared.plugin, m,
                       ProgramSettings{job.name, job.plan->cutting.spindle_rpm, job.plan->cutting.feed,
                                       -1, -1, top, static_cast<int>(m.spec(Axis::kZ).sign)},

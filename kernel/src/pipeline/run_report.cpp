@@ -63,7 +63,7 @@ void PassFigures::add(const CutterLocation& cl) {
       static_cast<std::size_t>(std::max(0.0, cl.contact.theta / (2 * std::numbers::pi)));
   if (points_per_revolution.size() <= revolution) points_per_revolution.resize(revolution + 1, 0);
   ++points_per_revolution[revolution];
-  if (cl.contact.chord_below) chord_below_max = std::max(chord_below_max, cl.contact.chord_error);
+  chord_below_max = std::max(chord_below_max, cl.contact.dip_below_design());
   if (cl.contact.uncut_residual > 0) {
     ++held_points;
     if (cl.contact.uncut_residual > uncut_max) {

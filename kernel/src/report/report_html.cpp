@@ -287,7 +287,8 @@ std::string report_html(const RunReport& r, const Surface& design) {
   h += row("aperture", readable(p.inner_radius, 3) + " – " + readable(p.outer_radius, 3) + " mm radius");
   if (spiral) h += row("pitch", readable(p.pitch * 1e3, 3) + " µm a revolution, " + html_escape(p.direction));
   h += row("cutter points", html_escape(p.points_rule) +
-                                (p.chord_tolerance > 0 ? ", chord tolerance " + nm(p.chord_tolerance) : ""));
+                                (p.chord_tolerance > 0 ? ", chord tolerance " + nm(p.chord_tolerance) : "") +
+                                (p.stand_off > 0 ? "; blocks stand off the design by " + nm(p.stand_off) : ""));
   h += row("tool", "nose radius " + readable(p.nose_radius, 4) + " mm, included angle " +
                        readable(p.included_angle_deg, 1) + "°, clearance " +
                        readable(p.clearance_angle_deg, 1) + "°");

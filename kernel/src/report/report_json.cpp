@@ -167,6 +167,7 @@ std::string report_json(const RunReport& r) {
   j["parameters"] = {{"strategy", p.strategy},
                      {"points", p.points_rule},
                      {"chord_tolerance_nm", p.chord_tolerance > 0 ? Json(p.chord_tolerance * 1e6) : Json(nullptr)},
+                     {"stand_off_nm", p.stand_off * 1e6},
                      {"direction", p.direction},
                      {"timing", p.timing},
                      {"pitch_mm", p.pitch},

@@ -34,6 +34,9 @@ struct ContactPoint {
   // half the chord tolerance under the chord rule (cutter_points.hpp, stand_off_for), so
   // that the interpolated motion never dips below the design. Compensation adds it to R.
   double stand_off = 0;
+  // How deep the motion of the segment that ends here cuts into the design (mm; 0 where it
+  // stays above): chord_error counts from the band's centre, stand_off above the design.
+  double dip_below_design() const { return chord_below ? chord_error - 2 * stand_off : 0.0; }
   // Pass spacing across adjacent turns along the surface (mm), the curvature of the
   // surface's radial section (1/mm, > 0 concave as seen from the tool), and the scallop
   // height they leave with the tool's nose radius (mm; 0 when no nose radius was given).

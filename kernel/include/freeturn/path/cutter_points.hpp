@@ -33,6 +33,10 @@ struct CutterPointOptions {
   // step in profile mode.
   double max_angle_step = 5 * std::numbers::pi / 180;
   double max_radial_step = 0.5;  // mm
+  // kEqualAngle and kEqualArcLength with a nose: how far every block stands off the design
+  // (mm), so that the chords between blocks the rule placed stay above it (stand_off_for).
+  // The rule does not know it; a first plan measures it (pipeline/run_pipeline.cpp).
+  double equal_rule_stand_off = 0;
 };
 
 // The point the machine's axes carry, for measuring the chord error on the motion the
@@ -55,8 +59,11 @@ struct ToolMotion {
 // blocks placed on the design would let the tool cut into it between them. Under the
 // chord rule every block stands off the design by ε/2 along the section normal and each
 // segment may bend ε/2 either way from there: the motion stays within [0, ε] above the
-// design, never below it. Other rules place blocks on the design (stand-off 0) and report
-// what their segments do. Without a nose (R = 0: the contact path itself, as paper 001
+// design, never below it. The other rules place blocks where they place them, and their
+// chords dip below the design wherever it is convex to the chord (by L²κ/8 for a chord of
+// length L, 16 nm for the demo's lenslets at 1000 points a revolution): their blocks stand
+// off by the deepest dip a first plan measured, with the words' rounding
+// (CutterPointOptions::equal_rule_stand_off), and the band is [0, 2·stand-off]. Without a nose (R = 0: the contact path itself, as paper 001
 // distributes it) the band stays two-sided, ±ε about the design.
 //
 // A wavy edge is compensated at each block's own contact angle ψ (R + δ(ψ)), so the edge
@@ -78,7 +85,8 @@ inline double wavy_edge_reach(const ToolMotion& tool, const Surface& design) {
 }
 inline double stand_off_for(const CutterPointOptions& o, const ToolMotion& tool,
                             const Surface& design) {
-  if (o.rule != CutterPointRule::kChordError || !(tool.nose_radius > 0)) return 0.0;
+  if (!(tool.nose_radius > 0)) return 0.0;
+  if (o.rule != CutterPointRule::kChordError) return o.equal_rule_stand_off;
   return 0.5 * (o.tolerance + wavy_edge_reach(tool, design));
 }
 

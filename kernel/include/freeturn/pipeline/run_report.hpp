@@ -139,6 +139,9 @@ struct JobParameters {
   std::string strategy, points_rule, direction, timing;
   double pitch = 0, inner_radius = 0, outer_radius = 0;                   // mm
   double chord_tolerance = 0;                                              // mm; 0: not the chord rule
+  // How far the blocks stand off the design (mm): half the chord band under the chord rule,
+  // the measured dip's under the others (path/cutter_points.hpp, stand_off_for).
+  double stand_off = 0;
   double nose_radius = 0, included_angle_deg = 0, clearance_angle_deg = 0;  // mm, °
   double feed = 0;                                                         // mm/min
   std::vector<double> roughing_depths;                                     // mm
