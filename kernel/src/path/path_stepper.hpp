@@ -1302,8 +1302,11 @@ void distribute(Path& path, const CutterPointOptions& o, Emit&& emit, double beg
       path.at(end, trial);
       // A sliver is short along τ, not always along the axes: where the centre jumps in
       // it (nothing rolled it over a ridge), the joined segment misses the tolerance, and
-      // is counted as the jump it is.
-      if (measure(trial, kFull) > target) jump = true;
+      // is counted as the jump it is. The other rules have no tolerance to miss (`target`
+      // is the chord rule's): a profile's last equal arc, joined, read its dip as a jump
+      // once its blocks stood off the design.
+      const double joined = measure(trial, kFull);
+      if (o.rule == CutterPointRule::kChordError && joined > target) jump = true;
     }
     path.commit(trial);
     // A nose held still at a crease over the whole step (a profile's trough narrower than

@@ -320,8 +320,9 @@ void judge(RunReport& r) {
                        ? std::string(" where the nose centre jumps across a crease the planner "
                                      "does not roll over or hold at (a creased surface decentred "
                                      "or tilted is not searched for its creases)")
-                       : std::string(" (equal-angle or equal-arc points sit on the design and "
-                                     "their chords dip below it; use points: chord)"));
+                       : std::string(" (equal-angle or equal-arc blocks stand off the design by "
+                                     "the dip measured before, and two runs raised it short of "
+                                     "this one; use points: chord)"));
       w.value = f.chord_below_max * 1e6;
       w.limit = kChordDipAllowed * 1e6;
       w.unit = "nm";

@@ -20,7 +20,9 @@
 namespace freeturn {
 
 // How deep the motion between blocks may dip below the design before the verdict is
-// UNSAFE (mm): equal-angle and equal-arc blocks sit on the design and their chords dip.
+// UNSAFE (mm): what the words' rounding may take where the blocks stand off by little, and a
+// simulated cut's grid may miss. Every rule's blocks stand off the design (docs/tool.md):
+// what dips deeper is a jump the planner could not hold.
 inline constexpr double kChordDipAllowed = 1e-5;
 
 // One thing a run found, for a person (`message`) and for a program (the rest): what, how
