@@ -241,6 +241,54 @@ TEST_SUITE("pipeline") {
     CHECK(lowest < stand_off);  // the chords do sag: the stand-off is what holds them up
   }
 
+  TEST_CASE("a profile's equal arcs stand off a dome, its last one joined without a jump") {
+    // A convex sphere (R −8 mm) turned in profile on the X-Z lathe at 0.2 mm arcs: each
+    // chord of the nose centre's circle (R 8.5 mm) sags L²/(8·8.5) ≈ 0.59 µm below it. The
+    // last arc, a sliver joined to the one before, had been read as a jump against the
+    // chord rule's tolerance once the blocks stood off.
+    const PluginPaths paths;
+    test::TempDir dir;
+    const std::string text =
+        "name: dome\naperture: {outer_radius: 5.0}\nsurface: {type: sphere, radius: -8.0}\n"
+        "tool: {nose_radius: 0.5, included_angle_deg: 120, clearance_angle_deg: 10}\n"
+        "strategy:\n  mode: profile\n  points: {equal_arc: {length: 0.2}}\n"
+        "cutting: {feed: 5}\nmachine: iso-lathe-xz\n";
+    RunOptions options;
+    options.output_dir = dir.file("out");
+    const RunResult r = run_job(load_job(dir.write("dome.yaml", text)), options);
+    CHECK(r.safe());
+    CHECK(r.report.warnings.empty());
+    // The edge's arc (±60° about −z) over the dome, centre (0, −8), along every segment.
+    double x = 0, z = 0, lowest = 1e300;
+    bool cutting = false;
+    const std::string nc = dir.file("out/dome.iso-lathe-xz.nc");
+    for (const NcBlock& b : parse_nc(test::read_file(nc), nc)) {
+      double nx = x, nz = z;
+      bool g1 = false, feed = false;
+      for (const NcWord& w : b.words) {
+        if (!w.numeric) continue;
+        if (w.letter == 'G' && w.value == 1) g1 = true;
+        if (w.letter == 'F') feed = true;
+        if (w.letter == 'X') nx = w.value;
+        if (w.letter == 'Z') nz = w.value;
+      }
+      if (cutting && g1) {
+        for (int k = 1; k <= 64; ++k) {
+          const double t = k / 64.0, px = x + t * (nx - x), pz = z + t * (nz - z);
+          for (int j = -1000; j <= 1000; ++j) {
+            const double phi = j * (std::numbers::pi / 3) / 1000;
+            lowest = std::min(
+                lowest, std::hypot(px - 0.5 * std::sin(phi), pz - 0.5 * std::cos(phi) + 8.0) - 8.0);
+          }
+        }
+      }
+      if (feed && !g1) cutting = true;  // the feed's own block: the cut follows
+      x = nx, z = nz;
+    }
+    CHECK(lowest >= 0);
+    CHECK(lowest < r.report.parameters.stand_off);
+  }
+
   TEST_CASE("an error is an exception with the place of the setting that causes it") {
     const PluginPaths paths;
     test::TempDir dir;
