@@ -230,6 +230,35 @@ TEST_SUITE("metrology") {
     CHECK(r.fit_rms < 1.5e-6);
   }
 
+  TEST_CASE("points that cannot tell the Zernike terms apart are an error at their file") {
+    // On a ring every term is A cos mθ + B sin mθ, and the terms of one m differ only by
+    // their radial factor, a constant there: Z4 (defocus) and Z11 (spherical) are both
+    // constant on it, Z5 and Z13 both ∝ sin 2θ. A thousand copies of one point, or a line
+    // through the axis (every sin mθ term 0 on it), leave as little. The fit would follow
+    // any combination of them into the rest of the aperture (1000 copies of one point had
+    // tilted the corrected design 85°).
+    const auto design = compound_eye();
+    RegistrationOptions o;
+    o.normalization_radius = o.outer_radius = 4.0;
+    o.zernike_terms = 15;
+    Measurement ring, copies, line;
+    for (int i = 0; i < 1000; ++i) {
+      const double t = 2 * std::numbers::pi * i / 1000;
+      ring.points.emplace_back(3 * std::cos(t), 3 * std::sin(t), 0.0);
+      copies.points.emplace_back(0.5, 0.5, 0.0);
+      line.points.emplace_back(-3.9 + 7.8 * i / 999, 0.0, 0.0);
+    }
+    for (const Measurement* m : {&ring, &copies, &line})
+      CHECK_THROWS_WITH_AS(register_measurement(*design, *m, o, "m.xyz"),
+                           doctest::Contains("m.xyz: the 1000 valid points inside the aperture "
+                                             "cannot tell Zernike term"),
+                           InputError);
+    // The same ring with terms 4 … 8 (piston and tilt are the pose's): each of another
+    // angular order and side (m = 0, ±2, ±1), so the ring tells them apart.
+    o.zernike_terms = 8;
+    CHECK_NOTHROW(register_measurement(*design, ring, o, "m.xyz"));
+  }
+
   TEST_CASE("a measurement outside the aperture, or running away, is an error at its file") {
     const auto design = compound_eye();
     Measurement far;
