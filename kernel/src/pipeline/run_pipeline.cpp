@@ -461,10 +461,11 @@ double stand_off_over(double dip) {
 // length L), and by more where a nose rolls over a ridge or is held at a rim. The blocks
 // stand off the design by the deepest dip a plan with no stand-off finds, a quarter more,
 // a nanometre for the sampled maximum and the words' rounding: the chords then stay above
-// the design, within a band of about twice that. The estimate plans the spiral at a pitch
-// of up to a hundredth of the revolutions' number (at least 96 revolutions, the blocks'
-// angles and arcs as the run's): the run measures every one of its own segments, and one
-// that still dips below the design runs again with its dip added (StandOffShort).
+// the design, within a band of about twice that. The estimate plans the spiral at
+// ⌊revolutions/96⌋ times the job's pitch, so 96 to 191 revolutions (all of them when there
+// are fewer), the blocks' angles and arcs as the run's: the run measures every one of its
+// own segments, and one that still dips below the design runs again with its dip added
+// (StandOffShort).
 // Until December 2026 the blocks sat on the design, and the motion was let dip 10 nm below
 // it under a PASS (more was written and called UNSAFE: the demo's compound eye at 360
 // points a revolution, 102 nm). The chord rule needs none of this (stand_off_for), nor a
