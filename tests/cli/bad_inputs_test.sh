@@ -131,7 +131,13 @@ job=$(variant flipped 's/^  radius: 50.0/&\n  tilt_deg: {x: 120}/')
 refused "a tilt that turns the part away from the tool" "$job" "$job:7:13:" "turns the surface 120° from the spindle axis"
 # On a creased design (a cone's vertex) the chord band must hold the waviness's span.
 job=$(variant wavy_cone 's/^  type: sphere/  type: odd_asphere\n  coefficients: [0.01]/; s/^  clearance_angle_deg: 10/&\n  waviness: [[-30, 0.0005], [30, -0.0005]]/')
-refused "a waviness spanning the chord tolerance on a creased design" "$job" "$job:11:13:" "tool.waviness varies by 1000 nm" "give a chord tolerance above 1111 nm"
+refused "a waviness spanning the chord tolerance on a creased design" "$job" "$job:11:13:" "tool.waviness lets the edge reach 1000 nm past the round nose" "give a chord tolerance above 1111 nm"
+# A smooth bowl the 0.5 mm nose nearly fits (R 0.5002 mm): the nose clears it only by
+# R(1 − κR)Δφ²/2 away from its touch, less than the edge's waviness rises there, so the
+# edge reaches its whole span (250 nm over ±30°) past the round nose. It had passed, and
+# such a job cut 53 nm into its bowl (NC-only check).
+job=$(variant nearfit 's/outer_radius: 2.0/outer_radius: 0.2/; s/radius: 50.0/radius: 0.5002/; s/tolerance: 0.001,/tolerance: 0.0002,/; s/^  clearance_angle_deg: 10/&\n  waviness: [[-60, -0.0003], [0, 0.0002], [60, -0.0003]]/')
+refused "a waviness a nearly fitting nose carries past the chord band" "$job" "$job:10:13:" "lets the edge reach 250 nm past the round nose" "give a chord tolerance above 277.8 nm"
 
 # Errors found after reading, at the key that causes them.
 job=$(variant xz "s|^machine: .*|machine: iso-lathe-xz|")

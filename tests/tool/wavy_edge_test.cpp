@@ -15,6 +15,7 @@
 #include "freeturn/path/spiral.hpp"
 #include "freeturn/surface/even_asphere.hpp"
 #include "freeturn/surface/lenslet_array.hpp"
+#include "freeturn/surface/transformed_surface.hpp"
 #include "freeturn/tool/compensation.hpp"
 #include "path/fixtures.hpp"
 
@@ -93,6 +94,52 @@ TEST_SUITE("tool") {
           doctest::Approx(1.5e-4).epsilon(1e-12));
     CHECK(stand_off_for(chord, tool_motion(c), EvenAsphere(1 / 200.0, -1)) ==
           doctest::Approx(1e-4).epsilon(1e-12));
+  }
+
+  TEST_CASE("a wavy edge's steepest slope over the edge, in closed form") {
+    // The table's segments: 60 nm over 45°, 40 nm over 20°, 70 nm over 25°.
+    const double rad = 1 / kDegree;
+    CHECK(wavy_tool(90).waviness_slope() == doctest::Approx(7e-5 / 25 * rad).epsilon(1e-12));
+    // Over ±10° only the two segments about 0° overlap the edge: 40 nm over 20°.
+    CHECK(wavy_tool(20).waviness_slope() == doctest::Approx(4e-5 / 20 * rad).epsilon(1e-12));
+    CHECK(ToolGeometry{}.waviness_slope() == 0);
+  }
+
+  TEST_CASE("on a smooth design the edge reaches L²/(2R(1 − κR)) past the round nose") {
+    // A circle of radius R inside a section circle of radius ρ = 1/κ, touching it: the nose
+    // at Δφ from the touch clears the section by R(1 − κR)Δφ²/2, the edge rises by at most
+    // L|Δφ|, so it reaches past by at most L²/(2R(1 − κR)) (and never more than the span).
+    CompensationOptions c;
+    c.tool = wavy_tool(90);
+    ToolMotion tool = tool_motion(c);
+    const double L = tool.waviness_slope, R = 0.2;
+    // A plane, and a convex dome: κ ≤ 0 leaves at least the room of a plane.
+    CHECK(smooth_wavy_edge_reach(tool, EvenAsphere(0, 0), 0, 2) ==
+          doctest::Approx(L * L / (2 * R)).epsilon(1e-12));
+    CHECK(smooth_wavy_edge_reach(tool, EvenAsphere(-1 / 5.0, 0), 0, 2) ==
+          doctest::Approx(L * L / (2 * R)).epsilon(1e-12));
+    // A centred bowl of radius 0.201: every radial section is a great circle, κ = 1/0.201.
+    const double room = R * (1 - R / 0.201);
+    CHECK(smooth_wavy_edge_reach(tool, EvenAsphere(1 / 0.201, 0), 0, 0.1) ==
+          doctest::Approx(L * L / (2 * room)).epsilon(1e-9));
+    // Decentred by d = 0.005: the radial plane at θ passes d|sin θ| from the centre, and
+    // cuts a circle of radius √(ρ² − d² sin² θ): κ is largest at θ = 90°.
+    const TransformedSurface decentred(std::make_unique<EvenAsphere>(1 / 0.201, 0), 0.005, 0,
+                                       Eigen::Matrix3d::Identity());
+    const double tightest = R * (1 - R / std::sqrt(0.201 * 0.201 - 0.005 * 0.005));
+    const double reach = smooth_wavy_edge_reach(tool, decentred, 0, 0.1);
+    CHECK(reach >= L * L / (2 * tightest));
+    CHECK(reach <= 1.05 * L * L / (2 * tightest));  // the samples' margin, a few percent
+    // A nose that fits the bowl: the whole span.
+    CHECK(smooth_wavy_edge_reach(tool, EvenAsphere(1 / 0.2, 0), 0, 0.1) ==
+          doctest::Approx(tool.waviness_span).epsilon(1e-12));
+    // The chord band follows it: stand-off (ε + reach)/2.
+    CutterPointOptions chord;
+    chord.rule = CutterPointRule::kChordError;
+    chord.tolerance = 2e-4;
+    tool.smooth_waviness_reach = reach;
+    CHECK(stand_off_for(chord, tool, decentred) ==
+          doctest::Approx(0.5 * (2e-4 + reach)).epsilon(1e-12));
   }
 
   TEST_CASE(

@@ -273,20 +273,26 @@ std::optional<JobPlan> read_job_plan(MapReader& job, const Aperture& aperture,
   StepEstimate estimate;
   read_tool(job, plan, aperture);
   read_strategy(job, plan, aperture, estimate);
-  // On a creased design the chord rule keeps the round nose at least the waviness's span
-  // above it (stand_off_for): a span near the tolerance leaves the chords no band.
-  const double span = wavy_edge_reach(tool_motion(plan.tool), design);
+  // The chord rule keeps the round nose at least as far above the design as the wavy edge
+  // may reach past it (stand_off_for): the waviness's span on a creased design, less on a
+  // smooth one unless the nose nearly fits a concave section. A reach near the tolerance
+  // leaves the chords no band.
+  ToolMotion motion = tool_motion(plan.tool);
+  motion.smooth_waviness_reach =
+      smooth_wavy_edge_reach(motion, design, aperture.inner_radius, aperture.outer_radius);
+  const double span = wavy_edge_reach(motion, design);
   const CutterPointOptions& points = plan.strategy.points;
   if (points.rule == CutterPointRule::kChordError && plan.tool.tool.nose_radius > 0 &&
       !(span <= 0.9 * points.tolerance))
     throw InputError(location_of(job.node()["tool"]["waviness"], job.file()),
-                     "tool.waviness varies by " + significant_text(span * 1e6, 4) +
-                         " nm over the edge, more than 0.9 × the chord tolerance " +
+                     "tool.waviness lets the edge reach " + significant_text(span * 1e6, 4) +
+                         " nm past the round nose, more than 0.9 × the chord tolerance " +
                          significant_text(points.tolerance * 1e6, 4) +
                          " nm: compensated at each contact's angle, the edge at another angle "
-                         "(the far flank of a crease the nose is held at) reaches that far past "
-                         "the round nose, and the chords keep it above the design only within "
-                         "a band of ε minus the span; give a chord tolerance above " +
+                         "(the far flank of a crease the nose is held at, or the rest of a nose "
+                         "that nearly fits a concave section) reaches that far past the round "
+                         "nose, and the chords keep it above the design only within a band of "
+                         "ε minus that; give a chord tolerance above " +
                          significant_text(span / 0.9 * 1e6, 4) + " nm");
   read_cutting(job, plan);
   plan.machine = job.text("machine");

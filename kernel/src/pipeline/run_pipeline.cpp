@@ -239,10 +239,11 @@ bool scheduling(const Job& job, const MachineDescription& machine) {
 
 // The highest the programmed point rises over the job's aperture (kernel Z, mm): the base
 // of the height a post approaches and retracts at (tool/clearance.hpp).
-double kernel_ceiling(const Job& job, const CompensationOptions& compensation, const Surface& design,
-                      const CutterPointOptions& points) {
+double kernel_ceiling(const Job& job, const CompensationOptions& compensation,
+                      const Surface& design, const CutterPointOptions& points,
+                      const ToolMotion& tool) {
   return program_z_ceiling(design, job.aperture.inner_radius, job.aperture.outer_radius,
-                           compensation, stand_off_for(points, tool_motion(compensation), design));
+                           compensation, stand_off_for(points, tool, design));
 }
 
 double machine_z(const MachineDescription& machine, double z) {
@@ -471,9 +472,8 @@ double stand_off_over(double dip) {
 // points a revolution, 102 nm). The chord rule needs none of this (stand_off_for), nor a
 // path with no nose.
 double equal_rule_stand_off(const Job& job, const PreparedJob& prepared, const Surface& design,
-                            const BasePlan& base, const CompensationOptions& compensation) {
+                            const BasePlan& base, const ToolMotion& tool) {
   const JobPlan& plan = *job.plan;
-  const ToolMotion tool = tool_motion(compensation);
   if (plan.strategy.points.rule == CutterPointRule::kChordError || !(tool.nose_radius > 0))
     return 0.0;
   DipGauge gauge;
@@ -567,20 +567,25 @@ RunResult execute_job(const Job& job, const PreparedJob& prepared, const std::st
   report.spindle_rpm = motion.spindle_rpm;
   report.enforce_dynamics = plan.cutting.enforce_dynamics;
 
+  // The tool's motion as every pass plans it, with what a wavy edge may reach past the
+  // round nose on this design over this aperture (path/cutter_points.hpp).
+  ToolMotion tool = tool_motion(compensation);
+  tool.smooth_waviness_reach =
+      smooth_wavy_edge_reach(tool, design, job.aperture.inner_radius, job.aperture.outer_radius);
   // Estimated once, and raised by the runs that find it short (execute_with_stand_off).
   if (planned.equal_rule_stand_off < 0)
-    planned.equal_rule_stand_off = equal_rule_stand_off(job, prepared, design, base, compensation);
+    planned.equal_rule_stand_off = equal_rule_stand_off(job, prepared, design, base, tool);
   const double stand_off = planned.equal_rule_stand_off;
   CutterPointOptions points = plan.strategy.points;
   points.interpolation = machine.interpolation;
   points.equal_rule_stand_off = stand_off;
-  report.parameters.stand_off = stand_off_for(points, tool_motion(compensation), design);
+  report.parameters.stand_off = stand_off_for(points, tool, design);
 
   std::vector<double> stock = plan.cutting.roughing_depths;
   // The clearance base the post approaches and retracts beyond: above every block of
   // every pass (a roughing pass's design is raised by its stock).
   const double ceiling =
-      write && plan.outputs.nc ? kernel_ceiling(job, compensation, design, points) : 0.0;
+      write && plan.outputs.nc ? kernel_ceiling(job, compensation, design, points, tool) : 0.0;
   long long points_so_far = 0;
   stock.push_back(0.0);  // the finishing pass
   std::vector<std::unique_ptr<PostProgram>> programs;
@@ -641,7 +646,7 @@ RunResult execute_job(const Job& job, const PreparedJob& prepared, const std::st
       o.outer_radius = job.aperture.outer_radius;
       o.inner_radius = job.aperture.inner_radius;
       o.centre_to_edge = plan.strategy.centre_to_edge;
-      o.tool = tool_motion(compensation);
+      o.tool = tool;
       o.points = points;
       o.threads = prepared.threads;
       if (probe) {
@@ -659,7 +664,7 @@ RunResult execute_job(const Job& job, const PreparedJob& prepared, const std::st
       ProfileOptions o;
       o.outer_radius = job.aperture.outer_radius;
       o.inner_radius = job.aperture.inner_radius;
-      o.tool = tool_motion(compensation);
+      o.tool = tool;
       o.points = points;
       summary = plan_profile(surface, o, compensator);
     }
@@ -786,8 +791,12 @@ void check_dialect_settings(const Job& job, const PreparedJob& prepared, bool ap
                              ? 0.0
                              : *std::max_element(job.plan->cutting.roughing_depths.begin(),
                                                  job.plan->cutting.roughing_depths.end());
-    const double top = machine_z(m, kernel_ceiling(job, compensation, *job.surface,
-                                                    job.plan->strategy.points) + stock);
+    ToolMotion tool = tool_motion(compensation);
+    tool.smooth_waviness_reach = smooth_wavy_edge_reach(
+        tool, *job.surface, job.aperture.inner_radius, job.aperture.outer_radius);
+    const double top = machine_z(
+        m,
+        kernel_ceiling(job, compensation, *job.surface, job.plan->strategy.points, tool) + stock);
     PostProgram probe(*prepared.plugin, m,
                       ProgramSettings{job.name, job.plan->cutting.spindle_rpm, job.plan->cutting.feed,
                                       -1, -1, top, static_cast<int>(m.spec(Axis::kZ).sign)},

@@ -17,6 +17,7 @@ ToolMotion tool_motion(const CompensationOptions& o) {
   m.b_follows = o.b_mode == BMode::kFollow;
   m.edge_angle = o.edge_angle;
   m.waviness_span = o.tool.waviness_span();
+  m.waviness_slope = o.tool.waviness_slope();
   return m;
 }
 

@@ -29,4 +29,19 @@ double ToolGeometry::waviness_span() const {
   return hi - lo;
 }
 
+double ToolGeometry::waviness_slope() const {
+  const double half = 0.5 * included_angle;
+  const bool bounded = half > 0;
+  double steepest = 0;
+  // δ is linear between the table's angles and constant beyond its ends: the steepest
+  // slope is a segment's, of the segments that overlap the edge.
+  for (std::size_t k = 1; k < waviness.size(); ++k) {
+    const auto& [psi0, delta0] = waviness[k - 1];
+    const auto& [psi1, delta1] = waviness[k];
+    if (!(psi1 > psi0) || (bounded && (psi1 <= -half || psi0 >= half))) continue;
+    steepest = std::max(steepest, std::abs(delta1 - delta0) / (psi1 - psi0));
+  }
+  return steepest;
+}
+
 }  // namespace freeturn

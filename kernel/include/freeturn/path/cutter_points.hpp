@@ -53,6 +53,12 @@ struct ToolMotion {
   // The most one point of the edge reaches past the round nose compensated at another: a
   // measured waviness's span over the edge (ToolGeometry::waviness_span; mm, 0 round).
   double waviness_span = 0;
+  // The steepest slope of that waviness over the edge (ToolGeometry::waviness_slope; mm/rad).
+  double waviness_slope = 0;
+  // On a design without creases: how far the edge may reach past the round nose there
+  // (smooth_wavy_edge_reach, mm), which the pipeline finds once it knows the design and the
+  // aperture. 0 until then.
+  double smooth_waviness_reach = 0;
 };
 
 // The one-sided band. A chord between two blocks on a convex stretch passes below them, so
@@ -63,16 +69,19 @@ struct ToolMotion {
 // chords dip below the design wherever it is convex to the chord (by L²κ/8 for a chord of
 // length L, 16 nm for the demo's lenslets at 1000 points a revolution): their blocks stand
 // off by the deepest dip a first plan measured, with the words' rounding
-// (CutterPointOptions::equal_rule_stand_off), and the band is [0, 2·stand-off]. Without a nose (R = 0: the contact path itself, as paper 001
-// distributes it) the band stays two-sided, ±ε about the design.
+// (CutterPointOptions::equal_rule_stand_off), and the band is [0, 2·stand-off]. Without a nose (R =
+// 0: the contact path itself, as paper 001 distributes it) the band stays two-sided, ±ε about the
+// design.
 //
 // A wavy edge is compensated at each block's own contact angle ψ (R + δ(ψ)), so the edge
 // at another angle φ reaches δ(φ) − δ(ψ) past the round nose the planner measured. On a
 // smooth design the nose touches at one angle and curves away from the section on either
-// side, by about R(1 − κR)(φ − ψ)²/2, faster than a measured waviness rises (by L|φ − ψ|,
-// L its steepest slope per radian): the most it reaches past is L²/(2R(1 − κR)), 0.2 nm
-// for a ±0.25 µm waviness over ±60° on a 0.5 mm nose, unless the nose nearly fits a
-// concave section. On a creased design a held nose touches the far flank, and a rolled
+// side, by R(1 − κR)(φ − ψ)²/2 (κ the section's curvature, > 0 concave), while a measured
+// waviness rises by at most L|φ − ψ| (L its steepest slope per radian): the most it reaches
+// past is L²/(2R(1 − κR)) (smooth_wavy_edge_reach), 0.2 nm for a ±0.25 µm waviness over
+// ±60° on a 0.5 mm nose over a flat, but 57 nm for a 0.998 mm nose in a 1 mm bowl, which
+// had cut 53 nm into it under a PASS (NC-only check) while this was taken as 0. The
+// band is then [reach, ε]. On a creased design a held nose touches the far flank, and a rolled
 // one the ridge, at another angle outright. There the band is [w, ε] for the round nose,
 // w the waviness's span over the edge (stand-off (ε + w)/2, half-width (ε − w)/2): the
 // real edge stays above the design and the round nose within ε of it. Until December
@@ -81,8 +90,15 @@ struct ToolMotion {
 // checks; the verdict said PASS). wavy_edge_reach is that lower side: how far the edge
 // may reach past the round nose the chords are measured with.
 inline double wavy_edge_reach(const ToolMotion& tool, const Surface& design) {
-  return design.has_creases() ? tool.waviness_span : 0.0;
+  return design.has_creases() ? tool.waviness_span : tool.smooth_waviness_reach;
 }
+
+// L²/(2R(1 − κR)) with κ the most any radial section of `design` bends toward the tool
+// over the annulus inner_radius ≤ ρ ≤ outer_radius (largest_section_curvature: its samples'
+// largest and largest change), no more than the waviness's span; the span where a section
+// bends as much as the nose. 0 without waviness.
+double smooth_wavy_edge_reach(const ToolMotion& tool, const Surface& design, double inner_radius,
+                              double outer_radius);
 inline double stand_off_for(const CutterPointOptions& o, const ToolMotion& tool,
                             const Surface& design) {
   if (!(tool.nose_radius > 0)) return 0.0;

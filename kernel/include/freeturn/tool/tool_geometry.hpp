@@ -29,6 +29,10 @@ struct ToolGeometry {
   // that is 0): the most one point of the edge reaches past the round nose compensated at
   // another (path/cutter_points.hpp, stand_off_for). 0 without a table.
   double waviness_span() const;
+  // The steepest |dδ/dψ| over the edge (mm/rad; the same range as waviness_span): how fast
+  // the edge can reach past the round nose away from the contact (path/cutter_points.hpp,
+  // smooth_wavy_edge_reach). 0 without a table.
+  double waviness_slope() const;
 };
 
 }  // namespace freeturn
