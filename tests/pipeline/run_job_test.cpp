@@ -1,6 +1,7 @@
 #include <doctest/doctest.h>
 
 #include <algorithm>
+#include <array>
 #include <cmath>
 #include <cstdlib>
 #include <filesystem>
@@ -44,6 +45,25 @@ struct Recorder final : RunObserver {
   }
   void pass_done(const std::string& pass) override { passes_done.push_back(pass); }
 };
+
+// The programmed positions (X, C, Z; C 0 where the program has none) of the cut in the NC
+// file `nc`: the plunge's target (the program's first G1 block) and every G1 block after it.
+std::vector<std::array<double, 3>> cut_positions(const std::string& nc) {
+  std::vector<std::array<double, 3>> cut;
+  std::array<double, 3> at{0, 0, 0};
+  for (const NcBlock& b : parse_nc(test::read_file(nc), nc)) {
+    bool g1 = false;
+    for (const NcWord& w : b.words) {
+      if (!w.numeric) continue;
+      if (w.letter == 'G' && w.value == 1) g1 = true;
+      if (w.letter == 'X') at[0] = w.value;
+      if (w.letter == 'C') at[1] = w.value;
+      if (w.letter == 'Z') at[2] = w.value;
+    }
+    if (g1) cut.push_back(at);
+  }
+  return cut;
+}
 
 struct PluginPaths {
   PluginPaths() {
@@ -203,34 +223,19 @@ TEST_SUITE("pipeline") {
       }
       return height(0.5 * (a + b));
     };
-    double x = 0, c = 0, z = 0, lowest = 1e300, lowest_block = 1e300;
-    bool moving = false;
-    long segments = 0;
-    const std::string nc = dir.file("out/dome.iso-lathe-xzc.nc");
-    for (const NcBlock& b : parse_nc(test::read_file(nc), nc)) {
-      double nx = x, nc_deg = c, nz = z;
-      bool g1 = false, g93 = false;
-      for (const NcWord& w : b.words) {
-        if (!w.numeric) continue;
-        if (w.letter == 'G' && w.value == 1) g1 = true;
-        if (w.letter == 'G' && w.value == 93) g93 = true;
-        if (w.letter == 'X') nx = w.value;
-        if (w.letter == 'C') nc_deg = w.value;
-        if (w.letter == 'Z') nz = w.value;
+    double lowest = 1e300, lowest_block = 1e300;
+    const auto cut = cut_positions(dir.file("out/dome.iso-lathe-xzc.nc"));
+    for (std::size_t i = 1; i < cut.size(); ++i) {
+      const auto& [x, c, z] = cut[i - 1];
+      const auto& [nx, nc_deg, nz] = cut[i];
+      for (int k = 1; k <= 16; ++k) {
+        const double t = k / 16.0;
+        lowest =
+            std::min(lowest, clearance(x + t * (nx - x), c + t * (nc_deg - c), z + t * (nz - z)));
       }
-      if (g93) moving = true;  // the cut: the approach and plunge come before it
-      if (moving && g1) {
-        for (int k = 1; k <= 16; ++k) {
-          const double t = k / 16.0;
-          lowest =
-              std::min(lowest, clearance(x + t * (nx - x), c + t * (nc_deg - c), z + t * (nz - z)));
-        }
-        lowest_block = std::min(lowest_block, clearance(nx, nc_deg, nz));
-        ++segments;
-      }
-      x = nx, c = nc_deg, z = nz;
+      lowest_block = std::min(lowest_block, clearance(nx, nc_deg, nz));
     }
-    CHECK(segments == r.report.passes.back().points - 1);
+    CHECK(static_cast<long>(cut.size()) == r.report.passes.back().points);
     // Every block stands off by the stand-off the report gives, along the radial section's
     // normal: as a distance in space that is shorter by the cosine of the dome's slope
     // across the section (below 0.1 here, under 1 %), give or take the words' rounding
@@ -259,31 +264,19 @@ TEST_SUITE("pipeline") {
     CHECK(r.safe());
     CHECK(r.report.warnings.empty());
     // The edge's arc (±60° about −z) over the dome, centre (0, −8), along every segment.
-    double x = 0, z = 0, lowest = 1e300;
-    bool cutting = false;
-    const std::string nc = dir.file("out/dome.iso-lathe-xz.nc");
-    for (const NcBlock& b : parse_nc(test::read_file(nc), nc)) {
-      double nx = x, nz = z;
-      bool g1 = false, feed = false;
-      for (const NcWord& w : b.words) {
-        if (!w.numeric) continue;
-        if (w.letter == 'G' && w.value == 1) g1 = true;
-        if (w.letter == 'F') feed = true;
-        if (w.letter == 'X') nx = w.value;
-        if (w.letter == 'Z') nz = w.value;
-      }
-      if (cutting && g1) {
-        for (int k = 1; k <= 64; ++k) {
-          const double t = k / 64.0, px = x + t * (nx - x), pz = z + t * (nz - z);
-          for (int j = -1000; j <= 1000; ++j) {
-            const double phi = j * (std::numbers::pi / 3) / 1000;
-            lowest = std::min(
-                lowest, std::hypot(px - 0.5 * std::sin(phi), pz - 0.5 * std::cos(phi) + 8.0) - 8.0);
-          }
+    double lowest = 1e300;
+    const auto cut = cut_positions(dir.file("out/dome.iso-lathe-xz.nc"));
+    REQUIRE(static_cast<long>(cut.size()) == r.report.passes.back().points);
+    for (std::size_t i = 1; i < cut.size(); ++i) {
+      const double x = cut[i - 1][0], z = cut[i - 1][2], nx = cut[i][0], nz = cut[i][2];
+      for (int k = 1; k <= 64; ++k) {
+        const double t = k / 64.0, px = x + t * (nx - x), pz = z + t * (nz - z);
+        for (int j = -1000; j <= 1000; ++j) {
+          const double phi = j * (std::numbers::pi / 3) / 1000;
+          lowest = std::min(
+              lowest, std::hypot(px - 0.5 * std::sin(phi), pz - 0.5 * std::cos(phi) + 8.0) - 8.0);
         }
       }
-      if (feed && !g1) cutting = true;  // the feed's own block: the cut follows
-      x = nx, z = nz;
     }
     CHECK(lowest >= 0);
     CHECK(lowest < r.report.parameters.stand_off);

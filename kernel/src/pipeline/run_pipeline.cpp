@@ -451,6 +451,31 @@ struct StandOffShort {
   double dip = 0;
 };
 
+// The planners' options for the job's aperture and strategy, with the tool's motion and the
+// cutter points given (the estimate below and every pass take the same).
+SpiralOptions spiral_options(const Job& job, const PreparedJob& prepared, const ToolMotion& tool,
+                             const CutterPointOptions& points) {
+  SpiralOptions o;
+  o.pitch = job.plan->strategy.pitch;
+  o.outer_radius = job.aperture.outer_radius;
+  o.inner_radius = job.aperture.inner_radius;
+  o.centre_to_edge = job.plan->strategy.centre_to_edge;
+  o.tool = tool;
+  o.points = points;
+  o.threads = prepared.threads;
+  return o;
+}
+
+ProfileOptions profile_options(const Job& job, const ToolMotion& tool,
+                               const CutterPointOptions& points) {
+  ProfileOptions o;
+  o.outer_radius = job.aperture.outer_radius;
+  o.inner_radius = job.aperture.inner_radius;
+  o.tool = tool;
+  o.points = points;
+  return o;
+}
+
 // How much more than a measured dip the blocks stand off (equal_rule_stand_off).
 double stand_off_over(double dip) {
   constexpr double kSampledMaximum = 1e-6;  // mm: the measured dip is a sampled maximum
@@ -484,22 +509,11 @@ double equal_rule_stand_off(const Job& job, const PreparedJob& prepared, const S
     constexpr double kEstimateRevolutions = 96;
     const double revolutions =
         (job.aperture.outer_radius - job.aperture.inner_radius) / plan.strategy.pitch;
-    SpiralOptions o;
-    o.pitch = plan.strategy.pitch * std::max(1.0, std::floor(revolutions / kEstimateRevolutions));
-    o.outer_radius = job.aperture.outer_radius;
-    o.inner_radius = job.aperture.inner_radius;
-    o.centre_to_edge = plan.strategy.centre_to_edge;
-    o.tool = tool;
-    o.points = points;
-    o.threads = prepared.threads;
+    SpiralOptions o = spiral_options(job, prepared, tool, points);
+    o.pitch *= std::max(1.0, std::floor(revolutions / kEstimateRevolutions));
     plan_spiral(design, base.base, o, gauge);
   } else {
-    ProfileOptions o;
-    o.outer_radius = job.aperture.outer_radius;
-    o.inner_radius = job.aperture.inner_radius;
-    o.tool = tool;
-    o.points = points;
-    plan_profile(design, o, gauge);
+    plan_profile(design, profile_options(job, tool, points), gauge);
   }
   return stand_off_over(gauge.deepest) + words_rounding(job, prepared.machine);
 }
@@ -641,14 +655,7 @@ RunResult execute_job(const Job& job, const PreparedJob& prepared, const std::st
     ToolCompensator compensator(surface, compensation, checks, stage);
     PathSummary summary;
     if (spiral) {
-      SpiralOptions o;
-      o.pitch = plan.strategy.pitch;
-      o.outer_radius = job.aperture.outer_radius;
-      o.inner_radius = job.aperture.inner_radius;
-      o.centre_to_edge = plan.strategy.centre_to_edge;
-      o.tool = tool;
-      o.points = points;
-      o.threads = prepared.threads;
+      const SpiralOptions o = spiral_options(job, prepared, tool, points);
       if (probe) {
         planned.tapes.push_back(std::make_unique<ContactTape>(prepared.max_replay_bytes));
         RecordingSink recorder(compensator, *planned.tapes.back());
@@ -661,12 +668,7 @@ RunResult execute_job(const Job& job, const PreparedJob& prepared, const std::st
         summary = plan_spiral(surface, base.base, o, compensator);
       }
     } else {
-      ProfileOptions o;
-      o.outer_radius = job.aperture.outer_radius;
-      o.inner_radius = job.aperture.inner_radius;
-      o.tool = tool;
-      o.points = points;
-      summary = plan_profile(surface, o, compensator);
+      summary = plan_profile(surface, profile_options(job, tool, points), compensator);
     }
     mapper.finish();
     if (scheduler) scheduler->finish();
