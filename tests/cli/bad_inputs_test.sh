@@ -139,6 +139,12 @@ refused "a waviness spanning the chord tolerance on a creased design" "$job" "$j
 job=$(variant nearfit 's/outer_radius: 2.0/outer_radius: 0.2/; s/radius: 50.0/radius: 0.5002/; s/tolerance: 0.001,/tolerance: 0.0002,/; s/^  clearance_angle_deg: 10/&\n  waviness: [[-60, -0.0003], [0, 0.0002], [60, -0.0003]]/')
 refused "a waviness a nearly fitting nose carries past the chord band" "$job" "$job:10:13:" "lets the edge reach 250 nm past the round nose" "give a chord tolerance above 277.8 nm"
 
+# The edge lies in the rake plane h above the spindle line: a nose held at a lenslet rim
+# touches the far flank across the radial plane the chords are measured in (docs/tool.md,
+# "Centre height"). 0.2 mm of it there leaves the 1 µm chords no band.
+job=$(variant eye_high 's/^  type: sphere/  type: compound_eye\n  base_radius: 20.0\n  lens_radius: -5.0\n  lens_diameter: 0.9\n  pitch: 1.0\n  pattern: rings/; /^  radius: 50.0/d; s/^  outer_radius: 2.0/&\n  inner_radius: 0.3/; s/^  clearance_angle_deg: 10/&\n  centre_height: 0.2/')
+refused "a centre height that moves a held nose's far touch past the chord band" "$job" "$job:15:18:" "tool.centre_height lets the edge, which lies in the rake plane" "or measure the centre height smaller"
+
 # Errors found after reading, at the key that causes them.
 job=$(variant xz "s|^machine: .*|machine: iso-lathe-xz|")
 refused "a spiral on an X-Z machine" "$job" "$job:18:10:" "needs a C axis"

@@ -7,6 +7,7 @@
 #include "freeturn/path/profile.hpp"
 #include "freeturn/path/spiral.hpp"
 #include "freeturn/surface/even_asphere.hpp"
+#include "freeturn/surface/polynomial_height.hpp"
 #include "freeturn/tool/tool_compensator.hpp"
 
 using namespace freeturn;
@@ -99,21 +100,83 @@ TEST_SUITE("tool") {
     c.tool.waviness = {{-0.5, 0.002}, {0.5, 0.002}};
     const CutterLocation wavy = compensate(p, c);
     CHECK((wavy.nose_centre - p.point).norm() == doctest::Approx(0.502).epsilon(1e-14));
-    // Centre height h: the edge at machine X touches radius √(X² + h²).
+    // Centre height h: the edge is an arc in the rake plane, machine y = h. Turned back by
+    // C into the machine's frame, the contact lies in that plane, R from the nose centre
+    // (X, h, Z), and the arc's tangent there is perpendicular to the design's normal.
     c.tool.waviness.clear();
-    c.tool.centre_height = 0.01;
-    const CutterLocation high = compensate(p, c);
-    CHECK(std::hypot(high.x, 0.01) == doctest::Approx(centre.x).epsilon(1e-15));
-    CHECK(high.c == doctest::Approx(0.3 - std::atan2(0.01, high.x)).epsilon(1e-15));
-    // Back from the axes: the nose centre sits where the edge's line through (X, h) turned
-    // by C meets it, at the contact's angle θ = 0.3 and radius c_r.
-    const double x_work = high.x * std::cos(high.c) - 0.01 * std::sin(high.c);
-    const double y_work = high.x * std::sin(high.c) + 0.01 * std::cos(high.c);
-    CHECK(work_angle_from_axes(high.c, high.x, c) ==
-          doctest::Approx(std::atan2(y_work, x_work)).epsilon(1e-15));
-    CHECK(work_angle_from_axes(high.c, high.x, c) == doctest::Approx(0.3).epsilon(1e-14));
+    const double slope_t = 0.3;  // a tangential slope as well, so that the plane matters
+    p.normal = Eigen::Vector3d(-slope * std::cos(0.3) + slope_t * std::sin(0.3),
+                               -slope * std::sin(0.3) - slope_t * std::cos(0.3), 1)
+                   .normalized();
+    for (const double h : {0.01, -0.05}) {
+      c.tool.centre_height = h;
+      const CutterLocation high = compensate(p, c);
+      const double cc = std::cos(high.c), sc = std::sin(high.c);
+      const Eigen::Vector3d q(p.point.x() * cc + p.point.y() * sc,
+                              -p.point.x() * sc + p.point.y() * cc, p.point.z());
+      const Eigen::Vector3d m(p.normal.x() * cc + p.normal.y() * sc,
+                              -p.normal.x() * sc + p.normal.y() * cc, p.normal.z());
+      CHECK(q.y() == doctest::Approx(h).epsilon(1e-14));
+      const double dx = high.x - q.x(), dz = high.z - q.z();
+      CHECK(std::hypot(dx, dz) == doctest::Approx(0.5).epsilon(1e-14));
+      CHECK(std::abs(m.x() * dz - m.z() * dx) < 1e-14);
+      // The contact on the near side of the nose: the centre above it.
+      CHECK(dz > 0);
+      // Back from the axes: the nose centre (X, h) turned by C, its distance from the
+      // spindle and its angle.
+      const double t_x = high.x * cc - h * sc, t_y = high.x * sc + h * cc;
+      CHECK(nose_centre_from_axes(high.x, high.z, 0, c).x() ==
+            doctest::Approx(std::hypot(t_x, t_y)).epsilon(1e-14));
+      CHECK(work_angle_from_axes(high.c, high.x, 0, c) ==
+            doctest::Approx(std::atan2(t_y, t_x)).epsilon(1e-14));
+      // The checks keep the radial plane's nose, touching the same contact.
+      CHECK((high.nose_centre - p.point).norm() == doctest::Approx(0.5).epsilon(1e-14));
+    }
+    // Under |h| from the axis the edge cannot reach the contact: no axes.
+    c.tool.centre_height = 2.5;
+    CHECK(std::isnan(compensate(p, c).x));
     c.tool.centre_height = 0;
-    CHECK(work_angle_from_axes(high.c, high.x, c) == high.c);
+    CHECK(work_angle_from_axes(0.7, 1.0, 0, c) == 0.7);
+  }
+
+  TEST_CASE(
+      "centre height: the edge's arc, swept in the rake plane from the axes alone, "
+      "touches the design at each block and stays above it") {
+    // A paraboloid decentred by 1 mm (z = c((x − 1)² + y²)/2, c = 0.2): slopes to 0.4 mm/mm
+    // across the radial sections as well as along them. The arc lies in machine y = h, its
+    // centre at (X, h, Z) with the part turned by C: no compensation formula is used here.
+    const double c = 0.2, R = 0.2;
+    const PolynomialHeight design(1.0, 2, {c / 2, 0, c / 2, -c, 0, 0, c / 2, 0, 0});
+    const auto z_of = [&](double x, double y) { return c * ((x - 1) * (x - 1) + y * y) / 2; };
+    for (const double h : {0.01, -0.004}) {
+      CAPTURE(h);
+      CompensationOptions o;
+      o.tool.nose_radius = R;
+      o.tool.included_angle = 100 * std::numbers::pi / 180;
+      o.tool.centre_height = h;
+      ToolCheckOptions checks;
+      checks.policy.fill(CheckPolicy::kOff);
+      const auto cls = compensated_spiral(design, 1.0, o, checks);
+      int swept = 0;
+      double lowest = 1, highest = -1;
+      for (const CutterLocation& cl : cls) {
+        if (!std::isfinite(cl.x) || cl.contact.r < 0.1) continue;
+        double gap = 1;
+        for (int k = -5000; k <= 5000; ++k) {
+          const double phi = 0.5 * o.tool.included_angle * k / 5000;
+          const double x_m = cl.x - R * std::sin(phi), z = cl.z - R * std::cos(phi);
+          const double x = x_m * std::cos(cl.c) - h * std::sin(cl.c);
+          const double y = x_m * std::sin(cl.c) + h * std::cos(cl.c);
+          gap = std::min(gap, z - z_of(x, y));
+        }
+        lowest = std::min(lowest, gap), highest = std::max(highest, gap);
+        ++swept;
+      }
+      CHECK(swept > 300);
+      // The arc's samples lie 1e-4 rad apart: R·(0.5e-4)²/2 = 0.25 pm above its lowest point.
+      CHECK(lowest > -1e-12);
+      CHECK(highest < 1e-9);
+    }
   }
 
   TEST_CASE("4-axis: B follows ψ; axis values → nose centre → contact round trip to 1e-9 mm") {

@@ -273,27 +273,40 @@ std::optional<JobPlan> read_job_plan(MapReader& job, const Aperture& aperture,
   StepEstimate estimate;
   read_tool(job, plan, aperture);
   read_strategy(job, plan, aperture, estimate);
-  // The chord rule keeps the round nose at least as far above the design as the wavy edge
-  // may reach past it (stand_off_for): the waviness's span on a creased design, less on a
-  // smooth one unless the nose nearly fits a concave section. A reach near the tolerance
-  // leaves the chords no band.
+  // The chord rule keeps the round nose at least as far above the design as the real edge
+  // may reach past it (stand_off_for): a wavy edge's span on a creased design, less on a
+  // smooth one unless the nose nearly fits a concave section, and what the edge's centre
+  // height moves a held nose's second touch. A reach near the tolerance leaves the chords
+  // no band.
   ToolMotion motion = tool_motion(plan.tool);
-  motion.smooth_waviness_reach =
-      smooth_wavy_edge_reach(motion, design, aperture.inner_radius, aperture.outer_radius);
-  const double span = wavy_edge_reach(motion, design);
+  measure_edge_reach(motion, design, aperture.inner_radius, aperture.outer_radius);
+  const double span = edge_reach(motion, design);
   const CutterPointOptions& points = plan.strategy.points;
   if (points.rule == CutterPointRule::kChordError && plan.tool.tool.nose_radius > 0 &&
-      !(span <= 0.9 * points.tolerance))
-    throw InputError(location_of(job.node()["tool"]["waviness"], job.file()),
-                     "tool.waviness lets the edge reach " + significant_text(span * 1e6, 4) +
-                         " nm past the round nose, more than 0.9 × the chord tolerance " +
-                         significant_text(points.tolerance * 1e6, 4) +
-                         " nm: compensated at each contact's angle, the edge at another angle "
-                         "(the far flank of a crease the nose is held at, or the rest of a nose "
-                         "that nearly fits a concave section) reaches that far past the round "
-                         "nose, and the chords keep it above the design only within a band of "
-                         "ε minus that; give a chord tolerance above " +
-                         significant_text(span / 0.9 * 1e6, 4) + " nm");
+      !(span <= 0.9 * points.tolerance)) {
+    const bool height = motion.centre_height_reach > span - motion.centre_height_reach;
+    const std::string what =
+        height ? "tool.centre_height lets the edge, which lies in the rake plane h above the "
+                 "spindle line, reach "
+               : "tool.waviness lets the edge reach ";
+    const std::string why =
+        height ? " nm: where the nose is held at a crease it touches a second flank across "
+                 "the radial plane the chords are measured in, turned and tilted there by "
+                 "about h/ρ, and the chords keep it above the design only within a band of "
+                 "ε minus that; give a chord tolerance above "
+               : " nm: compensated at each contact's angle, the edge at another angle "
+                 "(the far flank of a crease the nose is held at, or the rest of a nose "
+                 "that nearly fits a concave section) reaches that far past the round "
+                 "nose, and the chords keep it above the design only within a band of "
+                 "ε minus that; give a chord tolerance above ";
+    throw InputError(
+        location_of(job.node()["tool"][height ? "centre_height" : "waviness"], job.file()),
+        what + significant_text(span * 1e6, 4) +
+            " nm past the round nose, more than 0.9 × the chord tolerance " +
+            significant_text(points.tolerance * 1e6, 4) + why +
+            significant_text(span / 0.9 * 1e6, 4) + " nm" +
+            (height ? ", or measure the centre height smaller" : ""));
+  }
   read_cutting(job, plan);
   plan.machine = job.text("machine");
   read_outputs(job, plan);

@@ -335,7 +335,7 @@ void refuse_coarse_axis_words(const Job& job, const MachineDescription& machine)
   // rules' is measured later, and takes the rounding in).
   const ToolMotion tool = tool_motion(plan.tool);
   const double stand_off =
-      stand_off_for(plan.strategy.points, tool, *job.surface) - wavy_edge_reach(tool, *job.surface);
+      stand_off_for(plan.strategy.points, tool, *job.surface) - edge_reach(tool, *job.surface);
   const double allowed =
       stand_off > 0 ? std::min(0.5 * stand_off, kChordDipAllowed) : 0.5 * kChordDipAllowed;
   const AxisSpec* coarsest = nullptr;
@@ -584,8 +584,7 @@ RunResult execute_job(const Job& job, const PreparedJob& prepared, const std::st
   // The tool's motion as every pass plans it, with what a wavy edge may reach past the
   // round nose on this design over this aperture (path/cutter_points.hpp).
   ToolMotion tool = tool_motion(compensation);
-  tool.smooth_waviness_reach =
-      smooth_wavy_edge_reach(tool, design, job.aperture.inner_radius, job.aperture.outer_radius);
+  measure_edge_reach(tool, design, job.aperture.inner_radius, job.aperture.outer_radius);
   // Estimated once, and raised by the runs that find it short (execute_with_stand_off).
   if (planned.equal_rule_stand_off < 0)
     planned.equal_rule_stand_off = equal_rule_stand_off(job, prepared, design, base, tool);
@@ -794,8 +793,7 @@ void check_dialect_settings(const Job& job, const PreparedJob& prepared, bool ap
                              : *std::max_element(job.plan->cutting.roughing_depths.begin(),
                                                  job.plan->cutting.roughing_depths.end());
     ToolMotion tool = tool_motion(compensation);
-    tool.smooth_waviness_reach = smooth_wavy_edge_reach(
-        tool, *job.surface, job.aperture.inner_radius, job.aperture.outer_radius);
+    measure_edge_reach(tool, *job.surface, job.aperture.inner_radius, job.aperture.outer_radius);
     const double top = machine_z(
         m,
         kernel_ceiling(job, compensation, *job.surface, job.plan->strategy.points, tool) + stock);
@@ -913,7 +911,7 @@ RunResult run_program_simulation(const Job& job, const std::string& program,
     cl.c = spindle;
     // The nose centre's angle on the part: the spindle's, turned where the edge sits off
     // the spindle line.
-    const double theta = work_angle_from_axes(spindle, cl.x, compensation);
+    const double theta = work_angle_from_axes(spindle, cl.x, cl.b, compensation);
     theta_end = theta;
     const Eigen::Vector2d centre = nose_centre_from_axes(cl.x, cl.z, cl.b, compensation);
     cl.nose_centre = Eigen::Vector3d(centre.x() * std::cos(theta), centre.x() * std::sin(theta), centre.y());

@@ -18,6 +18,7 @@ ToolMotion tool_motion(const CompensationOptions& o) {
   m.edge_angle = o.edge_angle;
   m.waviness_span = o.tool.waviness_span();
   m.waviness_slope = o.tool.waviness_slope();
+  m.centre_height = o.tool.centre_height;
   return m;
 }
 
@@ -44,34 +45,48 @@ CutterLocation compensate(const ContactPoint& contact, const CompensationOptions
   cl.nose_centre = {c_r * ct, c_r * st, c_z};
   const double a_r = std::sin(cl.b), a_z = std::cos(cl.b);
   const double offset = programmed_point_offset(o);
-  double x = c_r + offset * a_r, z = c_z + offset * a_z;
+  cl.x = c_r + offset * a_r;
+  cl.z = c_z + offset * a_z;
   cl.c = contact.theta;
   const double h = o.tool.centre_height;
   if (h != 0) {
-    // The edge sits h above the spindle line: at machine X it touches radius √(X² + h²),
-    // turned by atan2(h, X). NaN where |x| < |h| (the centre check reports it).
-    const double reach = x * x - h * h;
-    const double corrected = reach >= 0 ? std::copysign(std::sqrt(reach), x)
-                                        : std::numeric_limits<double>::quiet_NaN();
-    cl.c = contact.theta - std::atan2(h, corrected);
-    x = corrected;
+    // The edge is an arc in the rake plane, machine y = h, not in a radial plane. The
+    // spindle stands at C = θ − β, sin β = h/ρ, which brings the contact into that plane
+    // ρ cos β along e = (cos C, sin C, 0); the nose touches it there along the normal
+    // projected into (e, z). The checks and the planner keep the radial plane's nose
+    // (nose_centre, ψ, B): the two touch the design at the same point, and differ by
+    // first order in β only where the nose touches it twice (docs/tool.md).
+    if (!(std::abs(p_r) >= std::abs(h))) {
+      // The edge cannot reach a radius under |h| (the centre check reports it).
+      cl.x = std::numeric_limits<double>::quiet_NaN();
+      return cl;
+    }
+    const double beta = std::asin(h / p_r);
+    cl.c = contact.theta - beta;
+    const double e_x = std::cos(cl.c), e_y = std::sin(cl.c);
+    const double n_e = n.x() * e_x + n.y() * e_y;
+    const double length_e = std::hypot(n_e, n_z);
+    const double psi_e = std::atan2(n_e, n_z);
+    const double radius_e =
+        o.tool.nose_radius + o.tool.waviness_at(psi_e - cl.b) + contact.stand_off;
+    cl.x = p_r * std::cos(beta) + radius_e * n_e / length_e + offset * a_r;
+    cl.z = contact.point.z() + radius_e * n_z / length_e + offset * a_z;
   }
-  cl.x = x;
-  cl.z = z;
   return cl;
 }
 
 Eigen::Vector2d nose_centre_from_axes(double x, double z, double b, const CompensationOptions& o) {
   const double a_r = std::sin(b), a_z = std::cos(b);
-  const double h = o.tool.centre_height;
-  if (h != 0) x = std::copysign(std::sqrt(x * x + h * h), x);
   const double offset = programmed_point_offset(o);
-  return {x - offset * a_r, z - offset * a_z};
+  double c_x = x - offset * a_r;
+  const double h = o.tool.centre_height;
+  if (h != 0) c_x = std::copysign(std::hypot(c_x, h), c_x);
+  return {c_x, z - offset * a_z};
 }
 
-double work_angle_from_axes(double c, double x, const CompensationOptions& o) {
+double work_angle_from_axes(double c, double x, double b, const CompensationOptions& o) {
   const double h = o.tool.centre_height;
-  return h != 0 ? c + std::atan2(h, x) : c;
+  return h != 0 ? c + std::atan2(h, x - programmed_point_offset(o) * std::sin(b)) : c;
 }
 
 }  // namespace freeturn

@@ -59,6 +59,12 @@ struct ToolMotion {
   // (smooth_wavy_edge_reach, mm), which the pipeline finds once it knows the design and the
   // aperture. 0 until then.
   double smooth_waviness_reach = 0;
+  // The edge's height above the spindle line (ToolGeometry::centre_height, mm).
+  double centre_height = 0;
+  // On a creased design: how far the edge, which lies in the rake plane rather than the
+  // radial plane the planner measures in, may reach past the round nose at the far touch
+  // of a held nose (centre_height_reach, mm). 0 until the pipeline knows the design.
+  double centre_height_reach = 0;
 };
 
 // The one-sided band. A chord between two blocks on a convex stretch passes below them, so
@@ -87,10 +93,13 @@ struct ToolMotion {
 // real edge stays above the design and the round nose within ε of it. Until December
 // 2026 it was [0, ε] whatever the edge, and the demo's compound eye with a waviness
 // spanning 0.1 µm was cut 4.9 nm into the design at its rims, 0.35 µm 25 nm (NC-only
-// checks; the verdict said PASS). wavy_edge_reach is that lower side: how far the edge
-// may reach past the round nose the chords are measured with.
-inline double wavy_edge_reach(const ToolMotion& tool, const Surface& design) {
-  return design.has_creases() ? tool.waviness_span : tool.smooth_waviness_reach;
+// checks; the verdict said PASS). edge_reach is that lower side: how far the edge may
+// reach past the round nose the chords are measured with, the centre height's share
+// (centre_height_reach) added. The equal rules' blocks stand off by it too, beyond the dip
+// their first plan measures with the round nose.
+inline double edge_reach(const ToolMotion& tool, const Surface& design) {
+  return (design.has_creases() ? tool.waviness_span : tool.smooth_waviness_reach) +
+         tool.centre_height_reach;
 }
 
 // L²/(2R(1 − κR)) with κ the most any radial section of `design` bends toward the tool
@@ -99,11 +108,30 @@ inline double wavy_edge_reach(const ToolMotion& tool, const Surface& design) {
 // bends as much as the nose. 0 without waviness.
 double smooth_wavy_edge_reach(const ToolMotion& tool, const Surface& design, double inner_radius,
                               double outer_radius);
+
+// With the edge h above the spindle line, compensation (tool/compensation.hpp) turns the
+// spindle by β = asin(h/ρ) and lays the nose in the rake plane tangent to the design at
+// the contact, so that on a smooth design the edge touches where the planner's nose does.
+// A nose held at a crease touches a second flank, R|sin ψ1 − sin ψ2| ≤ R·Δψ away across
+// the radial plane (Δψ the span of the design's section normals): turning the plane by β
+// about the contact moves that touch by β·R·Δψ along e_θ, and tilting the nose in it to
+// stay tangent (by at most s_t·β, s_t = |∇z · e_θ|) moves it by as much again, so it may
+// reach (s_t(ρ2) + s_t(ρ1))·β·R·Δψ past the design, β taken at the nearer touch
+// (ρ1 ≥ ρ2 − R·Δψ). The largest over the annulus (surface/slope_profile.hpp, sampled);
+// 0 without a centre height or creases.
+double centre_height_reach(const ToolMotion& tool, const Surface& design, double inner_radius,
+                           double outer_radius);
+
+// Sets what the edge reaches past the round nose on `design` over the annulus
+// (smooth_waviness_reach, centre_height_reach): once the pipeline knows both.
+void measure_edge_reach(ToolMotion& tool, const Surface& design, double inner_radius,
+                        double outer_radius);
 inline double stand_off_for(const CutterPointOptions& o, const ToolMotion& tool,
                             const Surface& design) {
   if (!(tool.nose_radius > 0)) return 0.0;
-  if (o.rule != CutterPointRule::kChordError) return o.equal_rule_stand_off;
-  return 0.5 * (o.tolerance + wavy_edge_reach(tool, design));
+  if (o.rule != CutterPointRule::kChordError)
+    return o.equal_rule_stand_off + edge_reach(tool, design);
+  return 0.5 * (o.tolerance + edge_reach(tool, design));
 }
 
 // What a planner reports once the path is complete.

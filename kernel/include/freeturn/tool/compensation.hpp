@@ -9,8 +9,11 @@
 //   c = p + (R + δ(ψ − B)) n̂_p         (δ: the measured waviness),
 // which keeps c in the radial plane: offsetting along the full 3D normal would move it to
 // another angle. The programmed point is c (nose centre), c − R a(B) (the tip), or, with
-// a B axis, its pivot c + L a(B). With the edge's centre height h above the spindle line,
-// the programmed radial position x becomes √(x² − h²) and the spindle angle θ − atan2(h, ·).
+// a B axis, its pivot c + L a(B). With the edge's centre height h above the spindle line
+// the edge is an arc in the rake plane (machine y = h), not in a radial plane: the spindle
+// stands at C = θ − β, sin β = h/ρ, which brings the contact p (radius ρ) into that plane
+// √(ρ² − h²) along e = (cos C, sin C, 0), and the section above takes e for e_r. The nose
+// then touches the design tangentially in the plane it cuts in (docs/tool.md).
 
 #include "freeturn/path/cutter_points.hpp"
 #include "freeturn/surface/surface.hpp"
@@ -48,12 +51,13 @@ CutterLocation compensate(const ContactPoint& contact, const CompensationOptions
                           const RadialLine& line);
 
 // The inverse for tests and verification: from programmed axes (x, z, B) back to the nose
-// centre in the radial plane (ρ, z) — x, z being the point `options` programs.
+// centre's distance from the spindle axis (signed as x) and height — x, z being the point
+// `options` programs.
 Eigen::Vector2d nose_centre_from_axes(double x, double z, double b,
                                       const CompensationOptions& options);
-// The angle on the part (rad) of the nose centre programmed at spindle angle c (rad) and
-// x: c itself, turned by atan2(h, x) when the edge sits h above the spindle line (the
-// inverse of compensate's C = θ − atan2(h, X)).
-double work_angle_from_axes(double c, double x, const CompensationOptions& options);
+// The angle on the part (rad) of the nose centre programmed at spindle angle c (rad), x
+// and B: c itself, turned by atan2(h, c_x) when the edge sits h above the spindle line,
+// c_x the centre's machine x.
+double work_angle_from_axes(double c, double x, double b, const CompensationOptions& options);
 
 }  // namespace freeturn

@@ -1,0 +1,47 @@
+#!/usr/bin/env bash
+# A tool whose edge sits h above the spindle line cuts with an arc in the rake plane, not
+# in a radial plane (docs/tool.md, "Centre height"). Two jobs with h = 10 µm are run and
+# their programs read back by tests/jobs/nc_rake_gouge.py, which sweeps that arc from the
+# NC words alone: a paraboloid-like sphere decentred by 1 mm (tangential slopes to 0.2),
+# chord rule, was cut 588 nm into the design near the axis before the nose was laid in the
+# rake plane; the compound eye's lenslets at 1000 points a turn 11.5 nm into their rims
+# before the held nose's far touch stood off. Both must stay above the design.
+# usage: centre_height_test.sh <freeturn> <source dir>
+set -u
+freeturn=$1 src=$2
+tmp=$(mktemp -d)
+trap 'rm -rf "$tmp"' EXIT
+# Debian's python3 has python3-numpy (scripts/setup.sh); another first on PATH may not.
+py=python3
+[[ -x /usr/bin/python3 ]] && py=/usr/bin/python3
+"$py" -c "import numpy" 2> /dev/null || { echo "SKIP: python3 with numpy"; exit 77; }
+fail=0
+job() {  # name aperture surface points
+  cat > "$tmp/$1.yaml" <<YAML
+name: $1
+aperture: $2
+surface: $3
+tool: {nose_radius: 0.2, included_angle_deg: 100, clearance_angle_deg: 25, centre_height: 0.01}
+strategy:
+  mode: spiral
+  spiral: space
+  pitch: $4
+  points: $5
+cutting: {spindle_rpm: 10}
+machine: moore-nanotech-250upl
+outputs: {nc: true, report: false}
+YAML
+  "$freeturn" run "$tmp/$1.yaml" -o "$tmp/$1" --quiet || { echo "FAIL: $1: the run failed"; fail=1; return 1; }
+}
+check() {  # name design r_min r_max
+  local deepest
+  deepest=$("$py" "$src/tests/jobs/nc_rake_gouge.py" "$tmp/$1/$1.moore-nanotech-250upl.nc" "$2" 0.2 0.01 50 "$3" "$4") || { fail=1; return; }
+  echo "$1: the edge's deepest below the design: $deepest nm"
+  "$py" -c "import sys; sys.exit(0 if float('$deepest') <= 0 else 1)" || { echo "FAIL: $1 cuts into the design"; fail=1; }
+}
+job decentred "{outer_radius: 1.0, inner_radius: 0.1}" "{type: sphere, radius: 5.0, decenter: {x: 1.0}}" 0.005 \
+  "{chord: {tolerance: 0.0002, max_angle_deg: 4}}" && check decentred decentred_sphere:5:1 0.1 1.0
+job eye "{outer_radius: 1.6, inner_radius: 0.03}" \
+  "{type: compound_eye, base_radius: 20, lens_radius: -5, lens_diameter: 0.9, pitch: 1.0, pattern: rings}" 0.02 \
+  "{equal_angle: {per_rev: 1000}}" && check eye compound_eye:20:-5:0.9:1.0:1.6 0.05 1.6
+exit $fail

@@ -1,0 +1,106 @@
+#!/usr/bin/env python3
+"""The deepest the cutting edge goes below a design, read from a Moore program alone.
+
+The edge is an arc of radius R in the rake plane, machine y = h (the tool's centre height):
+its point at angle phi sits at machine (X - R sin phi, h, Z - R cos phi), the part turned
+by C. The blocks' X, Z and C are interpolated linearly (2 samples a block), the arc every
+0.25 degrees; the designs are written here from their definitions (docs/surfaces.md),
+sharing no code with freeturn.
+
+usage: nc_rake_gouge.py PROGRAM.nc DESIGN R H HALF_ANGLE_DEG R_MIN R_MAX
+DESIGN: decentred_sphere:RADIUS:DX  or  compound_eye:BASE:LENS:DIAMETER:PITCH:EXTENT (rings)
+Prints the deepest point (nm, > 0 below the design).
+"""
+import os
+import re
+import sys
+
+import numpy as np
+
+WORD = re.compile(r"([A-Z])\s*([-+]?\d*\.?\d*)")
+
+
+def read(path, blocks, state):
+    folder = os.path.dirname(path)
+    for line in open(path):
+        call = re.search(r"M98\s*\(([^)]+)\)", line)
+        if call:
+            read(os.path.join(folder, call.group(1)), blocks, state)
+            continue
+        text = re.sub(r"\(.*?\)", "", line).strip()
+        if not text or "G53" in text:  # machine coordinates: the home move
+            continue
+        words = {k: float(v) for k, v in WORD.findall(text) if v not in ("", ".", "-", "+")}
+        if any(a in words for a in "XZC"):
+            state.update({a: words[a] for a in "XZC" if a in words})
+            if state["X"] is not None and state["Z"] is not None:
+                blocks.append((state["X"], state["Z"], state["C"]))
+        if words.get("M") in (2.0, 30.0):
+            break
+    return blocks
+
+
+def sphere_sag(c, r2):
+    return c * r2 / (1 + np.sqrt(1 - c * c * r2))
+
+
+def decentred_sphere(radius, dx):
+    c = 1 / radius
+    return lambda x, y: sphere_sag(c, (x + dx) ** 2 + y * y) - sphere_sag(c, dx * dx)
+
+
+def compound_eye(base, lens, diameter, pitch, extent):
+    cb = 1 / base
+    vertex = sphere_sag(cb, (diameter / 2) ** 2) - sphere_sag(1 / lens, (diameter / 2) ** 2)
+    centres, k = [], 0
+    while True:
+        rho = base * np.sin(k * pitch / base)
+        if rho > extent - diameter / 2 + 1e-12:
+            break
+        count = 1 if k == 0 else int(np.floor(2 * np.pi * rho / pitch))
+        for j in range(count):
+            x, y = rho * np.cos(2 * np.pi * j / count), rho * np.sin(2 * np.pi * j / count)
+            q = np.sqrt(1 - cb * cb * (x * x + y * y))
+            n = np.array([-cb * x / q, -cb * y / q, 1.0])
+            n /= np.linalg.norm(n)  # the base's normal, along which the lenslet's axis lies
+            top = np.array([x, y, sphere_sag(cb, x * x + y * y)]) + vertex * n
+            centres.append(top + lens * n)
+        k += 1
+
+    def z(x, y):
+        out = sphere_sag(cb, x * x + y * y)
+        for c in centres:
+            near = (x - c[0]) ** 2 + (y - c[1]) ** 2 < (diameter / 2 + 0.05) ** 2
+            if near.any():
+                s = lens * lens - (x[near] - c[0]) ** 2 - (y[near] - c[1]) ** 2
+                out[near] = np.maximum(out[near], c[2] - np.sign(lens) * np.sqrt(np.maximum(s, 0)))
+        return out
+
+    return z
+
+
+def main():
+    path, design, R, h, half, r_min, r_max = sys.argv[1:8]
+    R, h, half, r_min, r_max = map(float, (R, h, half, r_min, r_max))
+    kind, *p = design.split(":")
+    z_of = decentred_sphere(*map(float, p)) if kind == "decentred_sphere" else compound_eye(*map(float, p))
+    b = np.array(read(path, [], {"X": None, "Z": None, "C": 0.0}))
+    X, Z, C = b[:, 0], b[:, 1], np.unwrap(np.radians(b[:, 2]))
+    t = np.array([0.0, 0.5])
+    xs = (X[:-1, None] + np.diff(X)[:, None] * t).ravel()
+    zs = (Z[:-1, None] + np.diff(Z)[:, None] * t).ravel()
+    cs = (C[:-1, None] + np.diff(C)[:, None] * t).ravel()
+    phi = np.radians(np.arange(-half, half + 1e-9, 0.25))
+    deepest = -1.0
+    for i in range(0, len(xs), 20000):
+        x, z, c = xs[i:i + 20000, None], zs[i:i + 20000, None], cs[i:i + 20000, None]
+        ex, ez = x - R * np.sin(phi), z - R * np.cos(phi)
+        wx, wy = ex * np.cos(c) - h * np.sin(c), ex * np.sin(c) + h * np.cos(c)
+        r = np.hypot(wx, wy)
+        below = np.where((r >= r_min) & (r <= r_max), z_of(wx, wy) - ez, -1.0)
+        deepest = max(deepest, float(below.max()))
+    print("%.3f" % (deepest * 1e6))
+
+
+if __name__ == "__main__":
+    main()
