@@ -5,7 +5,8 @@
 # NC words alone: a paraboloid-like sphere decentred by 1 mm (tangential slopes to 0.2),
 # chord rule, was cut 588 nm into the design near the axis before the nose was laid in the
 # rake plane; the compound eye's lenslets at 1000 points a turn 11.5 nm into their rims
-# before the held nose's far touch stood off. Both must stay above the design.
+# before the held nose's far touch stood off. Both must stay above the design, and
+# `simulate --program` must find them so.
 # usage: centre_height_test.sh <freeturn> <source dir>
 set -u
 freeturn=$1 src=$2
@@ -38,6 +39,9 @@ check() {  # name design r_min r_max
   deepest=$("$py" "$src/tests/jobs/nc_rake_gouge.py" "$tmp/$1/$1.moore-nanotech-250upl.nc" "$2" 0.2 0.01 50 "$3" "$4") || { fail=1; return; }
   echo "$1: the edge's deepest below the design: $deepest nm"
   "$py" -c "import sys; sys.exit(0 if float('$deepest') <= 0 else 1)" || { echo "FAIL: $1 cuts into the design"; fail=1; }
+  # freeturn's own simulation of the program, which sweeps the arc in the rake plane too.
+  "$freeturn" simulate "$tmp/$1.yaml" --program "$tmp/$1/$1.moore-nanotech-250upl.nc" -o "$tmp/sim-$1" \
+    --columns 720 --quiet > /dev/null || { echo "FAIL: $1: simulate --program does not pass it"; fail=1; }
 }
 job decentred "{outer_radius: 1.0, inner_radius: 0.1}" "{type: sphere, radius: 5.0, decenter: {x: 1.0}}" 0.005 \
   "{chord: {tolerance: 0.0002, max_angle_deg: 4}}" && check decentred decentred_sphere:5:1 0.1 1.0

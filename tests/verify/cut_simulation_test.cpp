@@ -405,3 +405,89 @@ TEST_SUITE("verify") {
     CHECK(q.max_chord_below == 7e-4);
   }
 }
+
+#include "freeturn/surface/polynomial_height.hpp"
+
+namespace {
+
+// Passes compensated locations on with the spindle angle and X that compensation wrote for
+// a tool above centre until December 2026: the nose centre's own, x = √(c_r² − h²),
+// C = θ − atan2(h, x) and z = c_z, which is right only for the edge point under the centre.
+class CentreAngleMapping final : public CutterSink {
+ public:
+  CentreAngleMapping(double h, CutterSink& next) : h_(h), next_(next) {}
+  void write(std::span<const CutterLocation> chunk) override {
+    for (CutterLocation cl : chunk) {
+      const double c_r = std::hypot(cl.nose_centre.x(), cl.nose_centre.y());
+      cl.x = std::sqrt(c_r * c_r - h_ * h_);
+      cl.c = cl.contact.theta - std::atan2(h_, cl.x);
+      cl.z = cl.nose_centre.z();
+      next_.write(std::span<const CutterLocation>(&cl, 1));
+    }
+  }
+
+ private:
+  double h_;
+  CutterSink& next_;
+};
+
+}  // namespace
+
+TEST_SUITE("verify") {
+  TEST_CASE(
+      "a tool above centre cuts with an arc in the rake plane: on a tilted plane the "
+      "nose laid in that plane leaves it whole; the centre's angle alone cuts the closed "
+      "form's depth into it") {
+    // z = s·x. At spindle angle C the arc (X − R sin φ, h, Z − R cos φ) stands over the plane
+    // by Z − s(X cos C − h sin C) − R cos φ + sR sin φ cos C, least R√(1 + s² cos² C) below
+    // Z − s·x_c, x_c the centre's x on the part. With the centre placed in the radial plane
+    // at θ (tangent there: Z − s·x_c = R√(1 + s² cos² θ)) and C = θ − γ, γ = atan2(h, X),
+    // the arc dips R(√(1 + s² cos²(θ − γ)) − √(1 + s² cos² θ)) below the plane.
+    const double s = 0.3, R = 0.2, h = 0.01, inner = 0.3;
+    const PolynomialHeight plane(1.0, 1, {0, 0, s, 0});
+    SpiralOptions o;
+    o.outer_radius = 1.0;
+    o.pitch = 0.02;
+    o.points.rule = CutterPointRule::kEqualAngle;
+    o.points.points_per_revolution = 720;
+    CompensationOptions c;
+    c.tool.nose_radius = R;
+    c.tool.centre_height = h;
+    ToolCheckOptions checks;
+    checks.policy.fill(CheckPolicy::kOff);
+    SimulationOptions g;
+    g.inner_radius = inner;
+    g.outer_radius = 0.9;
+    g.radial_step = 0.0005;
+    g.columns = 720;
+    g.compensation = c;
+    const auto simulate = [&](bool centre_angle) {
+      CutSimulator simulator(plane, R, g);
+      CentreAngleMapping old(h, simulator);
+      ToolCompensator compensator(plane, c, checks,
+                                  centre_angle ? static_cast<CutterSink&>(old) : simulator);
+      plan_spiral(plane, BaseSurface::plane(o.outer_radius), o, compensator);
+      return simulator.finish();
+    };
+    const SimulationResult laid = simulate(false);
+    MESSAGE("the nose laid in the rake plane: ", laid.min * 1e6, " nm");
+    CHECK(laid.min > -1e-9);
+    CHECK(laid.min < 1e-7);
+    // The closed form's deepest at the innermost ring, along the normal.
+    double deepest = 0;
+    for (int k = 0; k < 36000; ++k) {
+      const double theta = 2 * std::numbers::pi * k / 36000, ct = std::cos(theta);
+      const double c_r = inner - R * s * ct / std::sqrt(1 + s * s * ct * ct);
+      const double gamma = std::atan2(h, std::sqrt(c_r * c_r - h * h));
+      const double cg = std::cos(theta - gamma);
+      deepest =
+          std::max(deepest, R * (std::sqrt(1 + s * s * cg * cg) - std::sqrt(1 + s * s * ct * ct)));
+    }
+    deepest /= std::sqrt(1 + s * s);
+    const SimulationResult centre_angle = simulate(true);
+    MESSAGE("the centre's angle alone: ", centre_angle.min * 1e6, " nm; closed form ",
+            -deepest * 1e6, " nm");
+    CHECK(deepest > 1e-4);
+    CHECK(centre_angle.min == doctest::Approx(-deepest).epsilon(0.02).scale(0));
+  }
+}

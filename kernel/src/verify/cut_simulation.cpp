@@ -86,9 +86,6 @@ void CutSimulator::lower_column(int column, double c_r, double c_z, double b, do
   // R of its centre): s ≥ 0 in this column, s < 0 in the opposite one at radius −s.
   const int n = o_.columns;
   const double lo = std::max(p_r - o_.band, c_r - R_), hi = std::min(p_r + o_.band, c_r + R_);
-  const double to_offset = kOffsetSteps / o_.band;
-  const std::uint16_t held_bit = held ? kHeldBit : 0;
-  const ToolGeometry& tool = o_.compensation.tool;
   for (int side = 0; side < 2; ++side) {
     const double sign = side == 0 ? 1.0 : -1.0;
     const int col = side == 0 ? column : (column + n / 2) % n;
@@ -102,23 +99,114 @@ void CutSimulator::lower_column(int column, double c_r, double c_z, double b, do
     i1 = std::min(i1, rings_ - 1);
     for (int i = i0; i <= i1; ++i) {
       const double s = sign * (o_.inner_radius + i * o_.radial_step);
-      const double d = s - c_r;
-      double h = c_z - std::sqrt(std::max(0.0, R_ * R_ - d * d));
-      if (!tool.waviness.empty()) {
-        // The edge point at normal angle ψ lies (R + δ(ψ − B)) from the centre, at radial
-        // offset −(R + δ) sin ψ: ψ from the round nose, once refined with its δ (δ ≪ R,
-        // so the rest is second order in δ′).
-        const double psi0 = std::asin(std::clamp(-d / R_, -1.0, 1.0));
-        const double sin_psi = std::clamp(-d / (R_ + tool.waviness_at(psi0 - b)), -1.0, 1.0);
-        const double psi = std::asin(sin_psi);
-        h = c_z - (R_ + tool.waviness_at(psi - b)) * std::sqrt(1 - sin_psi * sin_psi);
+      lower_cell(
+          static_cast<std::size_t>(i) * static_cast<std::size_t>(n) + static_cast<std::size_t>(col),
+          edge_height(s - c_r, c_z, b), std::abs(s - p_r), held);
+    }
+  }
+}
+
+double CutSimulator::edge_height(double d, double c_z, double b) const {
+  const ToolGeometry& tool = o_.compensation.tool;
+  if (tool.waviness.empty()) return c_z - std::sqrt(std::max(0.0, R_ * R_ - d * d));
+  // The edge point at normal angle ψ lies (R + δ(ψ − B)) from the centre, at offset
+  // −(R + δ) sin ψ: ψ from the round nose, once refined with its δ (δ ≪ R, so the rest is
+  // second order in δ′).
+  const double psi0 = std::asin(std::clamp(-d / R_, -1.0, 1.0));
+  const double sin_psi = std::clamp(-d / (R_ + tool.waviness_at(psi0 - b)), -1.0, 1.0);
+  const double psi = std::asin(sin_psi);
+  return c_z - (R_ + tool.waviness_at(psi - b)) * std::sqrt(1 - sin_psi * sin_psi);
+}
+
+void CutSimulator::lower_cell(std::size_t idx, double height, double from_contact, bool held) {
+  if (!(height < machined_[idx])) return;
+  machined_[idx] = height;
+  offset_[idx] =
+      static_cast<std::uint16_t>(static_cast<std::uint16_t>(std::min(
+                                     kOffsetSteps, from_contact * (kOffsetSteps / o_.band) + 0.5)) |
+                                 (held ? kHeldBit : 0));
+}
+
+// With the edge h above the spindle line the nose is an arc in the rake plane, machine
+// y = h (docs/tool.md, "Centre height"): its point at machine x_e reaches radius
+// √(x_e² + h²) at angle C + atan2(h, x_e), which differs along the edge. Ring by ring: the
+// edge points that reach ring ρ (x_e = ±√(ρ² − h²)) pass column k where
+// C(t) = k·2π/n − atan2(h, x_e), and the axes there place the nose's centre at machine x
+// c_x, so the arc's height over them is that of a radial nose at offset x_e − c_x. The
+// motion is interpolated in C, the spindle's own angle, as the controller does.
+void CutSimulator::sweep_rake_plane(std::size_t end, int pair_begin, int pair_end) {
+  const int n = o_.columns, half = n / 2;
+  const double per_column = 2 * std::numbers::pi / n;
+  const bool cubic = o_.interpolation == Interpolation::kCubic;
+  const double h = o_.compensation.tool.centre_height;
+  const double offset = programmed_point_offset(o_.compensation);
+  for (std::size_t i = first_; i < end; ++i) {
+    const CutterLocation& a = pending_[i];
+    const CutterLocation& b = pending_[i + 1];
+    const double ca = a.c, cb = b.c;
+    if (!(cb > ca) || !std::isfinite(a.x) || !std::isfinite(b.x)) continue;
+    const double span = cb - ca;
+    const Eigen::Vector3d qa(a.x, a.z, a.b), qb(b.x, b.z, b.b);
+    Eigen::Vector3d va = Eigen::Vector3d::Zero(), vb = Eigen::Vector3d::Zero();
+    if (cubic) {
+      const CutterLocation& before = i > 0 ? pending_[i - 1] : a;
+      const CutterLocation& after = i + 2 < pending_.size() ? pending_[i + 2] : b;
+      const Eigen::Vector3d q_before(before.x, before.z, before.b),
+          q_after(after.x, after.z, after.b);
+      for (int axis = 0; axis < 3; ++axis) {
+        va[axis] = pvt::velocity(q_before[axis], qb[axis], cb - before.c);
+        vb[axis] = pvt::velocity(qa[axis], q_after[axis], after.c - ca);
       }
-      const std::size_t idx = static_cast<std::size_t>(i) * static_cast<std::size_t>(n) + static_cast<std::size_t>(col);
-      if (h < machined_[idx]) {
-        machined_[idx] = h;
-        offset_[idx] = static_cast<std::uint16_t>(
-            static_cast<std::uint16_t>(std::min(kOffsetSteps, std::abs(s - p_r) * to_offset + 0.5)) |
-            held_bit);
+    }
+    const auto axes_at = [&](double t) {
+      Eigen::Vector3d q;
+      if (cubic) {
+        for (int axis = 0; axis < 3; ++axis)
+          q[axis] = pvt::hermite(qa[axis], va[axis], qb[axis], vb[axis], span, t);
+      } else {
+        q = qa + t * (qb - qa);
+      }
+      return q;
+    };
+    const double pa = radial_of(a.contact.point, a.contact.theta);
+    const double pb = radial_of(b.contact.point, b.contact.theta);
+    const bool held = a.contact.uncut_residual > 0 || b.contact.uncut_residual > 0;
+    // The edge's machine x over the segment (a cubic stays near its ends' hull; the band
+    // bounds what is swept anyway).
+    const double ea = a.x - offset * std::sin(a.b), eb = b.x - offset * std::sin(b.b);
+    const double x_lo = std::min(ea, eb) - R_, x_hi = std::max(ea, eb) + R_;
+    const double r_lo = x_lo <= 0 && x_hi >= 0
+                            ? std::abs(h)
+                            : std::hypot(std::min(std::abs(x_lo), std::abs(x_hi)), h);
+    const double r_hi = std::hypot(std::max(std::abs(x_lo), std::abs(x_hi)), h);
+    const int i0 =
+        std::max(0, static_cast<int>(std::ceil((r_lo - o_.inner_radius) / o_.radial_step)));
+    const int i1 = std::min(
+        rings_ - 1, static_cast<int>(std::floor((r_hi - o_.inner_radius) / o_.radial_step)));
+    for (int ring = i0; ring <= i1; ++ring) {
+      const double rho = o_.inner_radius + ring * o_.radial_step;
+      if (!(rho >= std::abs(h))) continue;
+      for (const double sign : {1.0, -1.0}) {
+        const double x_e = sign * std::sqrt(rho * rho - h * h);
+        if (x_e < x_lo || x_e > x_hi) continue;
+        const double turn = std::atan2(h, x_e);
+        const long first = static_cast<long>(std::ceil((ca + turn) / per_column));
+        const long last = static_cast<long>(std::ceil((cb + turn) / per_column)) - 1;
+        for (long k = first; k <= last; ++k) {
+          const int column = static_cast<int>(((k % n) + n) % n);
+          const int pair = column % half;
+          if (pair < pair_begin || pair >= pair_end) continue;
+          const double t = (k * per_column - turn - ca) / span;
+          const Eigen::Vector3d q = axes_at(t);
+          const double c_x = q.x() - offset * std::sin(q.z()),
+                       c_z = q.y() - offset * std::cos(q.z());
+          const double d = x_e - c_x;
+          const double from_contact = std::abs(sign * rho - (pa + t * (pb - pa)));
+          if (std::abs(d) > R_ || from_contact > o_.band) continue;
+          lower_cell(static_cast<std::size_t>(ring) * static_cast<std::size_t>(n) +
+                         static_cast<std::size_t>(column),
+                     edge_height(d, c_z, q.z()), from_contact, held);
+        }
       }
     }
   }
@@ -180,8 +268,12 @@ void CutSimulator::sweep_batch(bool last) {
   const std::size_t end = last ? pending_.size() - 1 : pending_.size() - 2;
   if (end > first_) {
     const int half = o_.columns / 2;
+    const bool rake = o_.compensation.tool.centre_height != 0;
     parallel_for(threads_, half, [&](long begin, long stop) {
-      sweep_columns(end, static_cast<int>(begin), static_cast<int>(stop));
+      if (rake)
+        sweep_rake_plane(end, static_cast<int>(begin), static_cast<int>(stop));
+      else
+        sweep_columns(end, static_cast<int>(begin), static_cast<int>(stop));
     });
   }
   // Keep the location before the next segment and the rest: [end − 1, size).
@@ -213,7 +305,7 @@ SimulationResult CutSimulator::finish() {
   sweep_batch(true);
   // The last location itself: the segments cover [θ_a, θ_b), so a column exactly at the
   // path's last angle is still to cut.
-  if (!pending_.empty()) {
+  if (!pending_.empty() && o_.compensation.tool.centre_height == 0) {
     const CutterLocation& cl = pending_.back();
     const double k = cl.contact.theta / (2 * std::numbers::pi / o_.columns);
     if (std::abs(k - std::round(k)) < 1e-9) {

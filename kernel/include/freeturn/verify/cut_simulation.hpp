@@ -1,7 +1,8 @@
 #pragma once
 // Simulating the cut (paper 001's promise: the form error known before cutting).
 //
-// The tool nose, a circle of radius R in the radial plane at the spindle angle, swept
+// The tool nose, a circle of radius R in the radial plane at the spindle angle (in the
+// rake plane h off the spindle line, with a centre height: sweep_rake_plane), swept
 // along the motion between cutter locations, leaves the machined surface; the residual is
 // machined minus design along the normal (docs/verify.md).
 //
@@ -115,6 +116,13 @@ class CutSimulator final : public CutterSink {
   // held: the segment's nose is held at a crease (its cells are marked uncut residual).
   // b: the tool's rotation (rad), where the waviness is read on the edge.
   void lower_column(int column, double c_r, double c_z, double b, double p_r, bool held);
+  // The sweep where the edge sits h above the spindle line, in its rake plane.
+  void sweep_rake_plane(std::size_t end, int pair_begin, int pair_end);
+  // The lower arc's height at offset d from the nose centre (|d| ≤ R), with the waviness.
+  double edge_height(double d, double c_z, double b) const;
+  // Lowers cell idx to `height` if that is lower, recording the cut's distance from its
+  // contact (mm) and whether its nose was held.
+  void lower_cell(std::size_t idx, double height, double from_contact, bool held);
 
   const Surface& design_;
   double R_;
