@@ -7,8 +7,10 @@ by C. The blocks' X, Z and C are interpolated linearly (2 samples a block), the 
 0.25 degrees; the designs are written here from their definitions (docs/surfaces.md),
 sharing no code with freeturn.
 
-usage: nc_rake_gouge.py PROGRAM.nc DESIGN R H HALF_ANGLE_DEG R_MIN R_MAX
+usage: nc_rake_gouge.py PROGRAM.nc DESIGN R H HALF_ANGLE_DEG R_MIN R_MAX [WAVINESS]
 DESIGN: decentred_sphere:RADIUS:DX  or  compound_eye:BASE:LENS:DIAMETER:PITCH:EXTENT (rings)
+WAVINESS: the edge's radius error, DEG:MM,DEG:MM,... (linear between, the ends held): the
+edge's point at phi lies R + delta(phi) from the centre.
 Prints the deepest point (nm, > 0 below the design).
 """
 import os
@@ -90,11 +92,16 @@ def main():
     xs = (X[:-1, None] + np.diff(X)[:, None] * t).ravel()
     zs = (Z[:-1, None] + np.diff(Z)[:, None] * t).ravel()
     cs = (C[:-1, None] + np.diff(C)[:, None] * t).ravel()
-    phi = np.radians(np.arange(-half, half + 1e-9, 0.25))
+    phi_deg = np.arange(-half, half + 1e-9, 0.25)
+    phi = np.radians(phi_deg)
+    radius = np.full(phi.shape, R)
+    if len(sys.argv) > 8:
+        table = np.array([[float(v) for v in pair.split(":")] for pair in sys.argv[8].split(",")])
+        radius = R + np.interp(phi_deg, table[:, 0], table[:, 1])
     deepest = -1.0
     for i in range(0, len(xs), 20000):
         x, z, c = xs[i:i + 20000, None], zs[i:i + 20000, None], cs[i:i + 20000, None]
-        ex, ez = x - R * np.sin(phi), z - R * np.cos(phi)
+        ex, ez = x - radius * np.sin(phi), z - radius * np.cos(phi)
         wx, wy = ex * np.cos(c) - h * np.sin(c), ex * np.sin(c) + h * np.cos(c)
         r = np.hypot(wx, wy)
         below = np.where((r >= r_min) & (r <= r_max), z_of(wx, wy) - ez, -1.0)

@@ -29,12 +29,19 @@ class NoseSection {
   // stand_off: how far the programmed nose stands off the design along the section normal
   // (half the chord tolerance: cutter_points.hpp, "one-sided band").
   NoseSection(const Surface& design, const ToolMotion& motion, double stand_off)
-      : design_(design), R_(motion.nose_radius), stand_off_(stand_off),
-        offset_(motion.b_follows ? motion.axis_offset : 0.0), b_follows_(motion.b_follows),
-        edge_angle_(motion.edge_angle) {}
+      : design_(design),
+        R_(motion.nose_radius),
+        stand_off_(stand_off),
+        offset_(motion.b_follows ? motion.axis_offset : 0.0),
+        b_follows_(motion.b_follows),
+        edge_angle_(motion.edge_angle),
+        floor_(motion.nose_radius > 0 ? edge_reach(motion, design) : 0.0) {}
 
   double nose_radius() const { return R_; }
   double stand_off() const { return stand_off_; }
+  // How far above the design the motion must stay: what the real edge may reach past the
+  // round nose (cutter_points.hpp, edge_reach), 0 for a round nose on the spindle line.
+  double chord_floor() const { return floor_; }
   // How far the programmed point lies from the nose centre along B (a pivot's distance,
   // −R for the tip) where B follows the normal; 0 otherwise (a fixed B drops out).
   double axis_offset() const { return offset_; }
@@ -217,6 +224,7 @@ class NoseSection {
   double R_, stand_off_, offset_;
   bool b_follows_;
   double edge_angle_;
+  double floor_;
 };
 
 }  // namespace freeturn::detail

@@ -747,12 +747,14 @@ double segment_error(const Path& path, const Segment& segment, Interpolation mod
 }
 
 // The chord fields of the point that ends a segment, from its error as distribute()
-// measures it (from the band's centre, the blocks' stand-off above the design).
+// measures it (from the band's centre, the blocks' stand-off above the design). `floor`:
+// how far above the design the motion must stay (the real edge's reach past the round
+// nose); a segment that comes closer counts as below.
 inline void set_chord(ContactPoint& p, const AxisState& s, double error, bool jump,
-                      double stand_off) {
+                      double stand_off, double floor) {
   p.stand_off = stand_off;
   p.chord_error = stand_off + std::abs(error);
-  p.chord_below = error < -stand_off;
+  p.chord_below = error < floor - stand_off;
   p.chord_jump = jump;
   p.uncut_residual = s.uncut;
 }

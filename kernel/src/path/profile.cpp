@@ -30,6 +30,7 @@ class ProfilePath {
   bool holds_still() const { return true; }  // C is fixed: a held nose may not move
   bool prune_samples() const { return false; }  // one short pass: every sample is taken
   double stand_off() const { return nose_.stand_off(); }
+  double chord_floor() const { return nose_.chord_floor(); }
   double axis_offset() const { return nose_.axis_offset(); }
   std::string why_not_smooth(const detail::AxisState& s) const {
     return nose_.why_not_smooth(RadialLine{}, s.contact_r);
@@ -119,7 +120,7 @@ PathSummary plan_profile(const Surface& design, const ProfileOptions& o, Contact
     p.theta = 0;
     p.r = s.contact_r;
     p.point = s.point;
-    detail::set_chord(p, s, error, jump, path.stand_off());
+    detail::set_chord(p, s, error, jump, path.stand_off(), path.chord_floor());
     detail::fill_section(design, p, s.rolling ? &s.slope : nullptr);
     summary.add(p.theta, p.r, p.chord_error, jump);
     out.push(p);

@@ -58,6 +58,7 @@ class SpiralPath {
   // one the contact's own distance kinks either way at a crease.
   bool prune_samples() const { return nose_.nose_radius() > 0 && !o_.take_every_sample; }
   double stand_off() const { return nose_.stand_off(); }
+  double chord_floor() const { return nose_.chord_floor(); }
   double axis_offset() const { return nose_.axis_offset(); }
   double pitch() const { return o_.pitch; }
   std::string why_not_smooth(const detail::AxisState& s) const {
@@ -303,7 +304,7 @@ PathSummary plan_spiral(const Surface& design, const BaseSurface& base,
     p.theta = s.c;
     p.r = s.contact_r;
     p.point = s.point;
-    detail::set_chord(p, s, error, jump, piece.stand_off());
+    detail::set_chord(p, s, error, jump, piece.stand_off(), piece.chord_floor());
     const double zr = detail::fill_section(design, p, s.rolling ? &s.slope : nullptr);
     // Adjacent turns are p apart along the base's generating curve; on the design
     // they are p / cos β apart, β the angle between the two sections' tangents.

@@ -505,15 +505,20 @@ double equal_rule_stand_off(const Job& job, const PreparedJob& prepared, const S
   CutterPointOptions points = plan.strategy.points;
   points.interpolation = prepared.machine.interpolation;
   points.equal_rule_stand_off = 0;
+  // The dip of the round nose's own motion, its blocks on the design: the reach of the
+  // real edge past it is stood off on top (stand_off_for), and each run's segments are
+  // held above that reach (PassFigures::below_floor_max).
+  ToolMotion round = tool;
+  round.waviness_span = round.smooth_waviness_reach = round.centre_height_reach = 0;
   if (plan.strategy.mode == Strategy::Mode::kSpiral) {
     constexpr double kEstimateRevolutions = 96;
     const double revolutions =
         (job.aperture.outer_radius - job.aperture.inner_radius) / plan.strategy.pitch;
-    SpiralOptions o = spiral_options(job, prepared, tool, points);
+    SpiralOptions o = spiral_options(job, prepared, round, points);
     o.pitch *= std::max(1.0, std::floor(revolutions / kEstimateRevolutions));
     plan_spiral(design, base.base, o, gauge);
   } else {
-    plan_profile(design, profile_options(job, tool, points), gauge);
+    plan_profile(design, profile_options(job, round, points), gauge);
   }
   return stand_off_over(gauge.deepest) + words_rounding(job, prepared.machine);
 }
@@ -616,6 +621,7 @@ RunResult execute_job(const Job& job, const PreparedJob& prepared, const std::st
     PassFigures& figures =
         report.add_pass(finishing ? "finish" : "rough-" + std::to_string(pass + 1), stock[pass]);
     figures.band_width = (job.aperture.outer_radius - job.aperture.inner_radius) / 64;
+    figures.chord_floor = edge_reach(tool, design);
     AxisDiscard discard;
     AxisSink* post = &discard;
     std::unique_ptr<BlockScheduler> scheduler;
@@ -671,10 +677,11 @@ RunResult execute_job(const Job& job, const PreparedJob& prepared, const std::st
     }
     mapper.finish();
     if (scheduler) scheduler->finish();
-    // Equal-angle or equal-arc motion below the design past the estimated stand-off: run
+    // Equal-angle or equal-arc motion below the design past the estimated stand-off (below
+    // the edge's reach above it, where the real edge reaches past the round nose): run
     // again before anything of this pass is reported (the third time, the verdict says so).
-    if (stand_off > 0 && figures.chord_below_max > 0 && planned.stand_off_raised < 2)
-      throw StandOffShort{figures.chord_below_max};
+    if (stand_off > 0 && figures.below_floor_max > 0 && planned.stand_off_raised < 2)
+      throw StandOffShort{figures.below_floor_max};
     if (observer) observer->pass_done(figures.name);
     figures.finish(summary, mapper.report(), compensator.report());
     if (scheduler) figures.take_schedule(scheduler->report());

@@ -64,6 +64,7 @@ void PassFigures::add(const CutterLocation& cl) {
   if (points_per_revolution.size() <= revolution) points_per_revolution.resize(revolution + 1, 0);
   ++points_per_revolution[revolution];
   chord_below_max = std::max(chord_below_max, cl.contact.dip_below_design());
+  below_floor_max = std::max(below_floor_max, cl.contact.dip_below(chord_floor));
   if (cl.contact.uncut_residual > 0) {
     ++held_points;
     if (cl.contact.uncut_residual > uncut_max) {

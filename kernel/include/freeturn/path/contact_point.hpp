@@ -5,6 +5,7 @@
 // it to a ContactSink, so a 50-million-point pass runs in the memory of one chunk.
 
 #include <Eigen/Core>
+#include <algorithm>
 #include <span>
 #include <vector>
 
@@ -36,7 +37,14 @@ struct ContactPoint {
   double stand_off = 0;
   // How deep the motion of the segment that ends here cuts into the design (mm; 0 where it
   // stays above): chord_error counts from the band's centre, stand_off above the design.
-  double dip_below_design() const { return chord_below ? chord_error - 2 * stand_off : 0.0; }
+  double dip_below_design() const { return dip_below(0.0); }
+  // How far the motion comes below a floor `floor` above the design (mm; 0 where it stays
+  // above). chord_below marks the segments that come below the planner's floor (the real
+  // edge's reach past the round nose, cutter_points.hpp), so a floor up to that one is
+  // judged in full.
+  double dip_below(double floor) const {
+    return chord_below ? std::max(0.0, chord_error - 2 * stand_off + floor) : 0.0;
+  }
   // Pass spacing across adjacent turns along the surface (mm), the curvature of the
   // surface's radial section (1/mm, > 0 concave as seen from the tool), and the scallop
   // height they leave with the tool's nose radius (mm; 0 when no nose radius was given).

@@ -95,6 +95,11 @@ struct PassFigures {
   // The deepest the interpolated motion dips below the design between blocks (mm): 0 under
   // the chord rule's one-sided band; equal-angle and equal-arc points may have some.
   double chord_below_max = 0;
+  // The same below the floor the motion must keep above the design where the real edge
+  // reaches past the round nose (path/cutter_points.hpp, edge_reach; `chord_floor`, mm):
+  // what an equal-angle or equal-arc run's stand-off fell short by.
+  double chord_floor = 0;
+  double below_floor_max = 0;
   long held_points = 0;
   double uncut_max = 0, uncut_theta = 0, uncut_r = 0;
   double band_width = 0;           // mm
