@@ -7,6 +7,7 @@
 #include "freeturn/core/error.hpp"
 #include "freeturn/path/profile.hpp"
 #include "freeturn/path/spiral.hpp"
+#include "freeturn/surface/even_asphere.hpp"
 #include "freeturn/surface/lenslet_array.hpp"
 #include "freeturn/surface/sinusoidal.hpp"
 #include "freeturn/surface/xy_polynomial.hpp"
@@ -87,6 +88,24 @@ TEST_SUITE("tool") {
     c.b_mode = BMode::kFollow;
     spiral_report(flat, 3, c, warn_all(3), &cls);
     for (const CutterLocation& cl : cls) CHECK(cl.psi - cl.b == 0);
+  }
+
+  TEST_CASE(
+      "clearance with the edge above centre: the flank faces machine y, where a "
+      "paraboloid's radial slope shows as c·h everywhere") {
+    // z = c r²/2: ∇z = c (x, y). Machine y at spindle angle C is (−sin C, cos C), and the
+    // contact at radius ρ stands at C = θ − asin(h/ρ): ∇z · e_y = −cρ sin(asin(h/ρ)) = −ch.
+    const EvenAsphere paraboloid(2.0, -1);
+    CompensationOptions c;
+    c.tool.clearance_angle = 10 * std::numbers::pi / 180;
+    ToolCheckOptions checks = warn_all(1);
+    checks.policy[static_cast<int>(ToolCheck::kCentre)] = CheckPolicy::kOff;
+    CHECK(spiral_report(paraboloid, 1, c, checks)[ToolCheck::kClearance].count == 0);
+    c.tool.centre_height = 0.1;  // atan(0.2) = 11.3°
+    const ToolCheckReport report = spiral_report(paraboloid, 1, c, checks);
+    const CheckFinding& f = report[ToolCheck::kClearance];
+    CHECK(f.count > 0);
+    CHECK(f.worst == doctest::Approx(std::atan(0.2)).epsilon(1e-9));
   }
 
   TEST_CASE("global gouge: the nose reaches into a lenslet beside the contact; the local check sees nothing") {

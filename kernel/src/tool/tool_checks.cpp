@@ -179,8 +179,12 @@ void ToolChecker::check(const CutterLocation& cl, const RadialLine& line) {
   }
   const ContactPoint& p = cl.contact;
   if (enabled(ToolCheck::kClearance)) {
-    // |∂z/∂θ| / r = |∇z · e_θ| = |n · e_θ| / n_z.
-    const double n_theta = -p.normal.x() * line.sin + p.normal.y() * line.cos;
+    // |∂z/∂θ| / r = |∇z · e_θ| = |n · e_θ| / n_z. With the edge h above the spindle line
+    // the flank faces the machine's y, which is e_θ turned by C − θ = −asin(h/ρ): there
+    // the radial slope counts too.
+    const double sin_c = tool.centre_height != 0 ? std::sin(cl.c) : line.sin;
+    const double cos_c = tool.centre_height != 0 ? std::cos(cl.c) : line.cos;
+    const double n_theta = -p.normal.x() * sin_c + p.normal.y() * cos_c;
     const double slope = std::atan(std::abs(n_theta) / p.normal.z());
     if (slope >= tool.clearance_angle) found(ToolCheck::kClearance, slope, tool.clearance_angle, cl);
   }
