@@ -175,3 +175,23 @@ TEST_SUITE("tool") {
     CHECK(before > 2e-6);  // 4.3 nm into the design
   }
 }
+
+TEST_SUITE("tool") {
+  TEST_CASE(
+      "a centre height's reach at a held nose: none on a smooth design or on the spindle "
+      "line, and in proportion to h while h ≪ ρ") {
+    const LensletArray eye(test::compound_eye_options(1.6));
+    ToolMotion motion;
+    motion.nose_radius = 0.2;
+    CHECK(centre_height_reach(motion, eye, 0.05, 1.6) == 0);
+    motion.centre_height = 0.002;
+    CHECK(centre_height_reach(motion, EvenAsphere(1 / 20.0, 0), 0.05, 1.6) == 0);
+    // (s_t(ρ₂) + s_t(ρ₁))·β·R·Δψ with β = asin(h/ρ₁): h/ρ₁ ≤ 0.002/0.1 here, so doubling h
+    // doubles it to within asin's curvature, (h/ρ)²/2 = 2·10⁻⁴ at most.
+    const double once = centre_height_reach(motion, eye, 0.05, 1.6);
+    motion.centre_height = -0.004;
+    const double twice = centre_height_reach(motion, eye, 0.05, 1.6);
+    CHECK(once > 0);
+    CHECK(twice == doctest::Approx(2 * once).epsilon(2e-4));
+  }
+}

@@ -26,9 +26,9 @@ double centre_height_reach(const ToolMotion& tool, const Surface& design, double
                            double outer_radius) {
   const double h = std::abs(tool.centre_height), R = tool.nose_radius;
   if (!(h > 0) || !(R > 0) || !design.has_creases()) return 0.0;
-  // Sampled on `lines` radial lines of `steps` + 1 radii each (ψ and s_t on both sides
-  // of every crease the line meets), as the curvature's grid is: a sample, not a bound.
-  constexpr int kLines = 1024, kSteps = 1024, kCreases = 256;
+  // Sampled on kLines radial lines at kSteps + 1 radii each (ψ and s_t on both sides of
+  // every crease a line meets), as the curvature's grid is: a sample, not a bound.
+  constexpr int kLines = 512, kSteps = 512, kCreases = 256;
   const double lo = std::max(inner_radius, h), step = (outer_radius - lo) / kSteps;
   if (!(step > 0)) return 0.0;
   std::vector<double> psi(kSteps + 1), across(kSteps + 1);
@@ -55,26 +55,31 @@ double centre_height_reach(const ToolMotion& tool, const Surface& design, double
   for (int j = 0; j < kLines; ++j) {
     const RadialLine line(2 * std::numbers::pi * j / kLines);
     for (int i = 0; i <= kSteps; ++i) sample(line, lo + i * step, psi[i], across[i]);
-    const int found = design.section_creases(line, lo, outer_radius, creases);
-    for (int k = 0; k < std::min(found, kCreases); ++k) {
-      const double c = creases[static_cast<std::size_t>(k)];
-      // Both touches lie within `apart` of the crease; the steepest slope and the widest
-      // angle between normals there, with the largest change between neighbouring samples
-      // on either side (what the slope can reach between them).
-      const int i0 = std::max(0, static_cast<int>(std::floor((c - apart - lo) / step)));
-      const int i1 = std::min(kSteps, static_cast<int>(std::ceil((c + apart - lo) / step)));
-      double steepest = 0, change = 0, p_lo = INFINITY, p_hi = -INFINITY;
-      for (int i = i0; i <= i1; ++i) {
-        if (!std::isfinite(psi[i]) || !std::isfinite(across[i])) continue;
-        steepest = std::max(steepest, across[i]);
-        p_lo = std::min(p_lo, psi[i]), p_hi = std::max(p_hi, psi[i]);
-        const bool same_side = i > i0 && (lo + (i - 1) * step - c) * (lo + i * step - c) > 0;
-        if (same_side && std::isfinite(across[i - 1]))
-          change = std::max(change, std::abs(across[i] - across[i - 1]));
+    // The line's creases, kCreases at a time (a fine array meets more).
+    for (double from = lo;;) {
+      const int found = design.section_creases(line, from, outer_radius, creases);
+      for (int k = 0; k < found; ++k) {
+        const double c = creases[static_cast<std::size_t>(k)];
+        // Both touches lie within `apart` of the crease; the steepest slope and the widest
+        // angle between normals there, with the largest change between neighbouring samples
+        // on either side (what the slope can reach between them).
+        const int i0 = std::max(0, static_cast<int>(std::floor((c - apart - lo) / step)));
+        const int i1 = std::min(kSteps, static_cast<int>(std::ceil((c + apart - lo) / step)));
+        double steepest = 0, change = 0, p_lo = INFINITY, p_hi = -INFINITY;
+        for (int i = i0; i <= i1; ++i) {
+          if (!std::isfinite(psi[i]) || !std::isfinite(across[i])) continue;
+          steepest = std::max(steepest, across[i]);
+          p_lo = std::min(p_lo, psi[i]), p_hi = std::max(p_hi, psi[i]);
+          const bool same_side = i > i0 && (lo + (i - 1) * step - c) * (lo + i * step - c) > 0;
+          if (same_side && std::isfinite(across[i - 1]))
+            change = std::max(change, std::abs(across[i] - across[i - 1]));
+        }
+        if (!(p_hi > p_lo)) continue;
+        const double beta = std::asin(std::min(1.0, h / std::max(c - apart, h)));
+        largest = std::max(largest, 2 * (steepest + change) * beta * R * (p_hi - p_lo));
       }
-      if (!(p_hi > p_lo)) continue;
-      const double beta = std::asin(std::min(1.0, h / std::max(c - apart, h)));
-      largest = std::max(largest, 2 * (steepest + change) * beta * R * (p_hi - p_lo));
+      if (found < kCreases) break;
+      from = std::nextafter(creases[kCreases - 1], INFINITY);
     }
   }
   return largest;
