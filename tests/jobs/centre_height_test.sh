@@ -2,11 +2,10 @@
 # A tool whose edge sits h above the spindle line cuts with an arc in the rake plane, not
 # in a radial plane (docs/tool.md, "Centre height"). Two jobs with h = 10 µm are run and
 # their programs read back by tests/jobs/nc_rake_gouge.py, which sweeps that arc from the
-# NC words alone: a paraboloid-like sphere decentred by 1 mm (tangential slopes to 0.2),
-# chord rule, was cut 588 nm into the design near the axis before the nose was laid in the
-# rake plane; the compound eye's lenslets at 1000 points a turn 11.5 nm into their rims
-# before the held nose's far touch stood off. Both must stay above the design, and
-# `simulate --program` must find them so.
+# NC words alone: a sphere of radius 5 mm decentred by 1 mm (slopes to 0.44), chord rule,
+# was cut 588 nm into the design near the axis before the nose was laid in the rake plane;
+# the compound eye's lenslets at 1000 points a turn 6.1 nm into their rims. Both must
+# stay above the design, and `simulate --program` must find them so.
 # usage: centre_height_test.sh <freeturn> <source dir>
 set -u
 freeturn=$1 src=$2
