@@ -33,24 +33,32 @@ double centre_height_reach(const ToolMotion& tool, const Surface& design, double
   if (!(step > 0)) return 0.0;
   std::vector<double> psi(kSteps + 1), across(kSteps + 1);
   std::array<double, kCreases> creases;
-  double psi_min = INFINITY, psi_max = -INFINITY;
   const auto sample = [&](const RadialLine& line, double rho, double& p, double& t) {
     double z, zx, zy;
     design.sag_gradient(rho * line.cos, rho * line.sin, z, zx, zy);
     p = -std::atan(zx * line.cos + zy * line.sin);  // n ∝ (−∇z, 1)
     t = std::abs(zy * line.cos - zx * line.sin);    // |∇z · e_θ|
   };
-  // The span of the section normals' angles first: it bounds how far apart two touches lie.
-  for (int j = 0; j < kLines; ++j) {
-    const RadialLine line(2 * std::numbers::pi * j / kLines);
-    for (int i = 0; i <= kSteps; ++i) {
-      sample(line, lo + i * step, psi[i], across[i]);
-      if (std::isfinite(psi[i]))
-        psi_min = std::min(psi_min, psi[i]), psi_max = std::max(psi_max, psi[i]);
+  // Over the samples of the line within `apart` of a crease at c: the steepest s_t with the
+  // largest change between neighbours on one side of it (what s_t can reach between
+  // samples), and the extremes of ψ.
+  struct Window {
+    double steepest = 0, change = 0, psi_lo = INFINITY, psi_hi = -INFINITY;
+  };
+  const auto window = [&](double c, double apart) {
+    Window w;
+    const int i0 = std::max(0, static_cast<int>(std::floor((c - apart - lo) / step)));
+    const int i1 = std::min(kSteps, static_cast<int>(std::ceil((c + apart - lo) / step)));
+    for (int i = i0; i <= i1; ++i) {
+      if (!std::isfinite(psi[i]) || !std::isfinite(across[i])) continue;
+      w.steepest = std::max(w.steepest, across[i]);
+      w.psi_lo = std::min(w.psi_lo, psi[i]), w.psi_hi = std::max(w.psi_hi, psi[i]);
+      const bool same_side = i > i0 && (lo + (i - 1) * step - c) * (lo + i * step - c) > 0;
+      if (same_side && std::isfinite(across[i - 1]))
+        w.change = std::max(w.change, std::abs(across[i] - across[i - 1]));
     }
-  }
-  if (!(psi_max > psi_min)) return 0.0;
-  const double apart = R * (psi_max - psi_min) + step;
+    return w;
+  };
   double largest = 0;
   for (int j = 0; j < kLines; ++j) {
     const RadialLine line(2 * std::numbers::pi * j / kLines);
@@ -60,23 +68,20 @@ double centre_height_reach(const ToolMotion& tool, const Surface& design, double
       const int found = design.section_creases(line, from, outer_radius, creases);
       for (int k = 0; k < found; ++k) {
         const double c = creases[static_cast<std::size_t>(k)];
-        // Both touches lie within `apart` of the crease; the steepest slope and the widest
-        // angle between normals there, with the largest change between neighbouring samples
-        // on either side (what the slope can reach between them).
-        const int i0 = std::max(0, static_cast<int>(std::floor((c - apart - lo) / step)));
-        const int i1 = std::min(kSteps, static_cast<int>(std::ceil((c + apart - lo) / step)));
-        double steepest = 0, change = 0, p_lo = INFINITY, p_hi = -INFINITY;
-        for (int i = i0; i <= i1; ++i) {
-          if (!std::isfinite(psi[i]) || !std::isfinite(across[i])) continue;
-          steepest = std::max(steepest, across[i]);
-          p_lo = std::min(p_lo, psi[i]), p_hi = std::max(p_hi, psi[i]);
-          const bool same_side = i > i0 && (lo + (i - 1) * step - c) * (lo + i * step - c) > 0;
-          if (same_side && std::isfinite(across[i - 1]))
-            change = std::max(change, std::abs(across[i] - across[i - 1]));
+        // The touches lie R|sin ψ1 − sin ψ2| ≤ R|ψ1 − ψ2| apart with the crease between
+        // them, so within `apart` of it when their normals' angles differ by no more than
+        // apart/R: from 2R (any two), each window's span of ψ bounds the next, narrower one.
+        double apart = 2 * R + step;
+        Window w = window(c, apart);
+        for (int narrowing = 0; narrowing < 4 && w.psi_hi > w.psi_lo; ++narrowing) {
+          const double next = R * (w.psi_hi - w.psi_lo) + step;
+          if (!(next < apart)) break;
+          apart = next;
+          w = window(c, apart);
         }
-        if (!(p_hi > p_lo)) continue;
+        if (!(w.psi_hi > w.psi_lo)) continue;
         const double beta = std::asin(std::min(1.0, h / std::max(c - apart, h)));
-        largest = std::max(largest, 2 * (steepest + change) * beta * R * (p_hi - p_lo));
+        largest = std::max(largest, 2 * (w.steepest + w.change) * beta * R * (w.psi_hi - w.psi_lo));
       }
       if (found < kCreases) break;
       from = std::nextafter(creases[kCreases - 1], INFINITY);
