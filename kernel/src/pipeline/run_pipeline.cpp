@@ -508,8 +508,7 @@ double equal_rule_stand_off(const Job& job, const PreparedJob& prepared, const S
   // The dip of the round nose's own motion, its blocks on the design: the reach of the
   // real edge past it is stood off on top (stand_off_for), and each run's segments are
   // held above that reach (PassFigures::below_floor_max).
-  ToolMotion round = tool;
-  round.waviness_span = round.smooth_waviness_reach = round.centre_height_reach = 0;
+  const ToolMotion round = round_nose(tool);
   if (plan.strategy.mode == Strategy::Mode::kSpiral) {
     constexpr double kEstimateRevolutions = 96;
     const double revolutions =

@@ -33,20 +33,24 @@ CutterLocation compensate(const ContactPoint& contact, const CompensationOptions
   const double ct = line.cos, st = line.sin;
   const Eigen::Vector3d& n = contact.normal;
   const double n_r = n.x() * ct + n.y() * st, n_z = n.z();
-  const double length = std::hypot(n_r, n_z);
-  const double u_r = n_r / length, u_z = n_z / length;  // n̂_p in (ρ, z)
   cl.psi = std::atan2(n_r, n_z);
   cl.b = o.b_mode == BMode::kFollow ? cl.psi - o.edge_angle : o.b_fixed;
-  const double radius =
-      o.tool.nose_radius + o.tool.waviness_at(cl.psi - cl.b) + contact.stand_off;
+  // The nose centre in a vertical plane through the contact, whose normal projects to
+  // (n_e, n_z) there at angle ψ: R + δ(ψ − B) + the stand-off along it, `along` being the
+  // contact's position in the plane. (along-plane, z).
+  const auto centre_in_plane = [&](double n_e, double psi, double along) -> Eigen::Vector2d {
+    const double length = std::hypot(n_e, n_z);
+    const double radius = o.tool.nose_radius + o.tool.waviness_at(psi - cl.b) + contact.stand_off;
+    return {along + radius * (n_e / length), contact.point.z() + radius * (n_z / length)};
+  };
   // In the radial plane: the contact's ρ is its signed distance along e_r.
   const double p_r = contact.point.x() * ct + contact.point.y() * st;
-  const double c_r = p_r + radius * u_r, c_z = contact.point.z() + radius * u_z;
-  cl.nose_centre = {c_r * ct, c_r * st, c_z};
+  const Eigen::Vector2d centre = centre_in_plane(n_r, cl.psi, p_r);
+  cl.nose_centre = {centre.x() * ct, centre.x() * st, centre.y()};
   const double a_r = std::sin(cl.b), a_z = std::cos(cl.b);
   const double offset = programmed_point_offset(o);
-  cl.x = c_r + offset * a_r;
-  cl.z = c_z + offset * a_z;
+  cl.x = centre.x() + offset * a_r;
+  cl.z = centre.y() + offset * a_z;
   cl.c = contact.theta;
   const double h = o.tool.centre_height;
   if (h != 0) {
@@ -63,14 +67,10 @@ CutterLocation compensate(const ContactPoint& contact, const CompensationOptions
     }
     const double beta = std::asin(h / p_r);
     cl.c = contact.theta - beta;
-    const double e_x = std::cos(cl.c), e_y = std::sin(cl.c);
-    const double n_e = n.x() * e_x + n.y() * e_y;
-    const double length_e = std::hypot(n_e, n_z);
-    const double psi_e = std::atan2(n_e, n_z);
-    const double radius_e =
-        o.tool.nose_radius + o.tool.waviness_at(psi_e - cl.b) + contact.stand_off;
-    cl.x = p_r * std::cos(beta) + radius_e * n_e / length_e + offset * a_r;
-    cl.z = contact.point.z() + radius_e * n_z / length_e + offset * a_z;
+    const double n_e = n.x() * std::cos(cl.c) + n.y() * std::sin(cl.c);
+    const Eigen::Vector2d rake = centre_in_plane(n_e, std::atan2(n_e, n_z), p_r * std::cos(beta));
+    cl.x = rake.x() + offset * a_r;
+    cl.z = rake.y() + offset * a_z;
   }
   return cl;
 }

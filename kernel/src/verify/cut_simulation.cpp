@@ -25,6 +25,46 @@ double radial_of(const Eigen::Vector3d& p, double theta) {
   return p.x() * std::cos(theta) + p.y() * std::sin(theta);
 }
 
+// The programmed axes (X, Z, B) along the segment from locations[i] to locations[i + 1] as
+// the controller interpolates them: linearly, or in PVT (pvt_rule.hpp) along the cubic
+// with each block's velocity from its neighbours over their times, one-sided at the path's
+// ends. `time(location)`: at one spindle speed, its angle.
+class SegmentAxes {
+ public:
+  template <class Time>
+  SegmentAxes(const std::vector<CutterLocation>& locations, std::size_t i, bool cubic, Time time)
+      : cubic_(cubic) {
+    const CutterLocation& a = locations[i];
+    const CutterLocation& b = locations[i + 1];
+    qa_ = {a.x, a.z, a.b};
+    qb_ = {b.x, b.z, b.b};
+    span_ = time(b) - time(a);
+    if (!cubic) return;
+    const CutterLocation& before = i > 0 ? locations[i - 1] : a;
+    const CutterLocation& after = i + 2 < locations.size() ? locations[i + 2] : b;
+    const Eigen::Vector3d q_before(before.x, before.z, before.b),
+        q_after(after.x, after.z, after.b);
+    const double dt_a = time(b) - time(before), dt_b = time(after) - time(a);
+    for (int axis = 0; axis < 3; ++axis) {
+      va_[axis] = pvt::velocity(q_before[axis], qb_[axis], dt_a);
+      vb_[axis] = pvt::velocity(qa_[axis], q_after[axis], dt_b);
+    }
+  }
+  // At the fraction t of the segment's time.
+  Eigen::Vector3d at(double t) const {
+    if (!cubic_) return qa_ + t * (qb_ - qa_);
+    Eigen::Vector3d q;
+    for (int axis = 0; axis < 3; ++axis)
+      q[axis] = pvt::hermite(qa_[axis], va_[axis], qb_[axis], vb_[axis], span_, t);
+    return q;
+  }
+
+ private:
+  bool cubic_;
+  double span_ = 0;
+  Eigen::Vector3d qa_, qb_, va_ = Eigen::Vector3d::Zero(), vb_ = Eigen::Vector3d::Zero();
+};
+
 // The worst cell of a stretch of rings, and the figures of one ring.
 struct RingFigures {
   double sum = 0;
@@ -146,28 +186,7 @@ void CutSimulator::sweep_rake_plane(std::size_t end, int pair_begin, int pair_en
     const double ca = a.c, cb = b.c;
     if (!(cb > ca) || !std::isfinite(a.x) || !std::isfinite(b.x)) continue;
     const double span = cb - ca;
-    const Eigen::Vector3d qa(a.x, a.z, a.b), qb(b.x, b.z, b.b);
-    Eigen::Vector3d va = Eigen::Vector3d::Zero(), vb = Eigen::Vector3d::Zero();
-    if (cubic) {
-      const CutterLocation& before = i > 0 ? pending_[i - 1] : a;
-      const CutterLocation& after = i + 2 < pending_.size() ? pending_[i + 2] : b;
-      const Eigen::Vector3d q_before(before.x, before.z, before.b),
-          q_after(after.x, after.z, after.b);
-      for (int axis = 0; axis < 3; ++axis) {
-        va[axis] = pvt::velocity(q_before[axis], qb[axis], cb - before.c);
-        vb[axis] = pvt::velocity(qa[axis], q_after[axis], after.c - ca);
-      }
-    }
-    const auto axes_at = [&](double t) {
-      Eigen::Vector3d q;
-      if (cubic) {
-        for (int axis = 0; axis < 3; ++axis)
-          q[axis] = pvt::hermite(qa[axis], va[axis], qb[axis], vb[axis], span, t);
-      } else {
-        q = qa + t * (qb - qa);
-      }
-      return q;
-    };
+    const SegmentAxes axes(pending_, i, cubic, [](const CutterLocation& l) { return l.c; });
     const double pa = radial_of(a.contact.point, a.contact.theta);
     const double pb = radial_of(b.contact.point, b.contact.theta);
     const bool held = a.contact.uncut_residual > 0 || b.contact.uncut_residual > 0;
@@ -197,7 +216,7 @@ void CutSimulator::sweep_rake_plane(std::size_t end, int pair_begin, int pair_en
           const int pair = column % half;
           if (pair < pair_begin || pair >= pair_end) continue;
           const double t = (k * per_column - turn - ca) / span;
-          const Eigen::Vector3d q = axes_at(t);
+          const Eigen::Vector3d q = axes.at(t);
           const double c_x = q.x() - offset * std::sin(q.z()),
                        c_z = q.y() - offset * std::cos(q.z());
           const double d = x_e - c_x;
@@ -228,20 +247,8 @@ void CutSimulator::sweep_columns(std::size_t end, int pair_begin, int pair_end) 
     const long last = static_cast<long>(std::ceil(tb / per_column)) - 1;
     if (last < first) continue;
     const double h = tb - ta;
-    // PVT (pvt_rule.hpp): each block's velocity from its neighbours over their times, at
-    // one spindle speed their angles; one-sided at the path's ends.
-    const Eigen::Vector3d qa(a.x, a.z, a.b), qb(b.x, b.z, b.b);
-    Eigen::Vector3d va = Eigen::Vector3d::Zero(), vb = Eigen::Vector3d::Zero();
-    if (cubic) {
-      const CutterLocation& before = i > 0 ? pending_[i - 1] : a;
-      const CutterLocation& after = i + 2 < pending_.size() ? pending_[i + 2] : b;
-      const Eigen::Vector3d q_before(before.x, before.z, before.b), q_after(after.x, after.z, after.b);
-      const double dt_a = tb - before.contact.theta, dt_b = after.contact.theta - ta;
-      for (int axis = 0; axis < 3; ++axis) {
-        va[axis] = pvt::velocity(q_before[axis], qb[axis], dt_a);
-        vb[axis] = pvt::velocity(qa[axis], q_after[axis], dt_b);
-      }
-    }
+    const SegmentAxes axes(pending_, i, cubic,
+                           [](const CutterLocation& l) { return l.contact.theta; });
     const double pa = radial_of(a.contact.point, ta), pb = radial_of(b.contact.point, tb);
     const bool held = a.contact.uncut_residual > 0 || b.contact.uncut_residual > 0;
     for (long k = first; k <= last; ++k) {
@@ -249,12 +256,7 @@ void CutSimulator::sweep_columns(std::size_t end, int pair_begin, int pair_end) 
       const int pair = column % half;
       if (pair < pair_begin || pair >= pair_end) continue;
       const double t = (k * per_column - ta) / h;
-      Eigen::Vector3d q;
-      if (cubic) {
-        for (int axis = 0; axis < 3; ++axis) q[axis] = pvt::hermite(qa[axis], va[axis], qb[axis], vb[axis], h, t);
-      } else {
-        q = qa + t * (qb - qa);
-      }
+      const Eigen::Vector3d q = axes.at(t);
       const Eigen::Vector2d centre = nose_centre_from_axes(q.x(), q.y(), q.z(), o_.compensation);
       lower_column(column, centre.x(), centre.y(), q.z(), pa + t * (pb - pa), held);
     }

@@ -102,6 +102,12 @@ inline double edge_reach(const ToolMotion& tool, const Surface& design) {
          tool.centre_height_reach;
 }
 
+// The round nose the planner measures with: `tool` with nothing reaching past it.
+inline ToolMotion round_nose(ToolMotion tool) {
+  tool.waviness_span = tool.smooth_waviness_reach = tool.centre_height_reach = 0;
+  return tool;
+}
+
 // L²/(2R(1 − κR)) with κ the most any radial section of `design` bends toward the tool
 // over the annulus inner_radius ≤ ρ ≤ outer_radius (largest_section_curvature: its samples'
 // largest and largest change), no more than the waviness's span; the span where a section
