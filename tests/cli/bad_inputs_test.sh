@@ -89,6 +89,12 @@ for k in $(seq 1 12); do
   echo "l$k: &l$k [*l$((k - 1)), *l$((k - 1)), *l$((k - 1)), *l$((k - 1)), *l$((k - 1)), *l$((k - 1)), *l$((k - 1)), *l$((k - 1)), *l$((k - 1))]" >> "$tmp/aliases.yaml"
 done
 refused "aliases of aliases" "$tmp/aliases.yaml" "$tmp/aliases.yaml:19:" "aliases ('*name')"
+# 100 000 brackets deep: yaml-cpp's own depth bound stops it (its message says "bad file").
+{ printf 'name: plate\nsurface: '; head -c 100000 /dev/zero | tr '\0' '['; head -c 100000 /dev/zero | tr '\0' ']'; echo; } > "$tmp/deep.yaml"
+refused "brackets 100 000 deep" "$tmp/deep.yaml" "$tmp/deep.yaml:2:" "nested more than 64 levels deep"
+# A right-to-left override in a name would make the message read as another name.
+job=$(variant bidi 's/^name: plate/name: "pl\\u202eate"/')
+refused "a right-to-left override in the name" "$job" "$job:1:7:" "'pl\\u202eate'"
 printf 'name: plate\0\n' > "$tmp/nul.yaml"
 refused "a NUL byte" "$tmp/nul.yaml" "$tmp/nul.yaml:1:12:" "control character"
 # A scalar carrying a terminal escape and a NUL (YAML's "\e" and "\0"): the message
@@ -103,6 +109,10 @@ refused "a directory as the job" "$tmp/dir.yaml" "$tmp/dir.yaml:" "is a director
 refused "a device as the job" /dev/zero "/dev/zero:" "not a regular file"
 head -c 5000000 /dev/zero | tr '\0' '#' > "$tmp/huge.yaml"
 refused "a 5 MB job" "$tmp/huge.yaml" "$tmp/huge.yaml:" "over the 4194304-byte bound"
+
+# A key with nothing after it: yaml-cpp marks the empty value at the next line's key.
+job=$(variant empty_value 's/^  radius: 50.0/  radius:/')
+refused "a key with no value" "$job" "$job:6:3:" "surface.radius has no value"
 
 # Ranges the schema states.
 job=$(variant clearance 's/clearance_angle_deg: 10/clearance_angle_deg: 720/')

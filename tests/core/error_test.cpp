@@ -31,6 +31,17 @@ TEST_SUITE("core") {
     CHECK(e.problem() == "unknown type 'a\\x00\\x1b[31m\\x0db\\x7f'\n(second line)");
     CHECK(freeturn::escape_control_bytes("a\tb\n") == "a\\x09b\\x0a");
     CHECK(freeturn::escape_control_bytes("a\tb\n", true) == "a\\x09b\n");
+    // U+202E (right-to-left override, E2 80 AE), U+009B (8-bit CSI, C2 9B), U+2066 (E2 81
+    // A6); U+00E9 (C3 A9) and U+2014 (E2 80 94) are shown as they are.
+    CHECK(freeturn::escape_control_bytes("pl\xe2\x80\xae"
+                                         "ate") == "pl\\u202eate");
+    CHECK(freeturn::escape_control_bytes("\xc2\x9b"
+                                         "2J") == "\\u009b2J");
+    CHECK(freeturn::escape_control_bytes("a\xe2\x81\xa6"
+                                         "b") == "a\\u2066b");
+    CHECK(freeturn::escape_control_bytes("caf\xc3\xa9 \xe2\x80\x94") == "caf\xc3\xa9 \xe2\x80\x94");
+    // A sequence cut short at the end is left as it is (the reader has refused bad UTF-8).
+    CHECK(freeturn::escape_control_bytes("a\xe2\x80") == "a\xe2\x80");
     // Escaping twice changes nothing: a message re-thrown with more text stays readable.
     CHECK(InputError(e.where(), e.problem()).problem() == e.problem());
   }

@@ -14,6 +14,8 @@
 #include "freeturn/core/number_text.hpp"
 #include "freeturn/core/utf8.hpp"
 
+#include <yaml-cpp/depthguard.h>
+
 namespace freeturn {
 
 SourceLocation location_of(const YAML::Node& node, const std::string& file) {
@@ -235,6 +237,11 @@ YAML::Node load_yaml_text(const std::string& text, const std::string& path, std:
     // Load, not LoadAll: LoadAll (yaml-cpp 0.7) can loop without end on a stray ',' at the
     // top level; the markers above settle how many documents there are.
     root = YAML::Load(text);
+  } catch (const YAML::DeepRecursion& e) {
+    // yaml-cpp's own bound on nesting, met before check_tree's: its message says "bad file".
+    SourceLocation loc{path, e.mark.line + 1, e.mark.column + 1};
+    throw InputError(loc, "the YAML is nested more than " + std::to_string(kMaxYamlDepth) +
+                              " levels deep (" + std::to_string(e.depth()) + " here)");
   } catch (const YAML::ParserException& e) {
     SourceLocation loc{path, e.mark.line + 1, e.mark.column + 1};
     throw InputError(loc, "YAML syntax error: " + e.msg);
@@ -269,7 +276,17 @@ std::optional<YAML::Node> MapReader::optional_child(const std::string& key) {
   return value;
 }
 
+void MapReader::refuse_empty(const YAML::Node& value, const std::string& key,
+                             const std::string& needed) const {
+  if (!value.IsNull()) return;
+  for (auto it = node_.begin(); it != node_.end(); ++it)
+    if (it->first.IsScalar() && it->first.Scalar() == key)
+      throw InputError(location_of(it->first, file_),
+                       what_ + "." + key + " has no value: it must be " + needed);
+}
+
 double MapReader::read_number(const YAML::Node& value, const std::string& key) const {
+  refuse_empty(value, key, "a number");
   const SourceLocation loc = location_of(value, file_);
   if (!value.IsScalar()) throw InputError(loc, what_ + "." + key + " must be a number");
   double v;
@@ -356,6 +373,7 @@ double MapReader::in_range(const std::string& key, double lo, double hi, bool op
 
 std::string MapReader::text(const std::string& key) {
   const YAML::Node value = child(key);
+  refuse_empty(value, key, "a non-empty string");
   if (!value.IsScalar() || value.Scalar().empty())
     throw InputError(location_of(value, file_), what_ + "." + key + " must be a non-empty string");
   return value.Scalar();

@@ -19,9 +19,11 @@ struct SourceLocation {
   std::string to_string() const;
 };
 
-// `text` with every control byte (below 0x20, and DEL) written as \xNN, so that a value
-// quoted from the user's file (a name, a key, a scalar) cannot put a NUL, a carriage
-// return or a terminal escape into a message. `keep_newlines` leaves '\n' alone, for
+// `text` with every control byte (below 0x20, and DEL) written as \xNN, and every C1
+// control and bidirectional format character (U+0080 to U+009F, U+200E, U+200F, U+202A to
+// U+202E, U+2066 to U+2069) as \uXXXX, so that a value quoted from the user's file (a
+// name, a key, a scalar) cannot put a NUL, a carriage return, a terminal escape or a
+// right-to-left override into a message. `keep_newlines` leaves '\n' alone, for
 // messages that are laid out on several lines.
 std::string escape_control_bytes(std::string_view text, bool keep_newlines = false);
 

@@ -73,6 +73,10 @@ class MapReader {
 
  private:
   double read_number(const YAML::Node& value, const std::string& key) const;
+  // Throws at `key` itself when its value is empty ("radius:" and nothing after it):
+  // yaml-cpp marks an empty value at the next token, often the next line's key.
+  void refuse_empty(const YAML::Node& value, const std::string& key,
+                    const std::string& needed) const;
 
   YAML::Node node_;
   std::string file_;
