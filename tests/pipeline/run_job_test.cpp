@@ -166,6 +166,19 @@ TEST_SUITE("pipeline") {
     // The speed is the machine's, not the job's: the probe's answer was used.
     CHECK(a.report.spindle_rpm < 2000);
     CHECK(a.report.spindle_rpm == b.report.spindle_rpm);
+    // The report's block charts read the controller's cubics as the mapper judges them:
+    // their largest values are the pass's peaks (every block drawn: fewer than 4000).
+    for (const PassFigures& f : a.report.passes) {
+      REQUIRE(f.block_stride == 1);
+      for (int axis = 0; axis < 3; ++axis) {
+        double v = 0, acc = 0;
+        for (const BlockPoint& q : f.blocks)
+          v = std::max(v, std::abs(q.v[axis])), acc = std::max(acc, std::abs(q.a[axis]));
+        CAPTURE(axis);
+        CHECK(v == doctest::Approx(f.dynamics.peak_velocity[axis]).epsilon(1e-9));
+        CHECK(acc == doctest::Approx(f.dynamics.peak_acceleration[axis]).epsilon(1e-9));
+      }
+    }
     REQUIRE(a.files.size() == b.files.size());
     REQUIRE(a.files.size() >= 3);  // two programs and the report
     for (std::size_t i = 0; i < a.files.size(); ++i) {

@@ -1,5 +1,7 @@
 #include <doctest/doctest.h>
 
+#include <algorithm>
+#include <cmath>
 #include <memory>
 #include <numbers>
 #include <vector>
@@ -54,6 +56,53 @@ std::shared_ptr<SimulationResult> flat_cut_lowered_by(double depth) {
 }  // namespace
 
 TEST_SUITE("pipeline") {
+  TEST_CASE("the report's block charts follow a PVT controller's cubics, not straight lines") {
+    // X runs at 1 mm/s and stops within one block, 1 s a block: 0, 1, 2, 3, 3, 3. The
+    // controller's velocities are the central differences (1, 1, 1, 0.5, 0, 0, one-sided at
+    // the ends). On the block 2 → 3 (va 1, vb 0.5, slope 1) the velocity is
+    // v(u) = −1.5u² + u + 1, which peaks at u = 1/3 at 7/6 (the overshoot of a sixth), and
+    // the acceleration runs from 1 to −2; on 3 → 3 (va 0.5, vb 0) v falls from 0.5 and the
+    // acceleration starts at −2. The first block starts from rest: 1 mm/s over 1 s. C turns
+    // at 5°/s through 360° (350, 355, 0, 5, 10, 15), read unwrapped. A straight-line reading
+    // of the same blocks has X's largest acceleration at 1 mm/s², not 2.
+    PassFigures figures;
+    AxisSpec x;
+    const double xs[] = {0, 1, 2, 3, 3, 3}, cs[] = {350, 355, 0, 5, 10, 15};
+    for (int k = 0; k < 6; ++k) {
+      AxisRecord r;
+      r.x = xs[k];
+      r.c = cs[k];
+      r.time = k == 0 ? 0.0 : 1.0;
+      figures.add_block(r, x, true, true);
+    }
+    figures.finish(PathSummary{}, DynamicsReport{}, ToolCheckReport{});
+    REQUIRE(figures.blocks.size() == 5);
+    const double v_x[] = {1, 1, 7.0 / 6, 0.5, 0}, a_x[] = {1, 0, -2, -2, 0};
+    for (int k = 0; k < 5; ++k) {
+      const BlockPoint& b = figures.blocks[static_cast<std::size_t>(k)];
+      CAPTURE(k);
+      CHECK(b.r == doctest::Approx(xs[k + 1]).epsilon(1e-15));
+      CHECK(b.v[0] == doctest::Approx(v_x[k]).epsilon(1e-12));
+      CHECK(b.a[0] == doctest::Approx(a_x[k]).epsilon(1e-12));
+      CHECK(b.v[1] == 0);
+      CHECK(b.a[1] == 0);
+      CHECK(b.v[2] == doctest::Approx(5).epsilon(1e-12));
+      CHECK(b.a[2] == doctest::Approx(k == 0 ? 5.0 : 0.0).epsilon(1e-12));
+    }
+    // The same blocks read as straight lines.
+    PassFigures linear;
+    for (int k = 0; k < 6; ++k) {
+      AxisRecord r;
+      r.x = xs[k];
+      r.time = k == 0 ? 0.0 : 1.0;
+      linear.add_block(r, x, true, false);
+    }
+    REQUIRE(linear.blocks.size() == 5);
+    double largest = 0;
+    for (const BlockPoint& b : linear.blocks) largest = std::max(largest, std::abs(b.a[0]));
+    CHECK(largest == 1);
+  }
+
   TEST_CASE("the report's turn samples take a path that starts below θ = 0") {
     // A program read back may start at a negative C (an accumulating C axis, a sign of −1):
     // its first turn is −1, the value turn_ starts at, and the first sample had gone into a

@@ -100,9 +100,13 @@ class PassStage final : public CutterSink, public AxisSink {
 class BlockTap final : public AxisSink {
  public:
   BlockTap(AxisSink& next, PassFigures& figures, const MachineDescription& machine)
-      : next_(next), figures_(figures), x_(machine.spec(Axis::kX)), c_wrapped_(machine.c_wrapped) {}
+      : next_(next),
+        figures_(figures),
+        x_(machine.spec(Axis::kX)),
+        c_wrapped_(machine.c_wrapped),
+        cubic_(machine.interpolation == Interpolation::kCubic) {}
   void write(std::span<const AxisRecord> records) override {
-    for (const AxisRecord& r : records) figures_.add_block(r, x_, c_wrapped_);
+    for (const AxisRecord& r : records) figures_.add_block(r, x_, c_wrapped_, cubic_);
     next_.write(records);
   }
 
@@ -111,6 +115,7 @@ class BlockTap final : public AxisSink {
   PassFigures& figures_;
   AxisSpec x_;
   bool c_wrapped_;
+  bool cubic_;
 };
 
 // Where the blocks go when nothing is written (check, and the constant-rpm probe): nowhere,

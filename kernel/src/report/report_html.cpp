@@ -406,11 +406,15 @@ std::string report_html(const RunReport& r, const Surface& design) {
     const std::string unit = angular ? (acceleration ? "°/s²" : "°/s") : (acceleration ? "mm/s²" : "mm/s");
     Chart c;
     c.id = std::string(acceleration ? "fig-acceleration-" : "fig-velocity-") + kAxes[axis];
-    c.title = std::string(kAxes[axis]) + (acceleration ? " acceleration" : " velocity") +
-              " of the blocks as written, every " + std::to_string(f.block_stride) +
-              (f.block_stride == 1 ? "st" : "th") + ", with the machine's limits (peak " +
-              readable(acceleration ? f.dynamics.peak_acceleration[axis] : f.dynamics.peak_velocity[axis], 2) +
-              " " + unit + ")";
+    c.title =
+        std::string(kAxes[axis]) + (acceleration ? " acceleration" : " velocity") +
+        (f.cubic_blocks ? " on the controller's cubics (the largest in each block), every "
+                        : " of the blocks as written, every ") +
+        std::to_string(f.block_stride) + (f.block_stride == 1 ? "st" : "th") +
+        ", with the machine's limits (peak " +
+        readable(acceleration ? f.dynamics.peak_acceleration[axis] : f.dynamics.peak_velocity[axis],
+                 2) +
+        " " + unit + ")";
     c.x_title = "programmed radius |X| (mm)";
     c.y_title = std::string(kAxes[axis]) + (acceleration ? " acceleration (" : " velocity (") + unit + ")";
     c.y_from_zero = true;

@@ -30,22 +30,29 @@ inline double hermite(double qa, double va, double qb, double vb, double h, doub
          (u3 - u2) * h * vb;
 }
 
-// The largest speed |dq/ds| along that block's cubic. The velocity is quadratic in the
-// fraction u: its extremes lie at the ends or at its vertex inside the block.
-inline double peak_speed(double qa, double va, double qb, double vb, double h) {
+// The velocity dq/ds of largest size along that block's cubic, with its sign. The
+// velocity is quadratic in the fraction u: its extremes lie at the ends or at its vertex
+// inside the block.
+inline double extreme_velocity(double qa, double va, double qb, double vb, double h) {
   const double slope = (qb - qa) / h;
   // v(u) = a u² + b u + va.
   const double a = 3 * (va + vb) - 6 * slope, b = 6 * slope - 4 * va - 2 * vb;
-  double peak = va < 0 ? -va : va;
-  peak = vb < 0 ? (-vb > peak ? -vb : peak) : (vb > peak ? vb : peak);
+  const auto size = [](double v) { return v < 0 ? -v : v; };
+  double extreme = size(vb) > size(va) ? vb : va;
   if (a != 0) {
     const double u = -b / (2 * a);
     if (u > 0 && u < 1) {
       const double v = va - b * b / (4 * a);
-      peak = v < 0 ? (-v > peak ? -v : peak) : (v > peak ? v : peak);
+      if (size(v) > size(extreme)) extreme = v;
     }
   }
-  return peak;
+  return extreme;
+}
+
+// The largest speed |dq/ds| along that block's cubic.
+inline double peak_speed(double qa, double va, double qb, double vb, double h) {
+  const double v = extreme_velocity(qa, va, qb, vb, h);
+  return v < 0 ? -v : v;
 }
 
 // The accelerations d²q/ds² at that block's start and end. The acceleration is linear in

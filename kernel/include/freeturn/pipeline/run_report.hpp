@@ -57,8 +57,10 @@ struct PlotPoint {
 
 // One block as the program writes it (after the scheduler, when there is one): where
 // (the programmed radius, |X| back through the machine's layout) and its axes' velocity
-// and acceleration by the scheduler's own measure (block_schedule.cpp): v = Δq / t,
-// a = Δv / min(t, t_before).
+// and acceleration as the machine moves through it. Linear motion, by the scheduler's own
+// measure (block_schedule.cpp): v = Δq / t, a = Δv / min(t, t_before). PVT motion, on the
+// controller's cubic (path/pvt_rule.hpp, as AxisMapper judges it): the velocity and the
+// acceleration of largest size within the block, with their signs.
 struct BlockPoint {
   double r;           // mm
   double v[3], a[3];  // X, Z (mm/s, mm/s²), C (°/s, °/s²)
@@ -112,11 +114,14 @@ struct PassFigures {
   TurnSamples turns;
   std::vector<BlockPoint> blocks;  // every `block_stride`-th block as written
   long block_stride = 1;
+  bool cubic_blocks = false;  // the blocks are PVT cubics: `blocks` holds their largest values
   std::vector<long> points_per_revolution;  // by revolution index ⌊θ/2π⌋
 
   void add(const CutterLocation& cl);
-  // A block as written, in order; x_spec converts its X back to a radius.
-  void add_block(const AxisRecord& record, const AxisSpec& x_spec, bool c_wrapped);
+  // A block as written, in order; x_spec converts its X back to a radius. `cubic`: the
+  // machine interpolates PVT cubics, so a block is drawn once the block after it is known
+  // (its end velocity is the central difference over both), the last one by finish().
+  void add_block(const AxisRecord& record, const AxisSpec& x_spec, bool c_wrapped, bool cubic);
   void finish(const PathSummary& s, const DynamicsReport& d, const ToolCheckReport& c);
   // The schedule the program was written with: its cycle time and axis peaks.
   void take_schedule(const ScheduleReport& s);
@@ -126,6 +131,14 @@ struct PassFigures {
   long written_ = 0;               // blocks seen by add_block
   AxisRecord last_block_;
   double last_v_[3] = {0, 0, 0};  // the last block's X, Z, C velocities
+  // PVT: the last two blocks' X, Z and unwrapped C, their times and radii, and the
+  // controller's velocity at the one before the last.
+  double q_before_[3] = {0, 0, 0}, q_last_[3] = {0, 0, 0};
+  double t_last_ = 0, r_last_ = 0;
+  double v_before_[3] = {0, 0, 0};
+  long cubic_drawn_ = 0;
+  void keep_block(long index, const BlockPoint& b);
+  void draw_cubic(const double v_end[3]);
 };
 
 // The base surface a spiral is planned on, and the frame the part is cut in.
