@@ -191,8 +191,25 @@ m=$(machine_variant slow_x 's/max: 100, decimals: 6, max_velocity: 50,/max: 100,
 refused "an X velocity limit of 1e-12 mm/s" "$m.yaml" "$m.machine.yaml:5:72:" "max_velocity must be at least 0.001 mm/s, not 1e-12"
 m=$(machine_variant slow_blocks 's/^max_block_rate: 1000/max_block_rate: 1e-9/')
 refused "a block rate of 1e-9" "$m.yaml" "$m.machine.yaml:10:17:" "max_block_rate must be at least 1 blocks/s"
+# The machine's name names the program file: a path in it would write outside the folder.
+m=$(machine_variant name_path 's/^name: .*/name: "..\/..\/evil"/')
+refused "a machine name that is a path" "$m.yaml" "$m.machine.yaml:2:7:" "machine name '../../evil' must use only letters"
 m=$(machine_variant plugin_path 's/^plugin: iso/plugin: ..\/iso/')
 refused "a plugin path with .." "$m.yaml" "$m.machine.yaml:3:9:" "a name, not a path"
+
+# A Moore header that ends the program before the cut: a '%' line after the first (the
+# tape's end to an RS-274 reader) or an M30. Reported at the header in the machine file.
+moore_variant() {
+  sed "$2" "$src/postprocessors/moore/machines/moore-nanotech-250upl.yaml" > "$tmp/$1.machine.yaml"
+  sed "s|^machine: .*|machine: $tmp/$1.machine.yaml|" "$base" > "$tmp/$1.yaml"
+  echo "$tmp/$1"
+}
+m=$(moore_variant tape_end 's/^  header: "G71/  header: "%\\nG71/')
+refused "a '%' in the Moore header" "$m.yaml" "$m.machine.yaml:13:3:" "words after the program's end (% on line 2)" "header comes from the dialect settings"
+m=$(moore_variant header_m30 's/^  header: "G71/  header: "M30\\nG71/')
+refused "an M30 in the Moore header" "$m.yaml" "$m.machine.yaml:13:3:" "words after the program's end (M30 on line 2)"
+m=$(moore_variant percent_word 's/^  header: "G71/  header: "G71 %/')
+refused "a '%' among a header's words" "$m.yaml" "$m.machine.yaml:13:3:" "'%' inside a block"
 
 # A cut the machine cannot make (exit 1, nothing written) is reported at the limit it
 # crosses in the machine file, with the place on the path.

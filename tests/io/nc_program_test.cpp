@@ -36,6 +36,14 @@ TEST_SUITE("io") {
     CHECK(codes[0].words[4].column == 17);
   }
 
+  TEST_CASE("a '%' line is the tape's start when first, its end after: nothing past it is read") {
+    CHECK(xs(parse_nc("%\nG1 X1\nG1 X2\nM2\n%\n", "p.nc")) == std::vector<double>{1, 2});
+    CHECK(xs(parse_nc("\n % \nG1 X1\n", "p.nc")) == std::vector<double>{1});
+    // After a first line (a comment), a '%' ends the tape: X2 is never run.
+    CHECK(xs(parse_nc("(program)\nG1 X1\n%\nG1 X2\n", "p.nc")) == std::vector<double>{1});
+    CHECK(xs(parse_nc("%\nG1 X1\n%\nG1 X2\n%\n", "p.nc")) == std::vector<double>{1});
+  }
+
   TEST_CASE("a program is read as it runs: it ends at M30, M02 or M99, a child returns at M99") {
     const test::TempDir dir;
     dir.write("child.nc", "G93 F0.1\nC1 X1\nC2 X2\nM99\nC3 X-99\n");

@@ -155,4 +155,28 @@ TEST_SUITE("plugins") {
           "child.nc:3: words after the program's end (M99 on line 2), which the controller never "
           "runs: G1 X3");
   }
+
+  TEST_CASE(
+      "the NC guard reads '%' as the tape's marks: first it starts the program, later it ends it") {
+    // RS-274 (LinuxCNC's reader, Fanuc's): a line of '%' alone that is the file's first
+    // line with anything on it starts the program; a later one ends it, and nothing after
+    // it is run.
+    const MachineDescription m = lathe();
+    const auto refused = [&](const std::string& text) {
+      NcGuard guard(m);
+      return refusal_of(guard, text);
+    };
+    CHECK(refused("%\nG1 X1\nM2\n%\n").empty());
+    CHECK(refused("\n  % \r\nG1 X1\nM2\n%\n").empty());  // blank lines before, spaces about it
+    CHECK(refused("G1 X1\n%\n").empty());                // an end with nothing after it
+    CHECK(refused("(a comment)\n%\nG1 X1\n") ==
+          "p.nc:3: words after the program's end (% on line 2), which the controller never runs: "
+          "G1 X1");
+    CHECK(refused("%\nG1 X1\n%\nG1 X2\n").find("(% on line 3)") != std::string::npos);
+    // A '%' that is not a mark: among words, or with words after it.
+    CHECK(refused("G1 X1 %\n").find("'%' inside a block") != std::string::npos);
+    CHECK(refused("% G1 X1\n").find("'%' with words after it") != std::string::npos);
+    // In a comment it is text.
+    CHECK(refused("G1 X1 (50 %)\n; 10 %\n").empty());
+  }
 }

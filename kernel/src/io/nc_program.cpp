@@ -41,12 +41,20 @@ std::vector<NcBlock> parse_nc(const std::string& text, const std::string& file) 
   std::vector<NcBlock> blocks;
   int line = 0;
   std::size_t start = 0;
+  bool seen_content = false;  // a line with anything on it: a '%' after it ends the tape
   while (start < text.size()) {
     std::size_t end = text.find('\n', start);
     if (end == std::string::npos) end = text.size();
     const std::string l = text.substr(start, end - start);
     start = end + 1;
     ++line;
+    const std::size_t first = l.find_first_not_of(" \t\r");
+    if (first != std::string::npos && l[first] == '%' && l.find_last_not_of(" \t\r") == first) {
+      if (seen_content) break;  // the tape's end
+      seen_content = true;      // its start
+      continue;
+    }
+    if (first != std::string::npos) seen_content = true;
     NcBlock block;
     block.line = line;
     std::size_t i = 0;

@@ -8,16 +8,6 @@
 namespace freeturn {
 namespace {
 
-bool is_file_name_safe(const std::string& name) {
-  if (name.empty() || name[0] == '.') return false;
-  for (char ch : name) {
-    const bool ok = (ch >= 'a' && ch <= 'z') || (ch >= 'A' && ch <= 'Z') ||
-                    (ch >= '0' && ch <= '9') || ch == '-' || ch == '_' || ch == '.';
-    if (!ok) return false;
-  }
-  return true;
-}
-
 Aperture read_aperture(const YAML::Node& node, const std::string& file) {
   MapReader map(node, file, "aperture");
   Aperture a;
@@ -68,14 +58,7 @@ Job load_job(const std::string& path, std::uintmax_t max_bytes) {
   MapReader map(root, path, "job");
   Job job;
   job.file = path;
-  job.name = map.text("name");
-  // It names files (with the machine's name and a suffix): a file system takes 255 bytes.
-  if (job.name.size() > 100)
-    map.fail("name", "the job name has " + std::to_string(job.name.size()) +
-                         " characters; it names files, so at most 100");
-  if (!is_file_name_safe(job.name))
-    map.fail("name", "job name '" + escape_control_bytes(job.name) +
-                         "' must use only letters, digits, '-', '_' and '.' (it names files)");
+  job.name = map.file_name("name");
   job.aperture = read_aperture(map.child("aperture"), path);
   job.surface = surface_from_yaml(map.child("surface"), path, job.aperture.outer_radius);
   if (const auto compensation = map.optional_child("compensation"))

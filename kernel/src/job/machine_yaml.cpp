@@ -26,7 +26,7 @@ MachineDescription load_machine(const std::string& path, std::uintmax_t max_byte
   MapReader map(root, path, "machine");
   MachineDescription m;
   m.file_place = SourceLocation{path, 0, 0};
-  m.name = map.text("name");
+  m.name = map.file_name("name");
   m.plugin = map.text("plugin");
   // It names a shared library in the plugin folder: a name, never a path.
   for (const char ch : m.plugin)

@@ -379,6 +379,21 @@ std::string MapReader::text(const std::string& key) {
   return value.Scalar();
 }
 
+std::string MapReader::file_name(const std::string& key) {
+  std::string name = text(key);
+  if (name.size() > 100)
+    fail(key, what_ + " " + key + " has " + std::to_string(name.size()) +
+                  " characters; it names files, so at most 100");
+  const auto allowed = [](char ch) {
+    return (ch >= 'a' && ch <= 'z') || (ch >= 'A' && ch <= 'Z') || (ch >= '0' && ch <= '9') ||
+           ch == '-' || ch == '_' || ch == '.';
+  };
+  if (name[0] == '.' || !std::all_of(name.begin(), name.end(), allowed))
+    fail(key, what_ + " " + key + " '" + escape_control_bytes(name) +
+                  "' must use only letters, digits, '-', '_' and '.' (it names files)");
+  return name;
+}
+
 void MapReader::finish() const {
   for (auto it = node_.begin(); it != node_.end(); ++it) {
     const std::string key = it->first.Scalar();

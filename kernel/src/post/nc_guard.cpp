@@ -131,11 +131,13 @@ void NcGuard::refuse(const std::string& what) {
 void NcGuard::check_line(std::string_view line) {
   // Every byte must be printable text, comments included: a controller reads every byte of
   // a line. A loop without branches (it vectorises); the place is found only on refusal.
-  unsigned unprintable = 0, comments = 0;
+  unsigned unprintable = 0, comments = 0, percent = 0, content = 0;
   for (const char ch : line) {
     const unsigned byte = static_cast<unsigned char>(ch);
     unprintable |= (byte - 0x20u > 0x5Eu) & (byte != '\t') & (byte != '\r');
     comments |= (byte == '(') | (byte == ';');
+    percent |= byte == '%';
+    content |= (byte != ' ') & (byte != '\t') & (byte != '\r');
   }
   if (unprintable) {
     for (std::size_t i = 0; i < line.size(); ++i) {
@@ -160,6 +162,26 @@ void NcGuard::check_line(std::string_view line) {
       else if (depth == 0) code_ += ch;
     }
     code = code_;
+  }
+  File& this_file = files_[current_];
+  const bool first_content = this_file.blank_so_far;
+  if (content) this_file.blank_so_far = false;
+  if (percent) {
+    // The tape's marks (RS-274, LinuxCNC, Fanuc): a line of '%' alone, first of the file,
+    // starts the program; a later one ends it, and the controller reads nothing after it.
+    // A '%' among a block's words is none of these.
+    std::size_t first = code.find_first_not_of(" \t\r"), last = code.find_last_not_of(" \t\r");
+    if (first == std::string_view::npos || code[first] != '%') {
+      if (code.find('%') != std::string_view::npos)
+        return refuse("'%' inside a block, where it is not a word: " + std::string(line));
+    } else {
+      if (last != first) return refuse("'%' with words after it on its line: " + std::string(line));
+      if (!first_content && this_file.ended_at == 0) {
+        this_file.ended_at = this_file.lines;
+        this_file.end_word = "%";
+      }
+      return;
+    }
   }
   const char* const c = code.data();
   const std::size_t length = code.size();

@@ -89,6 +89,13 @@ void PostProgram::check_output(const char* stage) {
           throw InputError(place, std::string("machine axis ") + crossed.letter +
                                       (crossed.upper ? " max: " : " min: ") + who + " " + what);
       }
+    // What a program's start and end hold beside the plugin's own words (a header, a
+    // footer) comes from the machine file's dialect settings: reported there.
+    const std::string_view s(stage);
+    if (s == "begin" || s == "end")
+      throw InputError(machine_.place_of_setting_in(what),
+                       who + " " + what + " (its " + (s == "begin" ? "header" : "footer") +
+                           " comes from the dialect settings here)");
     throw InputError(who, what);
   }
 }

@@ -26,7 +26,8 @@ struct NcBlock {
 // Throws InputError (file:line:col) for text that is not NC: a character that starts no
 // word, a letter without a value, or an axis (X Y Z A B C U V W) or F word given twice in
 // one block (controllers either stop there or take one of the two; which is not ours to
-// guess).
+// guess). A line of '%' alone after the file's first line with anything on it is the
+// tape's end (RS-274): the controller reads nothing after it, and neither does this.
 std::vector<NcBlock> parse_nc(const std::string& text, const std::string& file);
 
 // A program file and the child files it calls (M98(name), beside it), as one sequence of

@@ -62,6 +62,10 @@ class MapReader {
                   const std::string& unit);  // required
   // A non-empty string.
   std::string text(const std::string& key);
+  // A string that names output files (the job's name, the machine's): at most 100
+  // characters (a file system takes 255 bytes for the name with its suffixes), letters,
+  // digits, '-', '_' and '.', not starting with '.', so never a path or a hidden file.
+  std::string file_name(const std::string& key);
 
   // Rejects keys that were not read.
   void finish() const;

@@ -60,8 +60,9 @@ class NcGuard {
   struct File {
     std::string name, line;  // the line being written
     long long lines = 0, bytes = 0;
-    long long ended_at = 0;  // the line with the file's end word (M02, M30, M99), 0: none yet
+    long long ended_at = 0;  // the line with the file's end word (M02, M30, M99, %), 0: none yet
     std::string end_word;
+    bool blank_so_far = true;  // no line with anything on it yet: a '%' here starts the tape
   };
   Range ranges_[26];  // per letter A…Z
   std::vector<File> files_;
