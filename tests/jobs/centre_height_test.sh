@@ -5,7 +5,8 @@
 # NC words alone: a sphere of radius 5 mm decentred by 1 mm (slopes to 0.44), chord rule,
 # was cut 588 nm into the design near the axis before the nose was laid in the rake plane;
 # the compound eye's lenslets at 1000 points a turn 6.1 nm into their rims. Both must
-# stay above the design, and `simulate --program` must find them so.
+# stay above the design, and `simulate --program` must find them so. A profile on the PVT
+# Precitech is read back along the controller's cubics.
 # usage: centre_height_test.sh <freeturn> <source dir>
 set -u
 freeturn=$1 src=$2
@@ -47,4 +48,26 @@ job decentred "{outer_radius: 1.0, inner_radius: 0.1}" "{type: sphere, radius: 5
 job eye "{outer_radius: 1.6, inner_radius: 0.03}" \
   "{type: compound_eye, base_radius: 20, lens_radius: -5, lens_diameter: 0.9, pitch: 1.0, pattern: rings}" 0.02 \
   "{equal_angle: {per_rev: 1000}}" && check eye compound_eye:20:-5:0.9:1.0:1.6 0.05 1.6
+# Profile mode on the Precitech (PVT): the part turns under the edge, each edge point cut at
+# radius √(x² + h²), between the blocks along the controller's cubics (nc_profile_gouge.py).
+cat > "$tmp/profile.yaml" <<YAML
+name: profile
+aperture: {outer_radius: 2.0, inner_radius: 0.05}
+surface: {type: sphere, radius: 3.0}
+tool: {nose_radius: 0.2, included_angle_deg: 100, clearance_angle_deg: 25, centre_height: 0.01}
+strategy:
+  mode: profile
+  points: {chord: {tolerance: 0.0001, max_radial_step: 0.2}}
+cutting: {feed: 2.0}
+machine: precitech-nanoform-250
+outputs: {nc: true, report: false}
+YAML
+if "$freeturn" run "$tmp/profile.yaml" -o "$tmp/profile" --quiet; then
+  deepest=$("$py" "$src/tests/jobs/nc_profile_gouge.py" "$tmp/profile/profile.precitech-nanoform-250.nc" \
+    sphere:3.0 0.2 0.01 50 2.0) || fail=1
+  echo "profile: the edge's deepest below the design: $deepest nm"
+  "$py" -c "import sys; sys.exit(0 if float('$deepest') <= 0 else 1)" || { echo "FAIL: profile cuts into the design"; fail=1; }
+else
+  echo "FAIL: profile: the run failed"; fail=1
+fi
 exit $fail
