@@ -57,10 +57,13 @@ struct NcDiffResult {
   long blocks_a = 0, blocks_b = 0;
 };
 
-// Compares two programs block by block after the modal state each block leaves: axis
-// words by value within their tolerance, G and M codes as sets, other words by value.
-// Formatting (digits, spaces, word order within a block, line numbers N…) and comments
-// do not count.
+// Compares two programs by what they make the machine do (io/nc_diff.cpp): the blocks
+// that act (move an axis, or state an M or T code, a G code of no RS-274 modal group, or
+// another word) pair up one to one, each pair in the same modal state (the modal groups'
+// G codes, the axes' positions, F outside G93 and S, as the blocks up to it leave them),
+// with the same stated codes and words; lengths and angles within `axis_tolerance`.
+// Formatting (digits, spaces, word order within a block, line numbers N…), comments, and
+// modal codes restated or set a line early do not count.
 NcDiffResult nc_diff(const std::vector<NcBlock>& a, const std::string& name_a,
                      const std::vector<NcBlock>& b, const std::string& name_b,
                      const NcDiffOptions& options = {});

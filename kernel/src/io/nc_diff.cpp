@@ -1,0 +1,220 @@
+// Two NC programs compared by what they make the machine do, not by how they are written.
+//
+// Each program is read as a controller reads it: G codes of RS-274's modal groups
+// (LinuxCNC's table: motion, plane, distance, feed mode, units, cutter compensation, tool
+// length, canned-cycle return, coordinate system, path control, spindle-speed mode, lathe
+// diameter mode) hold until another of their group replaces them, and so do the axis
+// positions, F (except in inverse time, G93, where each move states its own) and S. A
+// block "acts" when it moves an axis or states anything that is not such modal state (an
+// M or T code, a G code of no modal group or one the table does not know — a dialect's own
+// G63 is compared where it is written —, a word such as P, a non-numeric word). The
+// programs match when their acting blocks pair up one to one, each pair with the same
+// modal state, the same stated codes and words, and axes within the tolerance. A line that
+// only restates a modal code, or sets one a line before the move instead of on it, changes
+// nothing.
+#include <cmath>
+#include <cstdio>
+#include <map>
+#include <set>
+#include <string>
+#include <vector>
+
+#include "freeturn/io/nc_program.hpp"
+
+namespace freeturn {
+namespace {
+
+bool is_axis(char letter) { return std::string("XYZABCUVW").find(letter) != std::string::npos; }
+// An arc's centre offsets: lengths, but stated by each arc (not modal).
+bool is_offset(char letter) { return letter == 'I' || letter == 'J' || letter == 'K'; }
+
+// The modal group of G`tenths`/10 in RS-274 (LinuxCNC's G-code table); −1: none or unknown.
+int modal_group(long tenths) {
+  switch (tenths) {
+    case 0: case 10: case 20: case 30: case 330: case 382: case 383: case 384: case 385:
+    case 730: case 760: case 800: case 810: case 820: case 830: case 840: case 850: case 860:
+    case 870: case 880: case 890:
+      return 1;  // motion
+    case 170: case 180: case 190: case 171: case 181: case 191:
+      return 2;  // plane
+    case 900: case 910:
+      return 3;  // distance
+    case 901: case 911:
+      return 4;  // arc distance
+    case 930: case 940: case 950:
+      return 5;  // feed-rate mode
+    case 200: case 210:
+      return 6;  // units
+    case 400: case 410: case 420: case 411: case 421:
+      return 7;  // cutter compensation
+    case 430: case 431: case 490:
+      return 8;  // tool length offset
+    case 980: case 990:
+      return 10;  // canned-cycle return
+    case 540: case 550: case 560: case 570: case 580: case 590: case 591: case 592: case 593:
+      return 12;  // coordinate system
+    case 610: case 611: case 640:
+      return 13;  // path control
+    case 960: case 970:
+      return 14;  // spindle-speed mode
+    case 70: case 80:
+      return 15;  // lathe diameter or radius
+    default:
+      return -1;
+  }
+}
+
+std::string code_text(char letter, double value) {
+  char buf[32];
+  std::snprintf(buf, sizeof buf, "%c%g", letter, value);
+  return buf;
+}
+
+// A program's modal state, carried from block to block.
+struct Modal {
+  std::map<int, std::string> groups;  // group → its code ("G1")
+  std::map<char, double> axes;
+  std::map<char, double> values;  // F (outside G93), S
+  bool inverse_time() const {
+    const auto g = groups.find(5);
+    return g != groups.end() && g->second == "G93";
+  }
+};
+
+// What one acting block does.
+struct Act {
+  const NcBlock* block = nullptr;
+  Modal modal;                      // the state it runs in, its own words applied
+  std::set<std::string> codes;      // its M, T and non-modal G codes
+  std::map<char, double> offsets;   // its arc centre offsets (I, J, K)
+  std::map<char, double> values;    // its other numeric words (P, Q, R, …; F under G93)
+  std::vector<std::string> text;    // its non-numeric words, literally
+};
+
+std::vector<Act> acts_of(const std::vector<NcBlock>& blocks) {
+  std::vector<Act> acts;
+  Modal modal;
+  for (const NcBlock& block : blocks) {
+    Act act;
+    act.block = &block;
+    bool acts_here = false;
+    // Codes first: a block's G93 or G94 decides how its own F is read.
+    for (const NcWord& w : block.words) {
+      if (!w.numeric || w.letter != 'G') continue;
+      const int group = modal_group(std::lround(w.value * 10));
+      if (group > 0 && std::abs(w.value * 10 - std::round(w.value * 10)) < 1e-9) {
+        modal.groups[group] = code_text('G', w.value);
+      } else {
+        act.codes.insert(code_text('G', w.value));
+        acts_here = true;
+      }
+    }
+    for (const NcWord& w : block.words) {
+      if (!w.numeric) {
+        act.text.push_back(w.text);
+        acts_here = true;
+      } else if (w.letter == 'N' || w.letter == 'G') {
+        continue;
+      } else if (w.letter == 'M' || w.letter == 'T') {
+        act.codes.insert(code_text(w.letter, w.value));
+        acts_here = true;
+      } else if (is_axis(w.letter)) {
+        modal.axes[w.letter] = w.value;
+        acts_here = true;
+      } else if (is_offset(w.letter)) {
+        act.offsets[w.letter] = w.value;
+        acts_here = true;
+      } else if (w.letter == 'S' || (w.letter == 'F' && !modal.inverse_time())) {
+        modal.values[w.letter] = w.value;
+      } else {
+        act.values[w.letter] = w.value;
+        acts_here = true;
+      }
+    }
+    if (!acts_here) continue;
+    act.modal = modal;
+    acts.push_back(std::move(act));
+  }
+  return acts;
+}
+
+std::string codes_text(const std::set<std::string>& codes) {
+  std::string s;
+  for (const std::string& c : codes) s += (s.empty() ? "" : " ") + c;
+  return s.empty() ? "none" : s;
+}
+
+std::string group_text(const std::map<int, std::string>& groups, int group) {
+  const auto g = groups.find(group);
+  return g == groups.end() ? "none" : g->second;
+}
+
+}  // namespace
+
+NcDiffResult nc_diff(const std::vector<NcBlock>& a, const std::string& name_a,
+                     const std::vector<NcBlock>& b, const std::string& name_b,
+                     const NcDiffOptions& o) {
+  NcDiffResult r;
+  r.blocks_a = static_cast<long>(a.size());
+  r.blocks_b = static_cast<long>(b.size());
+  const std::vector<Act> acts_a = acts_of(a), acts_b = acts_of(b);
+  const auto differ = [&](const Act& x, const Act& y, const std::string& what) {
+    if (r.same) {
+      r.same = false;
+      r.first_difference = name_a + ":" + std::to_string(x.block->line) + " vs " + name_b + ":" +
+                           std::to_string(y.block->line) + ": " + what;
+    }
+  };
+  // Words by value: `axis` ones (mm or degrees) within the absolute tolerance, the others
+  // relative to their size.
+  const auto compare = [&](const Act& x, const Act& y, const std::map<char, double>& va,
+                           const std::map<char, double>& vb, bool axis) {
+    std::set<char> letters;
+    for (const auto& [l, v] : va) letters.insert(l);
+    for (const auto& [l, v] : vb) letters.insert(l);
+    for (const char l : letters) {
+      const auto ia = va.find(l), ib = vb.find(l);
+      if (ia == va.end() || ib == vb.end()) {
+        differ(x, y, (axis ? std::string("axis ") : std::string()) + l + " only in one program");
+        continue;
+      }
+      const double d = std::abs(ia->second - ib->second);
+      r.largest[l - 'A'] = std::max(r.largest[l - 'A'], d);
+      const bool same = axis ? d <= o.axis_tolerance
+                             : d <= o.other_tolerance * std::max(1.0, std::abs(ia->second));
+      if (!same) {
+        char buf[128];
+        if (axis)
+          std::snprintf(buf, sizeof buf, "%c %.12g ≠ %.12g (Δ %.3g)", l, ia->second, ib->second, d);
+        else
+          std::snprintf(buf, sizeof buf, "%c %.12g ≠ %.12g", l, ia->second, ib->second);
+        differ(x, y, buf);
+      }
+    }
+  };
+  const std::size_t n = std::min(acts_a.size(), acts_b.size());
+  for (std::size_t k = 0; k < n; ++k) {
+    const Act &x = acts_a[k], &y = acts_b[k];
+    if (x.codes != y.codes)
+      differ(x, y, "different codes: " + codes_text(x.codes) + " vs " + codes_text(y.codes));
+    for (const auto& [group, code] : x.modal.groups)
+      if (group_text(y.modal.groups, group) != code)
+        differ(x, y, "modal " + code + " vs " + group_text(y.modal.groups, group));
+    for (const auto& [group, code] : y.modal.groups)
+      if (group_text(x.modal.groups, group) != code)
+        differ(x, y, "modal " + group_text(x.modal.groups, group) + " vs " + code);
+    if (x.text != y.text) differ(x, y, "different words");
+    compare(x, y, x.modal.axes, y.modal.axes, true);
+    compare(x, y, x.offsets, y.offsets, true);
+    compare(x, y, x.modal.values, y.modal.values, false);
+    compare(x, y, x.values, y.values, false);
+  }
+  if (acts_a.size() != acts_b.size() && r.same) {
+    r.same = false;
+    r.first_difference = name_a + " has " + std::to_string(acts_a.size()) + " blocks that act, " +
+                         name_b + " has " + std::to_string(acts_b.size());
+  }
+  return r;
+}
+
+}  // namespace freeturn
