@@ -7,7 +7,6 @@
 
 #include "freeturn/core/error.hpp"
 #include "freeturn/core/number_text.hpp"
-#include "freeturn/path/pvt_rule.hpp"
 
 namespace freeturn {
 namespace {
@@ -36,8 +35,12 @@ std::string number(double v) {
 
 }  // namespace
 
-AxisMapper::AxisMapper(const MachineDescription& machine, const MotionOptions& motion, AxisSink& out)
-    : machine_(machine), motion_(motion), out_(out) {
+AxisMapper::AxisMapper(const MachineDescription& machine, const MotionOptions& motion,
+                       AxisSink& out)
+    : machine_(machine),
+      motion_(motion),
+      out_(out),
+      dynamics_(machine.interpolation == Interpolation::kCubic) {
   report_.max_rpm = motion.spindle_rpm > 0 ? std::numeric_limits<double>::infinity() : 0.0;
   if (machine.has(Axis::kC) && !(motion.spindle_rpm > 0))
     throw InputError("cutting.spindle_rpm", "machine '" + machine.name +
@@ -125,27 +128,19 @@ void AxisMapper::judge_block(const double speed[4], const double acceleration[4]
                            " rpm; this block allows at most " + number(rpm_limit) + " rpm");
 }
 
-void AxisMapper::judge_cubic(const Placed& a, const double va[4], const Placed& b,
-                             const double vb[4], bool from_rest) {
+void AxisMapper::judge_motion(const BlockMotion& m, double theta, double r) {
   double speed[4], acceleration[4];
   for (int i = 0; i < 4; ++i) {
-    speed[i] = pvt::peak_speed(a.q[i], va[i], b.q[i], vb[i], b.time);
-    double at_start, at_end;
-    pvt::end_accelerations(a.q[i], va[i], b.q[i], vb[i], b.time, at_start, at_end);
-    acceleration[i] = std::max(std::abs(at_start), std::abs(at_end));
-    // The program starts at rest: the first block's velocity is reached over its time.
-    if (from_rest) acceleration[i] = std::max(acceleration[i], std::abs(va[i]) / b.time);
+    speed[i] = std::abs(m.velocity[static_cast<std::size_t>(i)]);
+    acceleration[i] = std::abs(m.acceleration[static_cast<std::size_t>(i)]);
   }
-  judge_block(speed, acceleration, b.theta, b.r);
+  judge_block(speed, acceleration, theta, r);
 }
 
 void AxisMapper::finish() {
-  if (machine_.interpolation != Interpolation::kCubic || cubic_blocks_ < 2) return;
-  // The program's last block: its velocity one-sided, from the block before it.
-  double velocity[4];
-  for (int i = 0; i < 4; ++i)
-    velocity[i] = pvt::velocity(cubic_before_.q[i], cubic_last_.q[i], cubic_last_.time);
-  judge_cubic(cubic_before_, cubic_velocity_before_, cubic_last_, velocity, cubic_blocks_ == 2);
+  // Under PVT the program's last block, its end velocity one-sided.
+  BlockMotion m;
+  if (dynamics_.finish(m)) judge_motion(m, last_place_.theta, last_place_.r);
 }
 
 void AxisMapper::write(std::span<const CutterLocation> chunk) {
@@ -178,8 +173,8 @@ void AxisMapper::write(std::span<const CutterLocation> chunk) {
         throw InputError(where(cl), "two consecutive blocks at the same place (zero block time)");
     }
     check_block(r, cl);
-    const Placed placed{
-        {r.x, r.z, c, r.b}, has_previous_ ? r.time : 0.0, cl.contact.theta, cl.contact.r};
+    const long index = positions_++;
+    const Place place{cl.contact.theta, cl.contact.r};
     if (has_previous_) {
       const double rate = 1 / r.time;
       report_.peak_block_rate = std::max(report_.peak_block_rate, rate);
@@ -196,41 +191,17 @@ void AxisMapper::write(std::span<const CutterLocation> chunk) {
                                             " rpm; this block allows at most " + number(rpm_limit) +
                                             " rpm");
       }
-      if (machine_.interpolation == Interpolation::kCubic) {
-        // The velocity the controller gives the block before this one: the central
-        // difference over its neighbours (one-sided at the program's start). Its cubic, from
-        // the block before it, is judged now that both its ends' velocities are known.
-        double velocity[4];
-        const Placed& before = cubic_blocks_ >= 2 ? cubic_before_ : cubic_last_;
-        for (int i = 0; i < 4; ++i)
-          velocity[i] = pvt::velocity(before.q[i], placed.q[i],
-                                      (cubic_blocks_ >= 2 ? cubic_last_.time : 0.0) + placed.time);
-        if (cubic_blocks_ >= 2)
-          judge_cubic(cubic_before_, cubic_velocity_before_, cubic_last_, velocity,
-                      cubic_blocks_ == 2);
-        std::copy(velocity, velocity + 4, cubic_velocity_before_);
-      } else {
-        // Dynamics per axis from the unwrapped values, as a program is read back: the change
-        // of velocity over the shorter of the two blocks' times (from rest before the first).
-        const double now[4] = {r.x, r.z, c, r.b};
-        const double before[4] = {previous_.x, previous_.z, previous_.c, previous_.b};
-        const double faster = std::max(rate, previous_rate_);
-        double speed[4], acceleration[4];
-        for (int i = 0; i < 4; ++i) {
-          const double velocity = (now[i] - before[i]) * rate;
-          speed[i] = std::abs(velocity);
-          acceleration[i] = std::abs(velocity - previous_velocity_[i]) * faster;
-          previous_velocity_[i] = velocity;
-        }
-        judge_block(speed, acceleration, cl.contact.theta, cl.contact.r);
-      }
-      previous_rate_ = rate;
       report_.cycle_time += r.time;
       report_.turns += (cl.contact.theta - previous_theta_) / (2 * std::numbers::pi);
     }
-    cubic_before_ = cubic_last_;
-    cubic_last_ = placed;
-    ++cubic_blocks_;
+    // Dynamics per axis from the unwrapped values, as a program is read back: at once for
+    // linear motion, a block later for a PVT cubic (its end velocity waits for this block).
+    BlockMotion m;
+    if (dynamics_.add({r.x, r.z, c, r.b}, has_previous_ ? r.time : 0.0, m)) {
+      const Place& at = m.block == index ? place : last_place_;
+      judge_motion(m, at.theta, at.r);
+    }
+    last_place_ = place;
     report_.blocks++;
     previous_ = r;
     previous_.c = c;  // unwrapped, for the next velocity

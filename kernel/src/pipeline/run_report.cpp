@@ -6,7 +6,6 @@
 #include <numbers>
 
 #include "freeturn/core/number_text.hpp"
-#include "freeturn/path/pvt_rule.hpp"
 
 namespace freeturn {
 namespace {
@@ -111,74 +110,35 @@ void PassFigures::keep_block(long index, const BlockPoint& b) {
   }
 }
 
-// The cubic from the block before the last to the last (time t_last_), whose end
-// velocity is now known; the first one starts from rest, as AxisMapper::judge_cubic has it.
-void PassFigures::draw_cubic(const double v_end[3]) {
-  BlockPoint b;
-  b.r = r_last_;
-  const bool from_rest = cubic_drawn_ == 0;
-  for (int a = 0; a < 3; ++a) {
-    b.v[a] = pvt::extreme_velocity(q_before_[a], v_before_[a], q_last_[a], v_end[a], t_last_);
-    double at_start, at_end;
-    pvt::end_accelerations(q_before_[a], v_before_[a], q_last_[a], v_end[a], t_last_, at_start,
-                           at_end);
-    b.a[a] = std::abs(at_end) > std::abs(at_start) ? at_end : at_start;
-    if (from_rest && std::abs(v_before_[a]) / t_last_ > std::abs(b.a[a]))
-      b.a[a] = v_before_[a] / t_last_;
-  }
-  keep_block(cubic_drawn_++, b);
-}
-
 void PassFigures::add_block(const AxisRecord& record, const AxisSpec& x_spec, bool c_wrapped,
                             bool cubic) {
   const long k = written_++;
-  const AxisRecord before = last_block_;
-  const double t_before = before.time;
-  last_block_ = record;
+  if (k > 0 && !(record.time > 0)) return;  // a block with no time
   cubic_blocks = cubic;
   const double r = std::abs((record.x - x_spec.offset) / x_spec.sign);
   if (k == 0) {
-    q_last_[0] = record.x, q_last_[1] = record.z, q_last_[2] = record.c;
-    r_last_ = r;
+    block_dynamics_ = BlockDynamics(cubic);
+    c_unwrapped_ = record.c;
+  } else {
+    c_unwrapped_ += c_wrapped ? std::remainder(record.c - last_c_, 360.0) : record.c - last_c_;
   }
-  if (k == 0 || !(record.time > 0)) return;  // the first block, or a block with no time
-  const double dq[3] = {record.x - before.x, record.z - before.z,
-                        c_wrapped ? std::remainder(record.c - before.c, 360.0) : record.c - before.c};
-  if (cubic) {
-    const double q[3] = {q_last_[0] + dq[0], q_last_[1] + dq[1], q_last_[2] + dq[2]};
-    if (k == 1) {
-      // The first block's velocity, one-sided.
-      for (int a = 0; a < 3; ++a) v_before_[a] = pvt::velocity(q_last_[a], q[a], record.time);
-    } else {
-      double v_end[3];
-      for (int a = 0; a < 3; ++a)
-        v_end[a] = pvt::velocity(q_before_[a], q[a], t_last_ + record.time);
-      draw_cubic(v_end);
-      std::copy(v_end, v_end + 3, v_before_);
-    }
-    std::copy(q_last_, q_last_ + 3, q_before_);
-    std::copy(q, q + 3, q_last_);
-    t_last_ = record.time, r_last_ = r;
-    return;
-  }
+  last_c_ = record.c;
+  BlockMotion m;
+  if (block_dynamics_.add({record.x, record.z, c_unwrapped_, 0.0}, k == 0 ? 0.0 : record.time, m))
+    draw_block(m, m.block == k ? r : last_r_);
+  last_r_ = r;
+}
+
+void PassFigures::draw_block(const BlockMotion& m, double r) {
   BlockPoint b;
   b.r = r;
-  const double shorter = k > 1 && t_before > 0 ? std::min(record.time, t_before) : record.time;
-  for (int a = 0; a < 3; ++a) {
-    b.v[a] = dq[a] / record.time;
-    b.a[a] = k > 1 ? (b.v[a] - last_v_[a]) / shorter : 0.0;
-    last_v_[a] = b.v[a];
-  }
-  keep_block(k - 1, b);
+  for (std::size_t a = 0; a < 3; ++a) b.v[a] = m.velocity[a], b.a[a] = m.acceleration[a];
+  keep_block(m.block - 1, b);
 }
 
 void PassFigures::finish(const PathSummary& s, const DynamicsReport& d, const ToolCheckReport& c) {
-  if (cubic_blocks && written_ >= 2) {
-    // The program's last block: its end velocity one-sided, from the block before it.
-    double v_end[3];
-    for (int a = 0; a < 3; ++a) v_end[a] = pvt::velocity(q_before_[a], q_last_[a], t_last_);
-    draw_cubic(v_end);
-  }
+  BlockMotion last;  // a PVT program's last block
+  if (block_dynamics_.finish(last)) draw_block(last, last_r_);
   revolutions = s.theta_end / (2 * std::numbers::pi);
   chord_rms = points > 0 ? std::sqrt(chord_sq_ / static_cast<double>(points)) : 0.0;
   scallop_rms = points > 0 ? std::sqrt(scallop_sq_ / static_cast<double>(points)) : 0.0;

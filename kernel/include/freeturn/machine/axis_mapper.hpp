@@ -21,6 +21,7 @@
 #include <vector>
 
 #include "freeturn/machine/axis_record.hpp"
+#include "freeturn/machine/block_dynamics.hpp"
 #include "freeturn/machine/machine.hpp"
 #include "freeturn/tool/cutter_location.hpp"
 
@@ -73,14 +74,8 @@ class AxisMapper final : public CutterSink {
   // the report and the highest rpm; with enforce_dynamics, an error where the requested
   // speed asks more of an axis than it allows. θ and r: the block's place on the path.
   void judge_block(const double speed[4], const double acceleration[4], double theta, double r);
-  // PVT: the cubic from block `a` to block `b`, ending velocities va and vb, time h.
-  struct Placed {
-    double q[4] = {0, 0, 0, 0};  // the axes, C unwrapped
-    double time = 0, theta = 0, r = 0;
-  };
-  void judge_cubic(const Placed& a, const double va[4], const Placed& b, const double vb[4],
-                   bool from_rest);
-
+  // judge_block for a block's motion (its sizes), the block at θ, r.
+  void judge_motion(const BlockMotion& m, double theta, double r);
   const MachineDescription& machine_;
   MotionOptions motion_;
   AxisSink& out_;
@@ -88,14 +83,16 @@ class AxisMapper final : public CutterSink {
   std::vector<AxisRecord> buffer_;
   bool has_previous_ = false;
   AxisRecord previous_;
-  double previous_theta_ = 0, previous_velocity_[4] = {0, 0, 0, 0};
-  double previous_rate_ = 0;  // 1/s of the block before (0: the program starts at rest)
+  double previous_theta_ = 0;
   double previous_c_unwrapped_ = 0;
-  // PVT: the last two blocks placed, the velocity at the one before the last, and how many
-  // blocks there have been (its cubic is judged once the block after it is known).
-  Placed cubic_before_, cubic_last_;
-  double cubic_velocity_before_[4] = {0, 0, 0, 0};
-  long cubic_blocks_ = 0;
+  // The axes' motion block by block; where each block lies on the path (θ, r), for the
+  // last one placed (a PVT block's motion is known once the block after it is).
+  BlockDynamics dynamics_;
+  long positions_ = 0;
+  struct Place {
+    double theta = 0, r = 0;
+  };
+  Place last_place_;
   Eigen::Vector3d previous_point_ = Eigen::Vector3d::Zero();
 };
 

@@ -10,6 +10,7 @@
 
 #include "freeturn/job/job.hpp"
 #include "freeturn/machine/axis_mapper.hpp"
+#include "freeturn/machine/block_dynamics.hpp"
 #include "freeturn/machine/block_schedule.hpp"
 #include "freeturn/path/cutter_points.hpp"
 #include "freeturn/tool/tool_checks.hpp"
@@ -57,10 +58,8 @@ struct PlotPoint {
 
 // One block as the program writes it (after the scheduler, when there is one): where
 // (the programmed radius, |X| back through the machine's layout) and its axes' velocity
-// and acceleration as the machine moves through it. Linear motion, by the scheduler's own
-// measure (block_schedule.cpp): v = Δq / t, a = Δv / min(t, t_before). PVT motion, on the
-// controller's cubic (path/pvt_rule.hpp, as AxisMapper judges it): the velocity and the
-// acceleration of largest size within the block, with their signs.
+// and acceleration as the machine moves through it, signed, by the rule the dynamics
+// check judges (machine/block_dynamics.hpp): linear, or the largest on a PVT cubic.
 struct BlockPoint {
   double r;           // mm
   double v[3], a[3];  // X, Z (mm/s, mm/s²), C (°/s, °/s²)
@@ -129,16 +128,12 @@ struct PassFigures {
  private:
   double chord_sq_ = 0, scallop_sq_ = 0;
   long written_ = 0;               // blocks seen by add_block
-  AxisRecord last_block_;
-  double last_v_[3] = {0, 0, 0};  // the last block's X, Z, C velocities
-  // PVT: the last two blocks' X, Z and unwrapped C, their times and radii, and the
-  // controller's velocity at the one before the last.
-  double q_before_[3] = {0, 0, 0}, q_last_[3] = {0, 0, 0};
-  double t_last_ = 0, r_last_ = 0;
-  double v_before_[3] = {0, 0, 0};
-  long cubic_drawn_ = 0;
+  // The blocks' motion, and where the last one lies (|X| as a radius; C as written and
+  // unwrapped).
+  BlockDynamics block_dynamics_{false};
+  double last_r_ = 0, last_c_ = 0, c_unwrapped_ = 0;
   void keep_block(long index, const BlockPoint& b);
-  void draw_cubic(const double v_end[3]);
+  void draw_block(const BlockMotion& m, double r);
 };
 
 // The base surface a spiral is planned on, and the frame the part is cut in.
