@@ -125,6 +125,12 @@ int run_simulate(const SimulateArgs& args) {
     std::printf("  worst: %+.3f nm at r = %.4f mm, θ = %.2f° (%s)\n", p.residual * 1e6, p.r,
                 p.phi * 180 / std::numbers::pi, cause.c_str());
   }
+  // A program from elsewhere: what its reading could not judge (its dynamics, with no block
+  // times this reader knows).
+  if (!args.program.empty() && !args.quiet)
+    for (const ReportWarning& w : r.warnings)
+      if (w.severity != ReportWarning::Severity::kUnsafe)
+        std::printf("note: %s\n", warning_line(w).c_str());
   return say_unsafe(r) ? kExitCheckFailed : kExitOk;
 }
 

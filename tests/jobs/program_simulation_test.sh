@@ -17,7 +17,9 @@
 # - blocks after the program's end (M2) are not run, so not cut; a program starting at a
 #   negative C (which had crashed the report's turn samples) is simulated;
 # - a program that is not NC is an error at its file:line, exit 2, nothing written; so is
-#   an axis word given twice in a block.
+#   an axis word given twice in a block;
+# - the axes' dynamics from the program's block times: the compound eye's Moore program asks
+#   what its run reported; at twice the speed 4x the accelerations, UNSAFE.
 # usage: program_simulation_test.sh <freeturn> <source dir>
 set -u
 freeturn=$1 src=$2
@@ -114,5 +116,43 @@ printf 'G1 X1 Z0 C0\nG1 X? Z0\n' > "$tmp/bad.nc"
 [[ $? == 2 ]] || { echo "FAIL: a bad program did not exit 2"; fail=1; }
 grep -q "bad.nc:2:" "$tmp/err" || { echo "FAIL: the bad program's error is not located:"; cat "$tmp/err"; fail=1; }
 [[ ! -e "$tmp/bad" || -z "$(ls -A "$tmp/bad")" ]] || { echo "FAIL: a refused program left files"; fail=1; }
+# The axes' dynamics from the program's own block times (Moore: G93 F in seconds): the
+# compound eye's program read back asks what its run reported, within the words' rounding
+# (1 %); with every F halved each block takes half the time, so every acceleration is 4×
+# (velocity 2× over half the time): X's peak then breaks the 500 mm/s² limit, UNSAFE.
+py=python3
+[[ -x /usr/bin/python3 ]] && py=/usr/bin/python3
+(cd "$src/configs/jobs" && "$freeturn" run compound_eye.yaml -o "$tmp/eye" --quiet) || { echo "FAIL: the compound eye's run"; fail=1; }
+(cd "$src/configs/jobs" && "$freeturn" simulate compound_eye.yaml -o "$tmp/eye.program" --quiet \
+  --program "$tmp/eye/compound_eye.moore-nanotech-250upl.nc") > /dev/null 2> "$tmp/eye.err" ||
+  { echo "FAIL: the compound eye's own program is not safe read back:"; cat "$tmp/eye.err"; fail=1; }
+mkdir -p "$tmp/fast"
+cp "$tmp/eye"/*.nc "$tmp/fast/"
+"$py" - "$tmp/fast/compound_eye_001.nc" <<'PY'
+import re, sys
+text = open(sys.argv[1]).read()
+open(sys.argv[1], "w").write(re.sub(r"F([0-9.]+)", lambda m: "F%.6f" % (float(m.group(1)) / 2), text))
+PY
+(cd "$src/configs/jobs" && "$freeturn" simulate compound_eye.yaml -o "$tmp/fast.program" --quiet \
+  --program "$tmp/fast/compound_eye.moore-nanotech-250upl.nc") > /dev/null 2> "$tmp/fast.err"
+[[ $? == 1 ]] || { echo "FAIL: the program at twice the speed did not exit 1"; fail=1; }
+grep -q "^UNSAFE: [0-9]* blocks ask X acceleration beyond machine 'moore-nanotech-250upl'" "$tmp/fast.err" ||
+  { echo "FAIL: the fast program's verdict:"; cat "$tmp/fast.err"; fail=1; }
+"$py" - "$tmp/eye/compound_eye.report.json" "$tmp/eye.program/compound_eye.report.json" \
+  "$tmp/fast.program/compound_eye.report.json" <<'PY' || fail=1
+import json, sys
+run, back, fast = (json.load(open(p))["passes"][-1] for p in sys.argv[1:4])
+ok = True
+for axis in "XZC":
+    a, b, c = (p["peak_acceleration_per_s2"][axis] for p in (run, back, fast))
+    print("%s acceleration: the run %.4g, read back %.4g, at twice the speed %.4g (%.3f x)" % (axis, a, b, c, c / b))
+    if abs(b / a - 1) > 0.01 or abs(c / b / 4 - 1) > 0.02:
+        print("FAIL: %s acceleration not as the run's, or not 4x at twice the speed" % axis)
+        ok = False
+if abs(back["cycle_time_s"] / run["cycle_time_s"] - 1) > 1e-6 or abs(fast["cycle_time_s"] / back["cycle_time_s"] - 0.5) > 1e-3:
+    print("FAIL: the cycle times", run["cycle_time_s"], back["cycle_time_s"], fast["cycle_time_s"])
+    ok = False
+sys.exit(0 if ok else 1)
+PY
 [[ $fail == 0 ]] && echo "1 passed, 0 failed"
 exit $fail

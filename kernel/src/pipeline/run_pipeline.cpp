@@ -34,6 +34,7 @@
 #include "freeturn/tool/tool_compensator.hpp"
 #include "freeturn/verify/cut_simulation.hpp"
 #include "freeturn/verify/residual_output.hpp"
+#include "program_dynamics.hpp"
 
 namespace freeturn {
 namespace {
@@ -891,11 +892,18 @@ RunResult run_program_simulation(const Job& job, const std::string& program,
   Crossing crossing[4];
   std::vector<std::string> program_files;
   const std::vector<NcBlock> program_blocks = read_nc_program(program, &program_files);
+  detail::ProgramDynamics dynamics(machine);
+  detail::ProgramDynamics::Feed feed;
   for (const NcBlock& b : program_blocks) {
     bool motion = false, machine_frame = false;
     double next[4] = {value[0], value[1], value[2], value[3]};
     for (const NcWord& w : b.words) {
       if (!w.numeric) continue;
+      if (w.letter == 'G' && (w.value == 93 || w.value == 94 || w.value == 95))
+        feed.mode = static_cast<int>(w.value);
+      if (w.letter == 'F') feed.f = w.value;
+      if (w.letter == 'G' && (w.value == 0 || w.value == 1 || w.value == 2 || w.value == 3))
+        feed.rapid = w.value == 0;
       if (w.letter == 'G' && (w.value == 53 || w.value == 92 || w.value == 28)) machine_frame = true;
       const int a = axis_of(w.letter);
       if (a < 0 || (a == 3 && !has_b)) continue;
@@ -955,6 +963,10 @@ RunResult run_program_simulation(const Job& job, const std::string& program,
         k.at = cl;
       }
     }
+    const std::string where =
+        program_files[static_cast<std::size_t>(b.file)] + ":" + std::to_string(b.line);
+    dynamics.add({value[0], value[1], sc.sign * spindle * kDegrees + sc.offset, value[3]}, feed,
+                 where, cl);
     figures.add(cl);
     ++blocks;
     chunk.push_back(cl);
@@ -993,6 +1005,7 @@ RunResult run_program_simulation(const Job& job, const std::string& program,
   PathSummary summary;
   summary.theta_end = theta_end;
   figures.finish(summary, DynamicsReport{}, ToolCheckReport{});
+  dynamics.finish(report, figures);
   attach_simulation(report, simulator.finish(), job, so.margin, true);
   // Nothing vouches for a program from elsewhere but its simulated cut.
   judge_simulated_cut(report);

@@ -1,0 +1,121 @@
+#include "program_dynamics.hpp"
+
+#include <cmath>
+
+#include "freeturn/core/number_text.hpp"
+
+namespace freeturn::detail {
+
+ProgramDynamics::ProgramDynamics(const MachineDescription& machine)
+    : machine_(machine), dynamics_(machine.interpolation == Interpolation::kCubic) {
+  // Moore's G93 F is the block time in seconds (../notes: the Moore and Precitech dialects);
+  // LinuxCNC's is 1/minutes. Another dialect's inverse time is not known here.
+  if (machine.plugin == "moore") seconds_per_f_ = 1;
+  else if (machine.plugin == "iso") seconds_per_f_ = -60;  // 60 / F
+  limit_velocity_.fill(std::numeric_limits<double>::infinity());
+  limit_acceleration_.fill(std::numeric_limits<double>::infinity());
+  for (const AxisSpec& a : machine.axes) {
+    limit_velocity_[static_cast<std::size_t>(a.axis)] = a.max_velocity;
+    limit_acceleration_[static_cast<std::size_t>(a.axis)] = a.max_acceleration;
+  }
+}
+
+void ProgramDynamics::add_excess(Excess& e, double value, double limit, const Place& at) {
+  ++e.blocks;
+  if (value / limit > e.worst) e.worst = value / limit, e.value = value, e.limit = limit, e.at = at;
+}
+
+void ProgramDynamics::judge(const BlockMotion& m, const Place& at) {
+  for (std::size_t a = 0; a < 4; ++a) {
+    const double v = std::abs(m.velocity[a]), acc = std::abs(m.acceleration[a]);
+    peak_velocity_[a] = std::max(peak_velocity_[a], v);
+    peak_acceleration_[a] = std::max(peak_acceleration_[a], acc);
+    if (v > limit_velocity_[a]) add_excess(velocity_excess_[a], v, limit_velocity_[a], at);
+    if (acc > limit_acceleration_[a]) add_excess(acceleration_excess_[a], acc, limit_acceleration_[a], at);
+  }
+}
+
+void ProgramDynamics::add(const std::array<double, 4>& q, const Feed& feed, const std::string& where,
+                          const CutterLocation& cl) {
+  const Place here{where, cl};
+  const std::array<double, 4> from = last_q_;
+  last_q_ = q;
+  if (ended_ || !untimed_.empty()) return;
+  double time = 0;
+  if (feed.rapid || feed.mode != 93) {
+    // Before the cut: the approach. After it: the retract, and the cut is over.
+    if (started_) ended_ = true;
+    return;
+  }
+  if (!(feed.f > 0) || seconds_per_f_ == 0) {
+    untimed_ = where;
+    return;
+  }
+  time = seconds_per_f_ > 0 ? seconds_per_f_ * feed.f : -seconds_per_f_ / feed.f;
+  BlockMotion m;
+  if (!started_) {
+    // The position the cut starts from, at rest.
+    dynamics_.add(from, 0.0, m);
+    started_ = true;
+    blocks_ = 1;
+  }
+  const long k = blocks_++;
+  cycle_time_ += time;
+  const double rate = 1 / time;
+  peak_rate_ = std::max(peak_rate_, rate);
+  if (rate > machine_.max_block_rate) add_excess(rate_excess_, rate, machine_.max_block_rate, here);
+  if (dynamics_.add(q, time, m)) judge(m, m.block == k ? here : last_);
+  last_ = here;
+}
+
+void ProgramDynamics::finish(RunReport& report, PassFigures& figures) {
+  if (!untimed_.empty() || !started_) {
+    ReportWarning w;
+    w.kind = "dynamics";
+    w.severity = ReportWarning::Severity::kNote;
+    w.message = "the axes' velocities and accelerations are not judged: " +
+                (started_ || !untimed_.empty() ? "the block at " + untimed_ + " states"
+                                               : std::string("no block of the program states")) +
+                " a time this reader knows (G93 with F, in Moore's or LinuxCNC's dialect; machine '" +
+                machine_.name + "' is posted by '" + machine_.plugin + "')";
+    report.warnings.push_back(std::move(w));
+    return;
+  }
+  BlockMotion m;
+  if (dynamics_.finish(m)) judge(m, last_);
+  figures.cycle_time = cycle_time_;
+  for (std::size_t a = 0; a < 4; ++a) {
+    figures.dynamics.peak_velocity[a] = peak_velocity_[a];
+    figures.dynamics.peak_acceleration[a] = peak_acceleration_[a];
+  }
+  figures.dynamics.peak_block_rate = peak_rate_;
+  figures.dynamics.cycle_time = cycle_time_;
+  const auto warn = [&](const Excess& e, const std::string& what, const std::string& unit) {
+    if (e.blocks == 0) return;
+    ReportWarning w;
+    w.kind = "dynamics";
+    w.severity = ReportWarning::Severity::kUnsafe;
+    w.message = std::to_string(e.blocks) + (e.blocks == 1 ? " block asks " : " blocks ask ") + what +
+                " beyond machine '" + machine_.name + "': " + significant_text(e.value, 4) + " " +
+                unit + " against " + significant_text(e.limit, 4) + " at " + e.at.where;
+    w.count = e.blocks;
+    w.theta_deg = part_degrees(e.at.cl.contact.theta);
+    w.r_mm = e.at.cl.contact.r;
+    w.x_mm = e.at.cl.contact.point.x();
+    w.y_mm = e.at.cl.contact.point.y();
+    w.value = e.value;
+    w.limit = e.limit;
+    w.unit = unit;
+    report.warnings.push_back(std::move(w));
+  };
+  for (const AxisSpec& spec : machine_.axes) {
+    const auto a = static_cast<std::size_t>(spec.axis);
+    const bool angle = spec.axis == Axis::kC || spec.axis == Axis::kB;
+    const std::string letter = axis_letter(spec.axis);
+    warn(velocity_excess_[a], letter + " velocity", angle ? "deg/s" : "mm/s");
+    warn(acceleration_excess_[a], letter + " acceleration", angle ? "deg/s2" : "mm/s2");
+  }
+  warn(rate_excess_, "a block rate", "blocks/s");
+}
+
+}  // namespace freeturn::detail
