@@ -154,5 +154,23 @@ if abs(back["cycle_time_s"] / run["cycle_time_s"] - 1) > 1e-6 or abs(fast["cycle
     ok = False
 sys.exit(0 if ok else 1)
 PY
+# Two passes in one program (LinuxCNC: G93 F is 1/minutes): the second, after a retract,
+# is judged from rest too; its blocks of 1/240000 min (0.25 ms) come at 4 000 a second,
+# past the ISO lathe's 1 000.
+{
+  printf 'G93\n'
+  for k in 0 1 2 3 4; do printf 'G1 X%s Z0.56 C%d F2400\n' "$(awk -v k=$k 'BEGIN { print 2 - k * 0.001 }')" $((k * 3)); done
+  printf 'G94\nG0 Z2\nG0 X2 C0\nG1 Z0.56 F20\nG93\n'
+  for k in 0 1 2 3 4; do printf 'G1 X%s Z0.56 C%d F240000\n' "$(awk -v k=$k 'BEGIN { print 2 - k * 0.00001 }')" $((k * 3)); done
+  printf 'G94\nG0 Z2\nM2\n'
+} > "$tmp/passes.nc"
+(cd "$src/configs/jobs" && "$freeturn" simulate oap_segment.yaml -o "$tmp/passes" --quiet --program "$tmp/passes.nc") > /dev/null 2> "$tmp/passes.err"
+[[ $? == 1 ]] || { echo "FAIL: the second pass's block rate did not make it UNSAFE"; fail=1; }
+grep -q "^UNSAFE: 5 blocks ask a block rate beyond machine 'iso-lathe-xzc': 4000 blocks/s against 1000 at .*passes.nc:1[2-6]$" "$tmp/passes.err" ||
+  { echo "FAIL: the second pass's verdict:"; cat "$tmp/passes.err"; fail=1; }
+# The first pass, at 40 blocks a second from a program whose first block is its start, asks
+# nothing past the limits.
+[[ $(grep -c '^UNSAFE' "$tmp/passes.err") -le 3 ]] && ! grep -q 'passes.nc:[2-6]$' "$tmp/passes.err" ||
+  { echo "FAIL: the first pass was judged past a limit:"; cat "$tmp/passes.err"; fail=1; }
 [[ $fail == 0 ]] && echo "1 passed, 0 failed"
 exit $fail

@@ -39,12 +39,20 @@ void ProgramDynamics::add(const std::array<double, 4>& q, const Feed& feed, cons
                           const CutterLocation& cl) {
   const Place here{where, cl};
   const std::array<double, 4> from = last_q_;
+  const bool placed_before = placed_;  // a block before this one says where it starts
   last_q_ = q;
-  if (ended_ || !untimed_.empty()) return;
+  placed_ = true;
+  if (!untimed_.empty()) return;
   double time = 0;
   if (feed.rapid || feed.mode != 93) {
-    // Before the cut: the approach. After it: the retract, and the cut is over.
-    if (started_) ended_ = true;
+    // Not the cut: an approach or a retract. A cut before it ends here, at rest; a cut
+    // after it (another pass) starts from rest again.
+    if (started_) {
+      BlockMotion m;
+      if (dynamics_.finish(m)) judge(m, last_);
+      dynamics_ = BlockDynamics(machine_.interpolation == Interpolation::kCubic);
+      started_ = false;
+    }
     return;
   }
   if (!(feed.f > 0) || seconds_per_f_ == 0) {
@@ -54,9 +62,17 @@ void ProgramDynamics::add(const std::array<double, 4>& q, const Feed& feed, cons
   time = seconds_per_f_ > 0 ? seconds_per_f_ * feed.f : -seconds_per_f_ / feed.f;
   BlockMotion m;
   if (!started_) {
+    started_ = judged_ = true;
+    if (!placed_before) {
+      // The program's first block: where it starts from is not written, so it is the
+      // start, at rest.
+      dynamics_.add(q, 0.0, m);
+      blocks_ = 1;
+      last_ = here;
+      return;
+    }
     // The position the cut starts from, at rest.
     dynamics_.add(from, 0.0, m);
-    started_ = true;
     blocks_ = 1;
   }
   const long k = blocks_++;
@@ -69,15 +85,16 @@ void ProgramDynamics::add(const std::array<double, 4>& q, const Feed& feed, cons
 }
 
 void ProgramDynamics::finish(RunReport& report, PassFigures& figures) {
-  if (!untimed_.empty() || !started_) {
+  if (!untimed_.empty() || !judged_) {
     ReportWarning w;
     w.kind = "dynamics";
     w.severity = ReportWarning::Severity::kNote;
-    w.message = "the axes' velocities and accelerations are not judged: " +
-                (started_ || !untimed_.empty() ? "the block at " + untimed_ + " states"
-                                               : std::string("no block of the program states")) +
-                " a time this reader knows (G93 with F, in Moore's or LinuxCNC's dialect; machine '" +
-                machine_.name + "' is posted by '" + machine_.plugin + "')";
+    w.message =
+        "the axes' velocities and accelerations are not judged: " +
+        (!untimed_.empty() ? "the block at " + untimed_ + " states"
+                           : std::string("no block of the program states")) +
+        " a time this reader knows (G93 with F, in Moore's or LinuxCNC's dialect; machine '" +
+        machine_.name + "' is posted by '" + machine_.plugin + "')";
     report.warnings.push_back(std::move(w));
     return;
   }

@@ -5,10 +5,10 @@
 //
 // The cut is the spiral's inverse-time blocks (G93): Moore's F is a block's time in
 // seconds, LinuxCNC's (the iso post) 1/F minutes (docs/verify.md). The approach and the
-// retract around them (G94, G0) are not the cut and are left out; the first G93 block
-// starts from rest. A cut block with no time the program states (no F; a dialect whose
-// time this reader does not know, such as the Precitech's, whose one block time is a
-// comment) leaves the dynamics unjudged, and the report says where.
+// retract around them (G94, G0) are not the cut and are left out; each run of G93 blocks
+// (a pass) starts from rest, as the run's own check has it. A cut block with no time the program
+// states (no F; a dialect whose time this reader does not know, such as the Precitech's, whose one
+// block time is a comment) leaves the dynamics unjudged, and the report says where.
 #include <array>
 #include <limits>
 #include <string>
@@ -55,7 +55,9 @@ class ProgramDynamics {
   BlockDynamics dynamics_;
   long blocks_ = 0;
   std::array<double, 4> last_q_{};
-  bool started_ = false, ended_ = false;
+  bool started_ = false;      // inside a cut (a run of G93 blocks)
+  bool judged_ = false;       // a cut was met
+  bool placed_ = false;       // a block was read
   double seconds_per_f_ = 0;  // inverse time: a block's time is this × F (Moore), or 60 / F (0)
   Place last_;
   std::string untimed_;  // where the first block without a stated time is ("": none)

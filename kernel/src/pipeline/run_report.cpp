@@ -123,9 +123,10 @@ void PassFigures::add_block(const AxisRecord& record, const AxisSpec& x_spec, bo
     c_unwrapped_ += c_wrapped ? std::remainder(record.c - last_c_, 360.0) : record.c - last_c_;
   }
   last_c_ = record.c;
+  const long index = positions_++;  // the position's index in block_dynamics_
   BlockMotion m;
   if (block_dynamics_.add({record.x, record.z, c_unwrapped_, 0.0}, k == 0 ? 0.0 : record.time, m))
-    draw_block(m, m.block == k ? r : last_r_);
+    draw_block(m, m.block == index ? r : last_r_);
   last_r_ = r;
 }
 

@@ -131,6 +131,7 @@ struct PassFigures {
   // The blocks' motion, and where the last one lies (|X| as a radius; C as written and
   // unwrapped).
   BlockDynamics block_dynamics_{false};
+  long positions_ = 0;
   double last_r_ = 0, last_c_ = 0, c_unwrapped_ = 0;
   void keep_block(long index, const BlockPoint& b);
   void draw_block(const BlockMotion& m, double r);
