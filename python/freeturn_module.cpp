@@ -272,8 +272,7 @@ PYBIND11_MODULE(freeturn, m) {
                            "must be a finite number in [0, 1e6], not " + shortest_text(tolerance));
         NcDiffOptions o;
         o.axis_tolerance = tolerance;
-        const NcDiffResult r =
-            nc_diff(parse_nc(read_nc_text(a), a), a, parse_nc(read_nc_text(b), b), b, o);
+        const NcDiffResult r = nc_diff_files(a, b, o);
         py::dict d;
         d["same"] = r.same;
         d["first_difference"] = r.first_difference;

@@ -13,10 +13,8 @@ namespace freeturn::cli {
 int run_ncdiff(const NcDiffArgs& args) {
   NcDiffOptions o;
   o.axis_tolerance = args.tolerance;
-  const std::vector<std::string> files = {args.a, args.b};
-  const auto a = parse_nc(read_nc_text(files[0]), files[0]);
-  const auto b = parse_nc(read_nc_text(files[1]), files[1]);
-  const NcDiffResult r = nc_diff(a, files[0], b, files[1], o);
+  // Each program with the child files it calls, as the controller runs them.
+  const NcDiffResult r = nc_diff_files(args.a, args.b, o);
   if (!args.quiet) {
     std::printf("%ld blocks vs %ld blocks\n", r.blocks_a, r.blocks_b);
     for (char l : std::string("XZCBF"))

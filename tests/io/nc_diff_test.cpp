@@ -3,6 +3,7 @@
 #include <string>
 
 #include "freeturn/io/nc_program.hpp"
+#include "test_files.hpp"
 
 using namespace freeturn;
 
@@ -57,5 +58,23 @@ TEST_SUITE("io") {
     const NcDiffResult near = diff("G2 X1 I0.5 F10\n", "G2 X1 I0.5000000001 F10\n");
     CHECK(near.same);
     CHECK(near.largest['I' - 'A'] == doctest::Approx(1e-10).epsilon(0.01));
+  }
+
+  TEST_CASE("ncdiff of program files follows their calls: the layout in files does not count") {
+    // One program written whole, and the same split into a main program and a point file:
+    // the same. A moved block inside the point file: different, named at the child's line.
+    test::TempDir dir;
+    const std::string whole = dir.write("whole.nc", "G93 F0.1\nC4 X1 Z0\nC8 X0.9 Z0\nM30\n");
+    dir.write("split_001.nc", "C4 X1 Z0\nC8 X0.9 Z0\nM99\n");
+    const std::string split = dir.write("split.nc", "G93 F0.1\nM98(split_001.nc)\nM30\n");
+    CHECK(nc_diff_files(whole, split).same);
+    dir.write("moved_001.nc", "C4 X1 Z0\nC8 X0.9001 Z0\nM99\n");
+    const std::string moved = dir.write("moved.nc", "G93 F0.1\nM98(moved_001.nc)\nM30\n");
+    const NcDiffResult d = nc_diff_files(split, moved);
+    CHECK_FALSE(d.same);
+    CHECK(d.first_difference.find("split_001.nc:2 vs ") != std::string::npos);
+    CHECK(d.first_difference.find("moved_001.nc:2: X 0.9 ≠ 0.9001") != std::string::npos);
+    // Read one file at a time, the calls are words like any other.
+    CHECK_FALSE(nc_diff(parse_nc("M98(a.nc)\n", "a"), "a", parse_nc("M98(b.nc)\n", "b"), "b").same);
   }
 }

@@ -91,7 +91,9 @@ struct Act {
   std::vector<std::string> text;    // its non-numeric words, literally
 };
 
-std::vector<Act> acts_of(const std::vector<NcBlock>& blocks) {
+// `calls_followed`: the blocks hold each child's blocks where it is called
+// (read_nc_program), so a call (M98) and a child's return (M99) are only the layout.
+std::vector<Act> acts_of(const std::vector<NcBlock>& blocks, bool calls_followed) {
   std::vector<Act> acts;
   Modal modal;
   for (const NcBlock& block : blocks) {
@@ -111,10 +113,13 @@ std::vector<Act> acts_of(const std::vector<NcBlock>& blocks) {
     }
     for (const NcWord& w : block.words) {
       if (!w.numeric) {
+        if (calls_followed && w.text.rfind("M98(", 0) == 0) continue;  // the child's blocks follow
         act.text.push_back(w.text);
         acts_here = true;
       } else if (w.letter == 'N' || w.letter == 'G') {
         continue;
+      } else if (calls_followed && w.letter == 'M' && block.file > 0 && w.value == 99) {
+        continue;  // a child's return: how the program is laid out in files
       } else if (w.letter == 'M' || w.letter == 'T') {
         act.codes.insert(code_text(w.letter, w.value));
         acts_here = true;
@@ -149,20 +154,25 @@ std::string group_text(const std::map<int, std::string>& groups, int group) {
   return g == groups.end() ? "none" : g->second;
 }
 
-}  // namespace
-
-NcDiffResult nc_diff(const std::vector<NcBlock>& a, const std::string& name_a,
-                     const std::vector<NcBlock>& b, const std::string& name_b,
-                     const NcDiffOptions& o) {
+NcDiffResult compare(const std::vector<NcBlock>& a, const std::vector<std::string>& files_a,
+                     const std::vector<NcBlock>& b, const std::vector<std::string>& files_b,
+                     const NcDiffOptions& o, bool calls_followed) {
+  const auto name = [](const std::vector<std::string>& files, const NcBlock& block) {
+    const auto k = static_cast<std::size_t>(block.file);
+    return k < files.size() ? files[k] : std::string("?");
+  };
+  const std::string name_a = files_a.empty() ? "?" : files_a[0];
+  const std::string name_b = files_b.empty() ? "?" : files_b[0];
   NcDiffResult r;
   r.blocks_a = static_cast<long>(a.size());
   r.blocks_b = static_cast<long>(b.size());
-  const std::vector<Act> acts_a = acts_of(a), acts_b = acts_of(b);
+  const std::vector<Act> acts_a = acts_of(a, calls_followed), acts_b = acts_of(b, calls_followed);
   const auto differ = [&](const Act& x, const Act& y, const std::string& what) {
     if (r.same) {
       r.same = false;
-      r.first_difference = name_a + ":" + std::to_string(x.block->line) + " vs " + name_b + ":" +
-                           std::to_string(y.block->line) + ": " + what;
+      r.first_difference = name(files_a, *x.block) + ":" + std::to_string(x.block->line) + " vs " +
+                           name(files_b, *y.block) + ":" + std::to_string(y.block->line) + ": " +
+                           what;
     }
   };
   // Words by value: `axis` ones (mm or degrees) within the absolute tolerance, the others
@@ -215,6 +225,27 @@ NcDiffResult nc_diff(const std::vector<NcBlock>& a, const std::string& name_a,
                          name_b + " has " + std::to_string(acts_b.size());
   }
   return r;
+}
+
+}  // namespace
+
+NcDiffResult nc_diff(const std::vector<NcBlock>& a, const std::string& name_a,
+                     const std::vector<NcBlock>& b, const std::string& name_b,
+                     const NcDiffOptions& o) {
+  return compare(a, {name_a}, b, {name_b}, o, false);
+}
+
+NcDiffResult nc_diff(const std::vector<NcBlock>& a, const std::vector<std::string>& files_a,
+                     const std::vector<NcBlock>& b, const std::vector<std::string>& files_b,
+                     const NcDiffOptions& o) {
+  return compare(a, files_a, b, files_b, o, true);
+}
+
+NcDiffResult nc_diff_files(const std::string& a, const std::string& b, const NcDiffOptions& o) {
+  std::vector<std::string> files_a, files_b;
+  const std::vector<NcBlock> blocks_a = read_nc_program(a, &files_a);
+  const std::vector<NcBlock> blocks_b = read_nc_program(b, &files_b);
+  return nc_diff(blocks_a, files_a, blocks_b, files_b, o);
 }
 
 }  // namespace freeturn

@@ -67,5 +67,16 @@ struct NcDiffResult {
 NcDiffResult nc_diff(const std::vector<NcBlock>& a, const std::string& name_a,
                      const std::vector<NcBlock>& b, const std::string& name_b,
                      const NcDiffOptions& options = {});
+// The same for programs read with their child files (read_nc_program): `files_a` and
+// `files_b` name the files the blocks' `file` indices point into. A call (M98) and a
+// child's return (M99) are how a program is laid out in files, not what the machine does:
+// a program written whole and the same one split into a main program and its point files
+// are the same. M99 in a main program (its end) counts.
+NcDiffResult nc_diff(const std::vector<NcBlock>& a, const std::vector<std::string>& files_a,
+                     const std::vector<NcBlock>& b, const std::vector<std::string>& files_b,
+                     const NcDiffOptions& options = {});
+// Reads both programs as the controller runs them (read_nc_program) and compares them.
+NcDiffResult nc_diff_files(const std::string& a, const std::string& b,
+                           const NcDiffOptions& options = {});
 
 }  // namespace freeturn
