@@ -44,6 +44,22 @@ TEST_SUITE("io") {
     CHECK(xs(parse_nc("%\nG1 X1\n%\nG1 X2\n%\n", "p.nc")) == std::vector<double>{1});
   }
 
+  TEST_CASE("a child program is read beside its caller, by its name: never a path") {
+    const test::TempDir dir;
+    const std::string up = dir.write("up.nc", "G1 X1\nM98(../../etc/hostname)\nM30\n");
+    CHECK_THROWS_WITH_AS(read_nc_program(up),
+                         doctest::Contains("up.nc:2:1: M98 calls '../../etc/hostname'"),
+                         InputError);
+    const std::string root = dir.write("root.nc", "G1 X1\n  M98(/etc/passwd)\nM30\n");
+    CHECK_THROWS_WITH_AS(read_nc_program(root),
+                         doctest::Contains("root.nc:2:3: M98 calls '/etc/passwd'"), InputError);
+    const std::string missing = dir.write("missing.nc", "G1 X1\nM98(gone.nc)\nM30\n");
+    CHECK_THROWS_WITH_AS(
+        read_nc_program(missing),
+        doctest::Contains("missing.nc:2:1: M98 calls 'gone.nc', which is not beside missing.nc"),
+        InputError);
+  }
+
   TEST_CASE("a program is read as it runs: it ends at M30, M02 or M99, a child returns at M99") {
     const test::TempDir dir;
     dir.write("child.nc", "G93 F0.1\nC1 X1\nC2 X2\nM99\nC3 X-99\n");

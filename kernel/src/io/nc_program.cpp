@@ -191,14 +191,30 @@ std::vector<NcBlock> read_nc_program(const std::string& path, std::vector<std::s
       return done();
     }
     std::string child;
+    SourceLocation call;
     for (const NcWord& w : b.words)
-      if (!w.numeric && w.text.rfind("M98(", 0) == 0 && w.text.back() == ')')
+      if (!w.numeric && w.text.rfind("M98(", 0) == 0 && w.text.back() == ')') {
         child = w.text.substr(4, w.text.size() - 5);
+        call = SourceLocation{read_files[static_cast<std::size_t>(b.file)], b.line, w.column};
+        // The controller finds a child beside its caller, by its name: a path here (to
+        // /etc/passwd, or up the tree with "..") is no program a post writes, and would
+        // read, and quote, any file.
+        if (child.find('/') != std::string::npos || child.find('\\') != std::string::npos ||
+            child == "." || child == "..")
+          throw InputError(call,
+                           "M98 calls '" + child +
+                               "': a child program is read beside its caller, by its file name, "
+                               "not a path");
+      }
     if (child.empty()) {
       blocks.push_back(std::move(b));
       continue;
     }
     const std::string child_path = (std::filesystem::path(path).parent_path() / child).string();
+    std::error_code ec;
+    if (!std::filesystem::exists(child_path, ec))
+      throw InputError(call, "M98 calls '" + child + "', which is not beside " +
+                                 std::filesystem::path(path).filename().string());
     for (NcBlock& cb : read(child_path)) {
       for (const NcWord& w : cb.words)
         if (!w.numeric && w.text.rfind("M98(", 0) == 0)
