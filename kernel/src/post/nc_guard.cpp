@@ -131,13 +131,11 @@ void NcGuard::refuse(const std::string& what) {
 void NcGuard::check_line(std::string_view line) {
   // Every byte must be printable text, comments included: a controller reads every byte of
   // a line. A loop without branches (it vectorises); the place is found only on refusal.
-  unsigned unprintable = 0, comments = 0, percent = 0, content = 0;
+  unsigned unprintable = 0, comments = 0;
   for (const char ch : line) {
     const unsigned byte = static_cast<unsigned char>(ch);
     unprintable |= (byte - 0x20u > 0x5Eu) & (byte != '\t') & (byte != '\r');
     comments |= (byte == '(') | (byte == ';');
-    percent |= byte == '%';
-    content |= (byte != ' ') & (byte != '\t') & (byte != '\r');
   }
   if (unprintable) {
     for (std::size_t i = 0; i < line.size(); ++i) {
@@ -164,24 +162,22 @@ void NcGuard::check_line(std::string_view line) {
     code = code_;
   }
   File& this_file = files_[current_];
+  // Whether a line before this one had anything on it: asked of a file's first lines only.
   const bool first_content = this_file.blank_so_far;
-  if (content) this_file.blank_so_far = false;
-  if (percent) {
-    // The tape's marks (RS-274, LinuxCNC, Fanuc): a line of '%' alone, first of the file,
-    // starts the program; a later one ends it, and the controller reads nothing after it.
-    // A '%' among a block's words is none of these.
-    std::size_t first = code.find_first_not_of(" \t\r"), last = code.find_last_not_of(" \t\r");
-    if (first == std::string_view::npos || code[first] != '%') {
-      if (code.find('%') != std::string_view::npos)
-        return refuse("'%' inside a block, where it is not a word: " + std::string(line));
-    } else {
-      if (last != first) return refuse("'%' with words after it on its line: " + std::string(line));
-      if (!first_content && this_file.ended_at == 0) {
-        this_file.ended_at = this_file.lines;
-        this_file.end_word = "%";
-      }
-      return;
+  if (first_content && line.find_first_not_of(" \t\r") != std::string_view::npos)
+    this_file.blank_so_far = false;
+  // The tape's marks (RS-274, LinuxCNC, Fanuc): a line of '%' alone, first of the file,
+  // starts the program; a later one ends it, and the controller reads nothing after it. A
+  // '%' among a block's words is none of these (the word scan below refuses it).
+  if (const std::size_t first = code.find_first_not_of(" \t\r");
+      first != std::string_view::npos && code[first] == '%') {
+    if (code.find_last_not_of(" \t\r") != first)
+      return refuse("'%' with words after it on its line: " + std::string(line));
+    if (!first_content && this_file.ended_at == 0) {
+      this_file.ended_at = this_file.lines;
+      this_file.end_word = "%";
     }
+    return;
   }
   const char* const c = code.data();
   const std::size_t length = code.size();
@@ -196,7 +192,11 @@ void NcGuard::check_line(std::string_view line) {
   double outside_value = 0;
   for (std::size_t i = 0; i < length; ++i) {
     const char lower = ascii_lower(c[i]);
-    if (!ascii_letter(lower)) continue;
+    if (!ascii_letter(lower)) {
+      if (c[i] == '%')
+        return refuse("'%' inside a block, where it is not a word: " + std::string(line));
+      continue;
+    }
     if (i + 2 < length) {
       const char b = ascii_lower(c[i + 1]), d = ascii_lower(c[i + 2]);
       if ((lower == 'n' && b == 'a' && d == 'n') || (lower == 'i' && b == 'n' && d == 'f'))
