@@ -166,8 +166,8 @@ job=$(variant no_machine "s|^machine: .*|machine: no-such-lathe|")
 refused "a missing machine" "$job" "$job:18:10:" "no no-such-lathe.yaml"
 
 # Machine and dialect settings.
-machine_variant() {
-  sed "$2" "$tmp/machine.yaml" > "$tmp/$1.machine.yaml"
+machine_variant() {  # NAME SED-SCRIPT [MACHINE-FILE, the ISO lathe's by default]
+  sed "$2" "${3:-$tmp/machine.yaml}" > "$tmp/$1.machine.yaml"
   sed "s|^machine: .*|machine: $tmp/$1.machine.yaml|" "$base" > "$tmp/$1.yaml"
   echo "$tmp/$1"
 }
@@ -199,16 +199,12 @@ refused "a plugin path with .." "$m.yaml" "$m.machine.yaml:3:9:" "a name, not a 
 
 # A Moore header that ends the program before the cut: a '%' line after the first (the
 # tape's end to an RS-274 reader) or an M30. Reported at the header in the machine file.
-moore_variant() {
-  sed "$2" "$src/postprocessors/moore/machines/moore-nanotech-250upl.yaml" > "$tmp/$1.machine.yaml"
-  sed "s|^machine: .*|machine: $tmp/$1.machine.yaml|" "$base" > "$tmp/$1.yaml"
-  echo "$tmp/$1"
-}
-m=$(moore_variant tape_end 's/^  header: "G71/  header: "%\\nG71/')
+moore="$src/postprocessors/moore/machines/moore-nanotech-250upl.yaml"
+m=$(machine_variant tape_end 's/^  header: "G71/  header: "%\\nG71/' "$moore")
 refused "a '%' in the Moore header" "$m.yaml" "$m.machine.yaml:13:3:" "words after the program's end (% on line 2)" "header comes from the dialect settings"
-m=$(moore_variant header_m30 's/^  header: "G71/  header: "M30\\nG71/')
+m=$(machine_variant header_m30 's/^  header: "G71/  header: "M30\\nG71/' "$moore")
 refused "an M30 in the Moore header" "$m.yaml" "$m.machine.yaml:13:3:" "words after the program's end (M30 on line 2)"
-m=$(moore_variant percent_word 's/^  header: "G71/  header: "G71 %/')
+m=$(machine_variant percent_word 's/^  header: "G71/  header: "G71 %/' "$moore")
 refused "a '%' among a header's words" "$m.yaml" "$m.machine.yaml:13:3:" "'%' inside a block"
 
 # A cut the machine cannot make (exit 1, nothing written) is reported at the limit it

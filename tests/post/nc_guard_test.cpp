@@ -27,6 +27,12 @@ std::string refusal_of(NcGuard& guard, const std::string& text) {
   return guard.reason();
 }
 
+// The same with a fresh guard for machine `m`.
+std::string refusal_of(const MachineDescription& m, const std::string& text) {
+  NcGuard guard(m);
+  return refusal_of(guard, text);
+}
+
 long files_in(const std::string& folder) {
   return std::distance(std::filesystem::directory_iterator(folder), std::filesystem::directory_iterator());
 }
@@ -66,10 +72,7 @@ TEST_SUITE("plugins") {
   TEST_CASE("the NC guard reads back what a plugin wrote: finite, whole numbers inside the travel") {
     MachineDescription m = lathe();
     m.c_wrapped = true;  // C then within [0, 360]
-    const auto refused = [&](const std::string& text) {
-      NcGuard guard(m);
-      return refusal_of(guard, text);
-    };
+    const auto refused = [&](const std::string& text) { return refusal_of(m, text); };
     CHECK(refused("%\nG21 G18\nG1 X1.000000 Z-2.5 C359.9999\nM30\n%\n").empty());
     CHECK(refused("G1 X100.0000004 Z0\n").empty());  // within half a unit of 6 decimals
     CHECK(refused("G1 X100.000001 Z0\n") == "p.nc:1: X100.000001 is outside the machine's range [-100.0000005, 100.0000005]");
@@ -97,10 +100,7 @@ TEST_SUITE("plugins") {
 
   TEST_CASE("the NC guard refuses bytes no controller should get and words without their number") {
     const MachineDescription m = lathe();
-    const auto refused = [&](const std::string& text) {
-      NcGuard guard(m);
-      return refusal_of(guard, text);
-    };
+    const auto refused = [&](const std::string& text) { return refusal_of(m, text); };
     // What an overrun formatter left after F: bytes of memory, in code or in a comment.
     CHECK(refused(std::string("G93 F\x01\x9c\n")) == "p.nc:1: byte 0x01 at column 6 is not printable ASCII");
     CHECK(refused(std::string("G1 X1 (\xc3\xa9)\n")) == "p.nc:1: byte 0xC3 at column 8 is not printable ASCII");
@@ -123,10 +123,7 @@ TEST_SUITE("plugins") {
 
   TEST_CASE("the NC guard refuses words after the program's end: the controller never runs them") {
     const MachineDescription m = lathe();
-    const auto refused = [&](const std::string& text) {
-      NcGuard guard(m);
-      return refusal_of(guard, text);
-    };
+    const auto refused = [&](const std::string& text) { return refusal_of(m, text); };
     // A header that carries M30 ends the program before the cut the report describes.
     CHECK(refused("%\nG71\nM30\nM03 S20\nG1 X1 Z1\n") ==
           "p.nc:4: words after the program's end (M30 on line 3), which the controller never "
@@ -162,10 +159,7 @@ TEST_SUITE("plugins") {
     // line with anything on it starts the program; a later one ends it, and nothing after
     // it is run.
     const MachineDescription m = lathe();
-    const auto refused = [&](const std::string& text) {
-      NcGuard guard(m);
-      return refusal_of(guard, text);
-    };
+    const auto refused = [&](const std::string& text) { return refusal_of(m, text); };
     CHECK(refused("%\nG1 X1\nM2\n%\n").empty());
     CHECK(refused("\n  % \r\nG1 X1\nM2\n%\n").empty());  // blank lines before, spaces about it
     CHECK(refused("G1 X1\n%\n").empty());                // an end with nothing after it

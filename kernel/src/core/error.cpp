@@ -16,20 +16,24 @@ std::string SourceLocation::to_string() const {
 }
 
 namespace {
-// The length of a UTF-8 sequence at `text[i]` that a terminal acts on rather than shows:
-// a C1 control (U+0080 to U+009F; U+009B is an 8-bit CSI to some terminals) or a
-// bidirectional format character (U+200E, U+200F, U+202A to U+202E, U+2066 to U+2069),
-// which can make a quoted name read as another. 0 for anything else.
-std::size_t invisible_sequence_at(std::string_view text, std::size_t i) {
+// A UTF-8 sequence at `text[i]` that a terminal acts on rather than shows: a C1 control
+// (U+0080 to U+009F; U+009B is an 8-bit CSI to some terminals) or a bidirectional format
+// character (U+200E, U+200F, U+202A to U+202E, U+2066 to U+2069), which can make a quoted
+// name read as another. Its length in bytes (0 for anything else) and its code point.
+struct Invisible {
+  std::size_t length = 0;
+  unsigned code = 0;
+};
+Invisible invisible_sequence_at(std::string_view text, std::size_t i) {
   const auto byte = [&](std::size_t k) { return static_cast<unsigned char>(text[i + k]); };
-  if (i + 1 < text.size() && byte(0) == 0xc2 && byte(1) >= 0x80 && byte(1) <= 0x9f) return 2;
-  if (i + 2 < text.size() && byte(0) == 0xe2) {
-    if (byte(1) == 0x80 &&
-        (byte(2) == 0x8e || byte(2) == 0x8f || (byte(2) >= 0xaa && byte(2) <= 0xae)))
-      return 3;
-    if (byte(1) == 0x81 && byte(2) >= 0xa6 && byte(2) <= 0xa9) return 3;
-  }
-  return 0;
+  if (i + 1 < text.size() && byte(0) == 0xc2 && byte(1) >= 0x80 && byte(1) <= 0x9f)
+    return {2, byte(1)};  // U+0080 to U+009F: the second byte is the code point
+  if (i + 2 < text.size() && byte(0) == 0xe2 &&
+      ((byte(1) == 0x80 &&
+        (byte(2) == 0x8e || byte(2) == 0x8f || (byte(2) >= 0xaa && byte(2) <= 0xae))) ||
+       (byte(1) == 0x81 && byte(2) >= 0xa6 && byte(2) <= 0xa9)))
+    return {3, 0x2000u | ((byte(1) & 0x3fu) << 6) | (byte(2) & 0x3fu)};  // U+2000 to U+207F
+  return {};
 }
 
 std::string join(const std::string& where, const std::string& what) {
@@ -47,16 +51,10 @@ std::string escape_control_bytes(std::string_view text, bool keep_newlines) {
       out += "\\x";
       out += kHex[byte >> 4];
       out += kHex[byte & 0xf];
-    } else if (const std::size_t n = invisible_sequence_at(text, i); n > 0) {
-      // Decode the code point (two or three bytes) and write it as \uXXXX.
-      const auto b = [&](std::size_t k) {
-        return static_cast<unsigned>(static_cast<unsigned char>(text[i + k]));
-      };
-      const unsigned code = n == 2 ? ((b(0) & 0x1f) << 6) | (b(1) & 0x3f)
-                                   : ((b(0) & 0x0f) << 12) | ((b(1) & 0x3f) << 6) | (b(2) & 0x3f);
+    } else if (const Invisible invisible = invisible_sequence_at(text, i); invisible.length > 0) {
       out += "\\u";
-      for (int shift = 12; shift >= 0; shift -= 4) out += kHex[(code >> shift) & 0xf];
-      i += n - 1;
+      for (int shift = 12; shift >= 0; shift -= 4) out += kHex[(invisible.code >> shift) & 0xf];
+      i += invisible.length - 1;
     } else {
       out += text[i];
     }

@@ -6,8 +6,9 @@
 
 namespace freeturn::detail {
 
-ProgramDynamics::ProgramDynamics(const MachineDescription& machine)
-    : machine_(machine), dynamics_(machine.interpolation == Interpolation::kCubic) {
+ProgramDynamics::ProgramDynamics(const MachineDescription& machine,
+                                 const std::vector<std::string>& files)
+    : machine_(machine), files_(files), dynamics_(machine.interpolation == Interpolation::kCubic) {
   // Moore's G93 F is the block time in seconds (../notes: the Moore and Precitech dialects);
   // LinuxCNC's is 1/minutes. Another dialect's inverse time is not known here.
   if (machine.plugin == "moore") seconds_per_f_ = 1;
@@ -18,6 +19,10 @@ ProgramDynamics::ProgramDynamics(const MachineDescription& machine)
     limit_velocity_[static_cast<std::size_t>(a.axis)] = a.max_velocity;
     limit_acceleration_[static_cast<std::size_t>(a.axis)] = a.max_acceleration;
   }
+}
+
+std::string ProgramDynamics::where(const Place& p) const {
+  return files_[static_cast<std::size_t>(p.file)] + ":" + std::to_string(p.line);
 }
 
 void ProgramDynamics::add_excess(Excess& e, double value, double limit, const Place& at) {
@@ -35,14 +40,14 @@ void ProgramDynamics::judge(const BlockMotion& m, const Place& at) {
   }
 }
 
-void ProgramDynamics::add(const std::array<double, 4>& q, const Feed& feed, const std::string& where,
+void ProgramDynamics::add(const std::array<double, 4>& q, const Feed& feed, const NcBlock& block,
                           const CutterLocation& cl) {
-  const Place here{where, cl};
+  const Place here{block.file, block.line, cl};
   const std::array<double, 4> from = last_q_;
   const bool placed_before = placed_;  // a block before this one says where it starts
   last_q_ = q;
   placed_ = true;
-  if (!untimed_.empty()) return;
+  if (untimed_) return;
   double time = 0;
   if (feed.rapid || feed.mode != 93) {
     // Not the cut: an approach or a retract. A cut before it ends here, at rest; a cut
@@ -56,7 +61,8 @@ void ProgramDynamics::add(const std::array<double, 4>& q, const Feed& feed, cons
     return;
   }
   if (!(feed.f > 0) || seconds_per_f_ == 0) {
-    untimed_ = where;
+    untimed_ = true;
+    untimed_at_ = here;
     return;
   }
   time = seconds_per_f_ > 0 ? seconds_per_f_ * feed.f : -seconds_per_f_ / feed.f;
@@ -85,14 +91,14 @@ void ProgramDynamics::add(const std::array<double, 4>& q, const Feed& feed, cons
 }
 
 void ProgramDynamics::finish(RunReport& report, PassFigures& figures) {
-  if (!untimed_.empty() || !judged_) {
+  if (untimed_ || !judged_) {
     ReportWarning w;
     w.kind = "dynamics";
     w.severity = ReportWarning::Severity::kNote;
     w.message =
         "the axes' velocities and accelerations are not judged: " +
-        (!untimed_.empty() ? "the block at " + untimed_ + " states"
-                           : std::string("no block of the program states")) +
+        (untimed_ ? "the block at " + where(untimed_at_) + " states"
+                  : std::string("no block of the program states")) +
         " a time this reader knows (G93 with F, in Moore's or LinuxCNC's dialect; machine '" +
         machine_.name + "' is posted by '" + machine_.plugin + "')";
     report.warnings.push_back(std::move(w));
@@ -112,9 +118,9 @@ void ProgramDynamics::finish(RunReport& report, PassFigures& figures) {
     ReportWarning w;
     w.kind = "dynamics";
     w.severity = ReportWarning::Severity::kUnsafe;
-    w.message = std::to_string(e.blocks) + (e.blocks == 1 ? " block asks " : " blocks ask ") + what +
-                " beyond machine '" + machine_.name + "': " + significant_text(e.value, 4) + " " +
-                unit + " against " + significant_text(e.limit, 4) + " at " + e.at.where;
+    w.message = std::to_string(e.blocks) + (e.blocks == 1 ? " block asks " : " blocks ask ") +
+                what + " beyond machine '" + machine_.name + "': " + significant_text(e.value, 4) +
+                " " + unit + " against " + significant_text(e.limit, 4) + " at " + where(e.at);
     w.count = e.blocks;
     w.theta_deg = part_degrees(e.at.cl.contact.theta);
     w.r_mm = e.at.cl.contact.r;

@@ -12,7 +12,9 @@
 #include <array>
 #include <limits>
 #include <string>
+#include <vector>
 
+#include "freeturn/io/nc_program.hpp"
 #include "freeturn/machine/block_dynamics.hpp"
 #include "freeturn/machine/machine.hpp"
 #include "freeturn/pipeline/run_report.hpp"
@@ -21,7 +23,8 @@ namespace freeturn::detail {
 
 class ProgramDynamics {
  public:
-  explicit ProgramDynamics(const MachineDescription& machine);
+  // `files`: the program's files (read_nc_program), which its blocks' `file` indices name.
+  ProgramDynamics(const MachineDescription& machine, const std::vector<std::string>& files);
   // The program's modal feed state as a block leaves it: G93 (inverse time), G94, G95 or 0
   // (none stated), F (NaN: none yet), and whether the motion is G0.
   struct Feed {
@@ -29,9 +32,9 @@ class ProgramDynamics {
     double f = std::numeric_limits<double>::quiet_NaN();
     bool rapid = false;  // G0: a move at the machine's own speed, not the cut's
   };
-  // The next motion block: the machine's X, Z, C (unwrapped) and B, where it is written
-  // (file:line), and the cutter location it stands for (the report's place).
-  void add(const std::array<double, 4>& q, const Feed& feed, const std::string& where,
+  // The next motion block: the machine's X, Z, C (unwrapped) and B, the block as written
+  // (its file and line), and the cutter location it stands for (the report's place).
+  void add(const std::array<double, 4>& q, const Feed& feed, const NcBlock& block,
            const CutterLocation& cl);
   // The program's end; the peaks and the cycle time into `figures`, an UNSAFE warning per
   // axis (and for the block rate) that the program asks more of than the machine allows,
@@ -40,9 +43,10 @@ class ProgramDynamics {
 
  private:
   struct Place {
-    std::string where;
+    int file = 0, line = 0;
     CutterLocation cl;
   };
+  std::string where(const Place& p) const;  // "file:line"
   struct Excess {
     long blocks = 0;
     double value = 0, limit = 0, worst = 0;  // worst: value / limit
@@ -52,6 +56,7 @@ class ProgramDynamics {
   void add_excess(Excess& e, double value, double limit, const Place& at);
 
   const MachineDescription& machine_;
+  const std::vector<std::string>& files_;
   BlockDynamics dynamics_;
   long blocks_ = 0;
   std::array<double, 4> last_q_{};
@@ -60,7 +65,8 @@ class ProgramDynamics {
   bool placed_ = false;       // a block was read
   double seconds_per_f_ = 0;  // inverse time: a block's time is this × F (Moore), or 60 / F (0)
   Place last_;
-  std::string untimed_;  // where the first block without a stated time is ("": none)
+  bool untimed_ = false;  // a cut block states no time this reader knows: untimed_at_
+  Place untimed_at_;
   double cycle_time_ = 0, peak_rate_ = 0;
   std::array<double, 4> peak_velocity_{}, peak_acceleration_{};
   std::array<Excess, 4> velocity_excess_, acceleration_excess_;

@@ -892,7 +892,7 @@ RunResult run_program_simulation(const Job& job, const std::string& program,
   Crossing crossing[4];
   std::vector<std::string> program_files;
   const std::vector<NcBlock> program_blocks = read_nc_program(program, &program_files);
-  detail::ProgramDynamics dynamics(machine);
+  detail::ProgramDynamics dynamics(machine, program_files);
   detail::ProgramDynamics::Feed feed;
   for (const NcBlock& b : program_blocks) {
     bool motion = false, machine_frame = false;
@@ -963,10 +963,8 @@ RunResult run_program_simulation(const Job& job, const std::string& program,
         k.at = cl;
       }
     }
-    const std::string where =
-        program_files[static_cast<std::size_t>(b.file)] + ":" + std::to_string(b.line);
-    dynamics.add({value[0], value[1], sc.sign * spindle * kDegrees + sc.offset, value[3]}, feed,
-                 where, cl);
+    dynamics.add({value[0], value[1], sc.sign * spindle * kDegrees + sc.offset, value[3]}, feed, b,
+                 cl);
     figures.add(cl);
     ++blocks;
     chunk.push_back(cl);
