@@ -4,6 +4,7 @@
 #include <vector>
 
 #include "freeturn/core/error.hpp"
+#include "freeturn/io/nc_line.hpp"
 #include "freeturn/io/nc_program.hpp"
 #include "test_files.hpp"
 
@@ -42,6 +43,41 @@ TEST_SUITE("io") {
     // After a first line (a comment), a '%' ends the tape: X2 is never run.
     CHECK(xs(parse_nc("(program)\nG1 X1\n%\nG1 X2\n", "p.nc")) == std::vector<double>{1});
     CHECK(xs(parse_nc("%\nG1 X1\n%\nG1 X2\n%\n", "p.nc")) == std::vector<double>{1});
+    // A comment beside a mark leaves it a mark, as the guard reads it (post/nc_guard.cpp).
+    CHECK(xs(parse_nc("% (start)\nG1 X1\n%;end\nG1 X2\n", "p.nc")) == std::vector<double>{1});
+    // In a comment a '%' is text.
+    CHECK(xs(parse_nc("G1 X1 (50 %)\nG1 X2 ; 10 %\n", "p.nc")) == std::vector<double>{1, 2});
+  }
+
+  TEST_CASE("a '%' that is no tape mark is refused where it stands, as the guard refuses it") {
+    // Before, the reader skipped it: "G1 X1 %" read as G1 X1, and "% G1 X2" as G1 X2.
+    CHECK_THROWS_WITH_AS(parse_nc("G1 X1\nG1 X2 %\n", "p.nc"),
+                         doctest::Contains("p.nc:2:7: '%' inside a block, where it is not a word"),
+                         InputError);
+    CHECK_THROWS_WITH_AS(parse_nc("G1 X1\n  % G1 X2\n", "p.nc"),
+                         doctest::Contains("p.nc:2:3: '%' with words after it on its line"),
+                         InputError);
+    CHECK_THROWS_WITH_AS(parse_nc("(c) % X2\n", "p.nc"),
+                         doctest::Contains("p.nc:1:5: '%' with words"), InputError);
+  }
+
+  TEST_CASE("tape_mark reads a line's code as a mark, a mark with words, or neither") {
+    std::string code;
+    const auto mark_of = [&](const std::string& line) {
+      strip_nc_comments(line, code);
+      return tape_mark(code);
+    };
+    CHECK(mark_of("%") == TapeMark::kMark);
+    CHECK(mark_of(" \t%\r") == TapeMark::kMark);
+    CHECK(mark_of("%(tape start) ; and more") == TapeMark::kMark);
+    CHECK(mark_of("% G1") == TapeMark::kWordsAfter);
+    CHECK(mark_of("%%") == TapeMark::kWordsAfter);
+    CHECK(mark_of("G1 X1 %") == TapeMark::kNone);
+    CHECK(mark_of("(50 %)") == TapeMark::kNone);
+    CHECK(mark_of("") == TapeMark::kNone);
+    // Comments nest: the code of "G1 (a (b) c) X1" is "G1  X1".
+    strip_nc_comments("G1 (a (b) c) X1 ; (d", code);
+    CHECK(code == "G1  X1 ");
   }
 
   TEST_CASE("a child program is read beside its caller, by its name: never a path") {

@@ -15,6 +15,7 @@
 
 #include "freeturn/core/error.hpp"
 #include "freeturn/core/number_text.hpp"
+#include "freeturn/io/nc_line.hpp"
 
 namespace freeturn {
 
@@ -42,6 +43,7 @@ std::vector<NcBlock> parse_nc(const std::string& text, const std::string& file) 
   int line = 0;
   std::size_t start = 0;
   bool seen_content = false;  // a line with anything on it: a '%' after it ends the tape
+  std::string code;           // the line without its comments
   while (start < text.size()) {
     std::size_t end = text.find('\n', start);
     if (end == std::string::npos) end = text.size();
@@ -49,10 +51,15 @@ std::vector<NcBlock> parse_nc(const std::string& text, const std::string& file) 
     start = end + 1;
     ++line;
     const std::size_t first = l.find_first_not_of(" \t\r");
-    if (first != std::string::npos && l[first] == '%' && l.find_last_not_of(" \t\r") == first) {
+    strip_nc_comments(l, code);
+    if (const TapeMark mark = tape_mark(code); mark == TapeMark::kMark) {
       if (seen_content) break;  // the tape's end
       seen_content = true;      // its start
       continue;
+    } else if (mark == TapeMark::kWordsAfter) {
+      const std::size_t at = l[first] == '%' ? first : l.find('%');
+      throw InputError(SourceLocation{file, line, static_cast<int>(at) + 1},
+                       "'%' with words after it on its line: a tape mark stands alone");
     }
     if (first != std::string::npos) seen_content = true;
     NcBlock block;
@@ -73,8 +80,10 @@ std::vector<NcBlock> parse_nc(const std::string& text, const std::string& file) 
         i = close + 1;
       } else if (ch == ';') {
         break;
-      } else if (ch == '%' || ch == '/') {
+      } else if (ch == '/') {
         ++i;
+      } else if (ch == '%') {
+        fail("'%' inside a block, where it is not a word");
       } else if (std::isalpha(static_cast<unsigned char>(ch)) || ch == '#' || ch == '[') {
         NcWord w;
         w.letter = static_cast<char>(std::toupper(static_cast<unsigned char>(ch)));

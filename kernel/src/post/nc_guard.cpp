@@ -7,6 +7,7 @@
 #include <system_error>
 
 #include "freeturn/core/number_text.hpp"
+#include "freeturn/io/nc_line.hpp"
 
 namespace freeturn {
 namespace {
@@ -151,14 +152,7 @@ void NcGuard::check_line(std::string_view line) {
   // The words outside comments: "( … )" and everything after ';'.
   std::string_view code = line;
   if (comments) {
-    code_.clear();
-    int depth = 0;
-    for (const char ch : line) {
-      if (ch == ';' && depth == 0) break;
-      if (ch == '(') ++depth;
-      else if (ch == ')' && depth > 0) --depth;
-      else if (depth == 0) code_ += ch;
-    }
+    strip_nc_comments(line, code_);
     code = code_;
   }
   File& this_file = files_[current_];
@@ -166,12 +160,10 @@ void NcGuard::check_line(std::string_view line) {
   const bool first_content = this_file.blank_so_far;
   if (first_content && line.find_first_not_of(" \t\r") != std::string_view::npos)
     this_file.blank_so_far = false;
-  // The tape's marks (RS-274, LinuxCNC, Fanuc): a line of '%' alone, first of the file,
-  // starts the program; a later one ends it, and the controller reads nothing after it. A
-  // '%' among a block's words is none of these (the word scan below refuses it).
-  if (const std::size_t first = code.find_first_not_of(" \t\r");
-      first != std::string_view::npos && code[first] == '%') {
-    if (code.find_last_not_of(" \t\r") != first)
+  // The tape's marks (io/nc_line.hpp). A '%' among a block's words is none (the word scan
+  // below refuses it).
+  if (const TapeMark mark = tape_mark(code); mark != TapeMark::kNone) {
+    if (mark == TapeMark::kWordsAfter)
       return refuse("'%' with words after it on its line: " + std::string(line));
     if (!first_content && this_file.ended_at == 0) {
       this_file.ended_at = this_file.lines;

@@ -1,8 +1,8 @@
 #pragma once
 // NC programs read back as words (ISO 6983 style: a letter and a number), for ncdiff and
 // for checking what the post-processors write. Comments — `( … )` and from `;` to the
-// end of the line — and `%` lines are dropped; macro syntax (`#`, `[`, WHILE, IF) and
-// Hollerith-like strings inside M98( … ) are kept as text words, compared literally.
+// end of the line — and the tape's `%` marks (io/nc_line.hpp) are dropped; macro syntax (`#`, `[`,
+// WHILE, IF) and Hollerith-like strings inside M98( … ) are kept as text words, compared literally.
 
 #include <string>
 #include <vector>
@@ -26,8 +26,9 @@ struct NcBlock {
 // Throws InputError (file:line:col) for text that is not NC: a character that starts no
 // word, a letter without a value, or an axis (X Y Z A B C U V W) or F word given twice in
 // one block (controllers either stop there or take one of the two; which is not ours to
-// guess). A line of '%' alone after the file's first line with anything on it is the
-// tape's end (RS-274): the controller reads nothing after it, and neither does this.
+// guess), or a '%' that is no tape mark (with words after it, or among a block's words).
+// A line of '%' alone after the file's first line with anything on it is the tape's end
+// (RS-274, io/nc_line.hpp): the controller reads nothing after it, and neither does this.
 std::vector<NcBlock> parse_nc(const std::string& text, const std::string& file);
 
 // A program file and the child files it calls (M98(name), beside it), as one sequence of
