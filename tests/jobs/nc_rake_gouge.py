@@ -8,7 +8,8 @@ by C. The blocks' X, Z and C are interpolated linearly (2 samples a block), the 
 sharing no code with freeturn.
 
 usage: nc_rake_gouge.py PROGRAM.nc DESIGN R H HALF_ANGLE_DEG R_MIN R_MAX [WAVINESS]
-DESIGN: decentred_sphere:RADIUS:DX  or  compound_eye:BASE:LENS:DIAMETER:PITCH:EXTENT (rings)
+DESIGN: decentred_sphere:RADIUS:DX, compound_eye:BASE:LENS:DIAMETER:PITCH:EXTENT (rings),
+        or microlens_array:LENS:DIAMETER:PITCH:EXTENT (square)
 WAVINESS: the edge's radius error, DEG:MM,DEG:MM,... (linear between, the ends held): the
 edge's point at phi lies R + delta(phi) from the centre.
 Prints the deepest point (nm, > 0 below the design).
@@ -81,11 +82,33 @@ def compound_eye(base, lens, diameter, pitch, extent):
     return z
 
 
+def microlens_array(lens, diameter, pitch, extent):
+    """Spherical lenslets on the plane z = 0, a square lattice (docs/surfaces.md)."""
+    c = 1 / lens
+    rim = sphere_sag(c, (diameter / 2) ** 2)
+    n = int(np.ceil(extent / pitch)) + 1
+    centres = [(i * pitch, j * pitch) for i in range(-n, n + 1) for j in range(-n, n + 1)
+               if np.hypot(i * pitch, j * pitch) <= extent - diameter / 2 + 1e-12]
+
+    def z(x, y):
+        out = np.zeros(np.broadcast(x, y).shape)
+        for cx, cy in centres:
+            d2 = (x - cx) ** 2 + (y - cy) ** 2
+            near = d2 < (diameter / 2) ** 2
+            if near.any():
+                out[near] = sphere_sag(c, d2[near]) - rim
+        return out
+
+    return z
+
+
 def main():
     path, design, R, h, half, r_min, r_max = sys.argv[1:8]
     R, h, half, r_min, r_max = map(float, (R, h, half, r_min, r_max))
     kind, *p = design.split(":")
-    z_of = decentred_sphere(*map(float, p)) if kind == "decentred_sphere" else compound_eye(*map(float, p))
+    designs = {"decentred_sphere": decentred_sphere, "compound_eye": compound_eye,
+               "microlens_array": microlens_array}
+    z_of = designs[kind](*map(float, p))
     b = np.array(read(path, [], {"X": None, "Z": None, "C": 0.0}))
     X, Z, C = b[:, 0], b[:, 1], np.unwrap(np.radians(b[:, 2]))
     t = np.array([0.0, 0.5])
