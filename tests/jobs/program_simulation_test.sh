@@ -19,7 +19,8 @@
 # - a program that is not NC is an error at its file:line, exit 2, nothing written; so is
 #   an axis word given twice in a block;
 # - the axes' dynamics from the program's block times: the compound eye's Moore program asks
-#   what its run reported; at twice the speed 4x the accelerations, UNSAFE.
+#   what its run reported; at twice the speed 4x the accelerations, UNSAFE; an inverse-time
+#   block with no time (F0, F negative, no F) is UNSAFE at its line.
 # usage: program_simulation_test.sh <freeturn> <source dir>
 set -u
 freeturn=$1 src=$2
@@ -172,5 +173,18 @@ grep -q "^UNSAFE: 5 blocks ask a block rate beyond machine 'iso-lathe-xzc': 4000
 # nothing past the limits.
 [[ $(grep -c '^UNSAFE' "$tmp/passes.err") -le 3 ]] && ! grep -q 'passes.nc:[2-6]$' "$tmp/passes.err" ||
   { echo "FAIL: the first pass was judged past a limit:"; cat "$tmp/passes.err"; fail=1; }
+# An inverse-time block with no time: F0, a negative F, or no F at all under G93. A controller
+# refuses such a block (before, the dynamics were only noted as not judged, in a sentence
+# that said the opposite: "states a time this reader knows").
+for f in "F0" "F-0.5" ""; do
+  { printf 'G93\nG1 X2 Z0.56 C0 F2400\nG1 X1.999 Z0.56 C3 F2400\n'; printf 'G1 X1.998 Z0.56 C6 %s\nM2\n' "$f"; } > "$tmp/no_time.nc"
+  # Without an F on the first block either: none has a time.
+  [[ -z $f ]] && printf 'G93\nG1 X2 Z0.56 C0\nG1 X1.999 Z0.56 C3\nM2\n' > "$tmp/no_time.nc"
+  (cd "$src/configs/jobs" && "$freeturn" simulate oap_segment.yaml -o "$tmp/no_time" --quiet --program "$tmp/no_time.nc") > /dev/null 2> "$tmp/no_time.err"
+  [[ $? == 1 ]] || { echo "FAIL: G93 with '$f' did not exit 1"; fail=1; }
+  want="^UNSAFE: the inverse-time (G93) block at .*no_time.nc:4 states $f: no block time"
+  [[ -z $f ]] && want="^UNSAFE: the inverse-time (G93) block at .*no_time.nc:2 states no F: no block time"
+  grep -q "$want" "$tmp/no_time.err" || { echo "FAIL: G93 with '$f':"; cat "$tmp/no_time.err"; fail=1; }
+done
 [[ $fail == 0 ]] && echo "1 passed, 0 failed"
 exit $fail

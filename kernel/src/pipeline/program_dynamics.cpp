@@ -60,9 +60,17 @@ void ProgramDynamics::add(const std::array<double, 4>& q, const Feed& feed, cons
     }
     return;
   }
-  if (!(feed.f > 0) || seconds_per_f_ == 0) {
+  if (seconds_per_f_ == 0) {
     untimed_ = true;
     untimed_at_ = here;
+    return;
+  }
+  if (!(feed.f > 0)) {
+    // G93 with no F, F0 or a negative F: no block time at all, which a controller refuses
+    // (LinuxCNC stops with an error there). The blocks after it are not judged either.
+    untimed_ = no_time_ = true;
+    untimed_at_ = here;
+    no_time_f_ = feed.f;
     return;
   }
   time = seconds_per_f_ > 0 ? seconds_per_f_ * feed.f : -seconds_per_f_ / feed.f;
@@ -91,16 +99,32 @@ void ProgramDynamics::add(const std::array<double, 4>& q, const Feed& feed, cons
 }
 
 void ProgramDynamics::finish(RunReport& report, PassFigures& figures) {
+  if (no_time_) {
+    ReportWarning w;
+    w.kind = "dynamics";
+    w.severity = ReportWarning::Severity::kUnsafe;
+    w.message =
+        "the inverse-time (G93) block at " + where(untimed_at_) + " states " +
+        (std::isnan(no_time_f_) ? std::string("no F") : "F" + significant_text(no_time_f_, 6)) +
+        ": no block time, which a controller refuses; the axes' velocities and "
+        "accelerations from there on are not judged";
+    w.count = 1;
+    w.theta_deg = part_degrees(untimed_at_.cl.contact.theta);
+    w.r_mm = untimed_at_.cl.contact.r;
+    w.x_mm = untimed_at_.cl.contact.point.x();
+    w.y_mm = untimed_at_.cl.contact.point.y();
+    report.warnings.push_back(std::move(w));
+    return;
+  }
   if (untimed_ || !judged_) {
     ReportWarning w;
     w.kind = "dynamics";
     w.severity = ReportWarning::Severity::kNote;
-    w.message =
-        "the axes' velocities and accelerations are not judged: " +
-        (untimed_ ? "the block at " + where(untimed_at_) + " states"
-                  : std::string("no block of the program states")) +
-        " a time this reader knows (G93 with F, in Moore's or LinuxCNC's dialect; machine '" +
-        machine_.name + "' is posted by '" + machine_.plugin + "')";
+    w.message = "the axes' velocities and accelerations are not judged: " +
+                (untimed_ ? "the block at " + where(untimed_at_) + " states no time"
+                          : std::string("no block of the program states a time")) +
+                " this reader knows (G93 with F, in Moore's or LinuxCNC's dialect; machine '" +
+                machine_.name + "' is posted by '" + machine_.plugin + "')";
     report.warnings.push_back(std::move(w));
     return;
   }

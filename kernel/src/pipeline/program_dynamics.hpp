@@ -67,6 +67,8 @@ class ProgramDynamics {
   Place last_;
   bool untimed_ = false;  // a cut block states no time this reader knows: untimed_at_
   Place untimed_at_;
+  bool no_time_ = false;  // that block is G93 in a dialect read here, with no F > 0
+  double no_time_f_ = 0;  // its F (NaN: none stated)
   double cycle_time_ = 0, peak_rate_ = 0;
   std::array<double, 4> peak_velocity_{}, peak_acceleration_{};
   std::array<Excess, 4> velocity_excess_, acceleration_excess_;
