@@ -173,4 +173,15 @@ TEST_SUITE("plugins") {
     // In a comment it is text.
     CHECK(refused("G1 X1 (50 %)\n; 10 %\n").empty());
   }
+
+  TEST_CASE("the NC guard refuses two G codes of one modal group in a block, and a negative F") {
+    const MachineDescription m = lathe();
+    const auto refused = [&](const std::string& text) { return refusal_of(m, text); };
+    CHECK(refused("G0 G1 X1\n") ==
+          "p.nc:1: two G codes of RS-274's motion group in one block, which a controller refuses: "
+          "G0 G1 X1");
+    CHECK(refused("G93 G1 X1 G94 F2\n").find("RS-274's feed-rate mode group") != std::string::npos);
+    CHECK(refused("G0 G90 G40 G18 G21 G94 G1.5 X1\n").empty());  // G1.5: no code of the table
+    CHECK(refused("G93 G1 X1 F-0.25\n") == "p.nc:1: F-0.25 is negative: no feed or block time is");
+  }
 }

@@ -19,6 +19,7 @@
 #include <string>
 #include <vector>
 
+#include "freeturn/io/nc_line.hpp"
 #include "freeturn/io/nc_program.hpp"
 
 namespace freeturn {
@@ -27,42 +28,6 @@ namespace {
 bool is_axis(char letter) { return std::string("XYZABCUVW").find(letter) != std::string::npos; }
 // An arc's centre offsets: lengths, but stated by each arc (not modal).
 bool is_offset(char letter) { return letter == 'I' || letter == 'J' || letter == 'K'; }
-
-// The modal group of G`tenths`/10 in RS-274 (LinuxCNC's G-code table); −1: none or unknown.
-int modal_group(long tenths) {
-  switch (tenths) {
-    case 0: case 10: case 20: case 30: case 330: case 382: case 383: case 384: case 385:
-    case 730: case 760: case 800: case 810: case 820: case 830: case 840: case 850: case 860:
-    case 870: case 880: case 890:
-      return 1;  // motion
-    case 170: case 180: case 190: case 171: case 181: case 191:
-      return 2;  // plane
-    case 900: case 910:
-      return 3;  // distance
-    case 901: case 911:
-      return 4;  // arc distance
-    case 930: case 940: case 950:
-      return 5;  // feed-rate mode
-    case 200: case 210:
-      return 6;  // units
-    case 400: case 410: case 420: case 411: case 421:
-      return 7;  // cutter compensation
-    case 430: case 431: case 490:
-      return 8;  // tool length offset
-    case 980: case 990:
-      return 10;  // canned-cycle return
-    case 540: case 550: case 560: case 570: case 580: case 590: case 591: case 592: case 593:
-      return 12;  // coordinate system
-    case 610: case 611: case 640:
-      return 13;  // path control
-    case 960: case 970:
-      return 14;  // spindle-speed mode
-    case 70: case 80:
-      return 15;  // lathe diameter or radius
-    default:
-      return -1;
-  }
-}
 
 std::string code_text(char letter, double value) {
   char buf[32];
@@ -103,8 +68,8 @@ std::vector<Act> acts_of(const std::vector<NcBlock>& blocks, bool calls_followed
     // Codes first: a block's G93 or G94 decides how its own F is read.
     for (const NcWord& w : block.words) {
       if (!w.numeric || w.letter != 'G') continue;
-      const int group = modal_group(std::lround(w.value * 10));
-      if (group > 0 && std::abs(w.value * 10 - std::round(w.value * 10)) < 1e-9) {
+      const int group = g_code_modal_group(w.value);
+      if (group > 0) {
         modal.groups[group] = code_text('G', w.value);
       } else {
         act.codes.insert(code_text('G', w.value));

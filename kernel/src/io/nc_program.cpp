@@ -70,6 +70,9 @@ std::vector<NcBlock> parse_nc(const std::string& text, const std::string& file) 
     };
     // Where each axis and F word of this block was first given (0: not yet).
     int first_column[26] = {0};
+    // The G code of each RS-274 modal group this block states, and where (0: none yet).
+    int group_column[16] = {0};
+    double group_code[16] = {0};
     while (i < l.size()) {
       const char ch = l[i];
       if (ch == ' ' || ch == '\t' || ch == '\r') {
@@ -117,6 +120,18 @@ std::vector<NcBlock> parse_nc(const std::string& text, const std::string& file) 
             w.numeric = false;
             w.text = "M98" + l.substr(j, close + 1 - j);
             j = close + 1;
+          }
+          if (w.letter == 'G' && w.numeric) {
+            const int group = g_code_modal_group(w.value);
+            if (group > 0 && group < 16) {
+              if (group_column[group] != 0)
+                fail("G" + number + " after G" + shortest_text(group_code[group]) + " (column " +
+                     std::to_string(group_column[group]) +
+                     ") in one block: both are codes of RS-274's " +
+                     g_code_modal_group_name(group) + " group, and a controller refuses the block");
+              group_column[group] = w.column;
+              group_code[group] = w.value;
+            }
           }
           if (is_unique_word(w.letter)) {
             int& first = first_column[w.letter - 'A'];

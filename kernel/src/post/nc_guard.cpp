@@ -178,6 +178,7 @@ void NcGuard::check_line(std::string_view line) {
   // finite. Such a word may follow the axis words, so a word outside the travel is
   // refused only once the whole line is read.
   bool work_frame = true, words = false;
+  unsigned g_groups = 0;  // the RS-274 modal groups this line's G codes set (a bit each)
   std::string_view end_word;
   char outside_letter = 0;
   std::string_view outside_number;
@@ -235,6 +236,17 @@ void NcGuard::check_line(std::string_view line) {
     if (!number.empty() && number.front() == '+') number.remove_prefix(1);
     if (points > 1 || digit_count == 0)
       return refuse(std::string(1, letter) + std::string(number) + " is not a number");
+    if (lower == 'g') {
+      // Two codes of one modal group contradict each other (G0 G1, G93 G94).
+      double value = 0;
+      const int group = parse_plain_decimal(number, value) ? g_code_modal_group(value) : -1;
+      if (group > 0 && group < 32) {
+        if (g_groups & (1u << group))
+          return refuse("two G codes of RS-274's " + std::string(g_code_modal_group_name(group)) +
+                        " group in one block, which a controller refuses: " + std::string(line));
+        g_groups |= 1u << group;
+      }
+    }
     if (lower == 'm' && points == 0) {
       std::string_view code = number;
       while (code.size() > 1 && code.front() == '0') code.remove_prefix(1);
@@ -246,6 +258,9 @@ void NcGuard::check_line(std::string_view line) {
     if (lower == 'f' && !nonzero)
       return refuse(std::string(1, letter) + std::string(number) +
                     " is 0: a feed or block time the controller cannot run");
+    if (lower == 'f' && negative)
+      return refuse(std::string(1, letter) + std::string(number) +
+                    " is negative: no feed or block time is");
     // Digits and at most one point, fewer than 309 before it: a finite number.
     const Range& r = ranges_[letter - 'A'];
     if (!r.checked && integer_digits < 300) {

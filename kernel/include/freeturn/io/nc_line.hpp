@@ -1,7 +1,7 @@
 #pragma once
-// What a controller reads of one NC line before its words: the comments it skips and the
-// tape's marks. One statement of each, shared by the reader (parse_nc) and the guard that
-// reads every written line back (post/nc_guard.hpp).
+// What a controller reads of one NC line: the comments it skips, the tape's marks and the
+// G codes' modal groups. One statement of each, shared by the reader (parse_nc, ncdiff)
+// and the guard that reads every written line back (post/nc_guard.hpp).
 
 #include <string>
 #include <string_view>
@@ -24,5 +24,15 @@ enum class TapeMark {
 };
 // `code`: a line without its comments (strip_nc_comments).
 TapeMark tape_mark(std::string_view code);
+
+// The RS-274 modal group of the G code `value` (LinuxCNC's table): 1 motion (G0 G1 G2 G3
+// G33 G38.x G73 G76 G80–G89), 2 plane, 3 distance, 4 arc distance, 5 feed-rate mode
+// (G93 G94 G95), 6 units, 7 cutter compensation, 8 tool length offset, 10 canned-cycle
+// return, 12 coordinate system, 13 path control, 14 spindle-speed mode, 15 lathe diameter
+// or radius; −1 for a code of no group, or one the table does not know (a dialect's own).
+// Two codes of one group in a block contradict each other, and a controller refuses it.
+int g_code_modal_group(double value);
+// The group's name ("motion", "feed-rate mode").
+const char* g_code_modal_group_name(int group);
 
 }  // namespace freeturn
