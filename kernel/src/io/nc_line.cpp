@@ -15,12 +15,6 @@ void strip_nc_comments(std::string_view line, std::string& code) {
   }
 }
 
-TapeMark tape_mark(std::string_view code) {
-  const std::size_t first = code.find_first_not_of(" \t\r");
-  if (first == std::string_view::npos || code[first] != '%') return TapeMark::kNone;
-  return code.find_last_not_of(" \t\r") == first ? TapeMark::kMark : TapeMark::kWordsAfter;
-}
-
 int g_code_modal_group(double value) {
   // G codes are named to a tenth (G38.2, G64.1); another value is no code of the table.
   const double tenths = value * 10;

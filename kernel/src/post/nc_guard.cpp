@@ -178,7 +178,23 @@ void NcGuard::check_line(std::string_view line) {
   // finite. Such a word may follow the axis words, so a word outside the travel is
   // refused only once the whole line is read.
   bool work_frame = true, words = false;
-  unsigned g_groups = 0;  // the RS-274 modal groups this line's G codes set (a bit each)
+  // The line's G codes are read as codes only where it holds more than one: two codes of
+  // one RS-274 modal group contradict each other (G0 G1, G93 G94).
+  std::string_view first_g;
+  int g_count = 0;
+  unsigned g_groups = 0;  // the modal groups of the line's G codes so far, a bit each
+  const auto g_code_conflicts = [&](std::string_view number) {
+    double value = 0;
+    const int group = parse_plain_decimal(number, value) ? g_code_modal_group(value) : -1;
+    if (!(group > 0 && group < 32)) return false;
+    if (g_groups & (1u << group)) {
+      refuse("two G codes of RS-274's " + std::string(g_code_modal_group_name(group)) +
+             " group in one block, which a controller refuses: " + std::string(line));
+      return true;
+    }
+    g_groups |= 1u << group;
+    return false;
+  };
   std::string_view end_word;
   char outside_letter = 0;
   std::string_view outside_number;
@@ -237,15 +253,10 @@ void NcGuard::check_line(std::string_view line) {
     if (points > 1 || digit_count == 0)
       return refuse(std::string(1, letter) + std::string(number) + " is not a number");
     if (lower == 'g') {
-      // Two codes of one modal group contradict each other (G0 G1, G93 G94).
-      double value = 0;
-      const int group = parse_plain_decimal(number, value) ? g_code_modal_group(value) : -1;
-      if (group > 0 && group < 32) {
-        if (g_groups & (1u << group))
-          return refuse("two G codes of RS-274's " + std::string(g_code_modal_group_name(group)) +
-                        " group in one block, which a controller refuses: " + std::string(line));
-        g_groups |= 1u << group;
-      }
+      if (g_count++ == 0)
+        first_g = number;
+      else if ((g_count == 2 && g_code_conflicts(first_g)) || g_code_conflicts(number))
+        return;
     }
     if (lower == 'm' && points == 0) {
       std::string_view code = number;
@@ -255,12 +266,11 @@ void NcGuard::check_line(std::string_view line) {
     // F is a feed, or a block's time or its inverse: none of them can be 0 in any mode (a
     // feed of 0 stalls or alarms the machine, an inverse time of 0 has no block time). A
     // job's tiny feed, or a long block, can round to it at the word's decimals.
-    if (lower == 'f' && !nonzero)
+    // Nor negative: no mode has a negative feed or time.
+    if (lower == 'f' && (!nonzero || negative))
       return refuse(std::string(1, letter) + std::string(number) +
-                    " is 0: a feed or block time the controller cannot run");
-    if (lower == 'f' && negative)
-      return refuse(std::string(1, letter) + std::string(number) +
-                    " is negative: no feed or block time is");
+                    (nonzero ? " is negative: no feed or block time is"
+                             : " is 0: a feed or block time the controller cannot run"));
     // Digits and at most one point, fewer than 309 before it: a finite number.
     const Range& r = ranges_[letter - 'A'];
     if (!r.checked && integer_digits < 300) {

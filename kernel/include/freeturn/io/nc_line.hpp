@@ -22,8 +22,13 @@ enum class TapeMark {
   kMark,        // '%' alone
   kWordsAfter,  // '%' first, with words after it
 };
-// `code`: a line without its comments (strip_nc_comments).
-TapeMark tape_mark(std::string_view code);
+// `code`: a line without its comments (strip_nc_comments). Inline: the guard asks it of
+// every line it reads back.
+inline TapeMark tape_mark(std::string_view code) {
+  const std::size_t first = code.find_first_not_of(" \t\r");
+  if (first == std::string_view::npos || code[first] != '%') return TapeMark::kNone;
+  return code.find_last_not_of(" \t\r") == first ? TapeMark::kMark : TapeMark::kWordsAfter;
+}
 
 // The RS-274 modal group of the G code `value` (LinuxCNC's table): 1 motion (G0 G1 G2 G3
 // G33 G38.x G73 G76 G80–G89), 2 plane, 3 distance, 4 arc distance, 5 feed-rate mode
