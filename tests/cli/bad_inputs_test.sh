@@ -206,6 +206,9 @@ m=$(machine_variant header_m30 's/^  header: "G71/  header: "M30\\nG71/' "$moore
 refused "an M30 in the Moore header" "$m.yaml" "$m.machine.yaml:13:3:" "words after the program's end (M30 on line 2)"
 m=$(machine_variant percent_word 's/^  header: "G71/  header: "G71 %/' "$moore")
 refused "a '%' among a header's words" "$m.yaml" "$m.machine.yaml:13:3:" "'%' inside a block"
+# Two codes of one RS-274 modal group in a block contradict each other: a controller refuses it.
+m=$(machine_variant motion_twice 's/^  header: "G71 G01 G18/  header: "G71 G01 G00 G18/' "$moore")
+refused "G01 and G00 in the Moore header's block" "$m.yaml" "$m.machine.yaml:13:3:" "two G codes of RS-274's motion group in one block"
 
 # A cut the machine cannot make (exit 1, nothing written) is reported at the limit it
 # crosses in the machine file, with the place on the path.
