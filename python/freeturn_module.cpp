@@ -285,9 +285,12 @@ PYBIND11_MODULE(freeturn, m) {
         return d;
       },
       py::arg("a"), py::arg("b"), py::arg("tolerance") = 1e-9,
-      "Compares two NC programs by value, as `freeturn ncdiff` does: axis words within\n"
-      "tolerance (mm or degrees), codes as sets, formatting and comments ignored. Returns\n"
-      "{'same', 'first_difference', 'blocks': (a, b), 'largest': {letter: largest |Δ|}}.");
+      "Compares two NC programs by what they make the machine do, as `freeturn ncdiff`\n"
+      "does: each read with the point files it calls (M98), the blocks that act paired in\n"
+      "the same modal state, axis words within tolerance (mm or degrees); formatting,\n"
+      "comments and restated modal codes ignored (docs/verify.md). Returns\n"
+      "{'same', 'first_difference', 'blocks': (a, b), 'largest': {letter: largest |Δ|}}.\n"
+      "Raises InputError (file:line:col) for a file that is not NC.");
 
   m.def(
       "check_job",
