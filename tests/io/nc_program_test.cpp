@@ -77,6 +77,29 @@ TEST_SUITE("io") {
     CHECK(parse_nc("G71 G4 G53 G1 X1\n", "p.nc").size() == 1);
   }
 
+  TEST_CASE("g_code_modal_group follows RS-274's groups as LinuxCNC lists them") {
+    // LinuxCNC's G-code reference, "Modal Groups": group numbers as it numbers them.
+    for (const double g : {0.0, 1.0, 2.0, 3.0, 33.0, 38.2, 38.5, 73.0, 76.0, 80.0, 89.0})
+      CHECK(g_code_modal_group(g) == 1);
+    for (const double g : {17.0, 18.0, 19.0, 17.1, 19.1}) CHECK(g_code_modal_group(g) == 2);
+    CHECK(g_code_modal_group(90) == 3);
+    CHECK(g_code_modal_group(91.1) == 4);
+    for (const double g : {93.0, 94.0, 95.0}) CHECK(g_code_modal_group(g) == 5);
+    CHECK(g_code_modal_group(21) == 6);
+    CHECK(g_code_modal_group(41.1) == 7);
+    CHECK(g_code_modal_group(43.1) == 8);
+    CHECK(g_code_modal_group(99) == 10);
+    CHECK(g_code_modal_group(59.3) == 12);
+    CHECK(g_code_modal_group(61.1) == 13);
+    CHECK(g_code_modal_group(97) == 14);
+    CHECK(g_code_modal_group(7) == 15);
+    // Non-modal codes (G4 dwell, G53, G92), a Moore's own (G71, G63), and no code at all.
+    for (const double g : {4.0, 53.0, 92.0, 71.0, 63.0, 1.5, 0.05, -1.0, 1e300})
+      CHECK(g_code_modal_group(g) == -1);
+    CHECK(std::string(g_code_modal_group_name(5)) == "feed-rate mode");
+    CHECK(std::string(g_code_modal_group_name(9)) == "no");
+  }
+
   TEST_CASE("tape_mark reads a line's code as a mark, a mark with words, or neither") {
     std::string code;
     const auto mark_of = [&](const std::string& line) {

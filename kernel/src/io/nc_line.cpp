@@ -15,122 +15,78 @@ void strip_nc_comments(std::string_view line, std::string& code) {
   }
 }
 
+namespace {
+
+// LinuxCNC's G-code table: each code (in tenths: G38.2 is 382) with its modal group.
+struct CodeGroup {
+  int tenths;
+  int group;
+};
+// clang-format off
+constexpr CodeGroup kCodeGroups[] = {
+    // 1, motion
+    {0, 1}, {10, 1}, {20, 1}, {30, 1}, {330, 1}, {382, 1}, {383, 1}, {384, 1}, {385, 1},
+    {730, 1}, {760, 1}, {800, 1}, {810, 1}, {820, 1}, {830, 1}, {840, 1}, {850, 1}, {860, 1},
+    {870, 1}, {880, 1}, {890, 1},
+    // 2, plane
+    {170, 2}, {180, 2}, {190, 2}, {171, 2}, {181, 2}, {191, 2},
+    // 3, distance mode
+    {900, 3}, {910, 3},
+    // 4, arc distance mode
+    {901, 4}, {911, 4},
+    // 5, feed-rate mode
+    {930, 5}, {940, 5}, {950, 5},
+    // 6, units
+    {200, 6}, {210, 6},
+    // 7, cutter compensation
+    {400, 7}, {410, 7}, {420, 7}, {411, 7}, {421, 7},
+    // 8, tool length offset
+    {430, 8}, {431, 8}, {490, 8},
+    // 10, canned-cycle return
+    {980, 10}, {990, 10},
+    // 12, coordinate system
+    {540, 12}, {550, 12}, {560, 12}, {570, 12}, {580, 12}, {590, 12}, {591, 12}, {592, 12},
+    {593, 12},
+    // 13, path control
+    {610, 13}, {611, 13}, {640, 13},
+    // 14, spindle-speed mode
+    {960, 14}, {970, 14},
+    // 15, diameter or radius mode
+    {70, 15}, {80, 15},
+};
+// clang-format on
+// The groups' names, by number (none for 0, 9 and 11).
+constexpr const char* kGroupNames[16] = {nullptr,
+                                         "motion",
+                                         "plane",
+                                         "distance mode",
+                                         "arc distance mode",
+                                         "feed-rate mode",
+                                         "units",
+                                         "cutter compensation",
+                                         "tool length offset",
+                                         nullptr,
+                                         "canned-cycle return",
+                                         nullptr,
+                                         "coordinate system",
+                                         "path control",
+                                         "spindle-speed mode",
+                                         "diameter or radius mode"};
+
+}  // namespace
+
 int g_code_modal_group(double value) {
   // G codes are named to a tenth (G38.2, G64.1); another value is no code of the table.
   const double tenths = value * 10;
   if (!(std::abs(tenths - std::round(tenths)) < 1e-9) || !(std::abs(tenths) < 1e4)) return -1;
-  switch (std::lround(tenths)) {
-    case 0:
-    case 10:
-    case 20:
-    case 30:
-    case 330:
-    case 382:
-    case 383:
-    case 384:
-    case 385:
-    case 730:
-    case 760:
-    case 800:
-    case 810:
-    case 820:
-    case 830:
-    case 840:
-    case 850:
-    case 860:
-    case 870:
-    case 880:
-    case 890:
-      return 1;  // motion
-    case 170:
-    case 180:
-    case 190:
-    case 171:
-    case 181:
-    case 191:
-      return 2;  // plane
-    case 900:
-    case 910:
-      return 3;  // distance
-    case 901:
-    case 911:
-      return 4;  // arc distance
-    case 930:
-    case 940:
-    case 950:
-      return 5;  // feed-rate mode
-    case 200:
-    case 210:
-      return 6;  // units
-    case 400:
-    case 410:
-    case 420:
-    case 411:
-    case 421:
-      return 7;  // cutter compensation
-    case 430:
-    case 431:
-    case 490:
-      return 8;  // tool length offset
-    case 980:
-    case 990:
-      return 10;  // canned-cycle return
-    case 540:
-    case 550:
-    case 560:
-    case 570:
-    case 580:
-    case 590:
-    case 591:
-    case 592:
-    case 593:
-      return 12;  // coordinate system
-    case 610:
-    case 611:
-    case 640:
-      return 13;  // path control
-    case 960:
-    case 970:
-      return 14;  // spindle-speed mode
-    case 70:
-    case 80:
-      return 15;  // lathe diameter or radius
-    default:
-      return -1;
-  }
+  const long code = std::lround(tenths);
+  for (const CodeGroup& c : kCodeGroups)
+    if (c.tenths == code) return c.group;
+  return -1;
 }
 
 const char* g_code_modal_group_name(int group) {
-  switch (group) {
-    case 1:
-      return "motion";
-    case 2:
-      return "plane";
-    case 3:
-      return "distance mode";
-    case 4:
-      return "arc distance mode";
-    case 5:
-      return "feed-rate mode";
-    case 6:
-      return "units";
-    case 7:
-      return "cutter compensation";
-    case 8:
-      return "tool length offset";
-    case 10:
-      return "canned-cycle return";
-    case 12:
-      return "coordinate system";
-    case 13:
-      return "path control";
-    case 14:
-      return "spindle-speed mode";
-    case 15:
-      return "diameter or radius mode";
-    default:
-      return "no";
-  }
+  return group >= 0 && group < 16 && kGroupNames[group] ? kGroupNames[group] : "no";
 }
 
 }  // namespace freeturn
