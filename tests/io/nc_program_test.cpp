@@ -67,11 +67,14 @@ TEST_SUITE("io") {
                                            "are codes of RS-274's motion group"),
                          InputError);
     CHECK_THROWS_WITH_AS(parse_nc("G93 g94 X1 F2\n", "p.nc"),
-                         doctest::Contains("p.nc:1:5: G94 after G93 (column 1) in one block: "
+                         doctest::Contains("p.nc:1:5: g94 after G93 (column 1) in one block: "
                                            "both are codes of RS-274's feed-rate mode group"),
                          InputError);
+    // Each code as written.
     CHECK_THROWS_WITH_AS(parse_nc("G38.2 G01 X1\n", "p.nc"),
                          doctest::Contains("p.nc:1:7: G01 after G38.2"), InputError);
+    CHECK_THROWS_WITH_AS(parse_nc("G01.0 G00 X1\n", "p.nc"),
+                         doctest::Contains("p.nc:1:7: G00 after G01.0 (column 1)"), InputError);
     // One code of each group, and codes of no group (G4, G53, G71 on a Moore), are a block.
     CHECK(parse_nc("G0 G90 G40 G18 G21 G94 G54 G64 X1\n", "p.nc").size() == 1);
     CHECK(parse_nc("G71 G4 G53 G1 X1\n", "p.nc").size() == 1);

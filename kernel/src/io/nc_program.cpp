@@ -72,7 +72,7 @@ std::vector<NcBlock> parse_nc(const std::string& text, const std::string& file) 
     int first_column[26] = {0};
     // The G code of each RS-274 modal group this block states, and where (0: none yet).
     int group_column[16] = {0};
-    double group_code[16] = {0};
+    std::size_t group_length[16] = {0};  // that code's length as written
     while (i < l.size()) {
       const char ch = l[i];
       if (ch == ' ' || ch == '\t' || ch == '\r') {
@@ -125,12 +125,14 @@ std::vector<NcBlock> parse_nc(const std::string& text, const std::string& file) 
             const int group = g_code_modal_group(w.value);
             if (group > 0 && group < 16) {
               if (group_column[group] != 0)
-                fail("G" + number + " after G" + shortest_text(group_code[group]) + " (column " +
-                     std::to_string(group_column[group]) +
+                fail(l.substr(i, j - i) + " after " +
+                     l.substr(static_cast<std::size_t>(group_column[group] - 1),
+                              group_length[group]) +
+                     " (column " + std::to_string(group_column[group]) +
                      ") in one block: both are codes of RS-274's " +
                      g_code_modal_group_name(group) + " group, and a controller refuses the block");
               group_column[group] = w.column;
-              group_code[group] = w.value;
+              group_length[group] = j - i;
             }
           }
           if (is_unique_word(w.letter)) {
