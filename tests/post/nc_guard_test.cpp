@@ -33,6 +33,12 @@ std::string refusal_of(const MachineDescription& m, const std::string& text) {
   return refusal_of(guard, text);
 }
 
+// What the guard on the lathe says of `text` ("" where it passes).
+std::string refused(const std::string& text) {
+  static const MachineDescription m = lathe();
+  return refusal_of(m, text);
+}
+
 long files_in(const std::string& folder) {
   return std::distance(std::filesystem::directory_iterator(folder), std::filesystem::directory_iterator());
 }
@@ -99,8 +105,6 @@ TEST_SUITE("plugins") {
   }
 
   TEST_CASE("the NC guard refuses bytes no controller should get and words without their number") {
-    const MachineDescription m = lathe();
-    const auto refused = [&](const std::string& text) { return refusal_of(m, text); };
     // What an overrun formatter left after F: bytes of memory, in code or in a comment.
     CHECK(refused(std::string("G93 F\x01\x9c\n")) == "p.nc:1: byte 0x01 at column 6 is not printable ASCII");
     CHECK(refused(std::string("G1 X1 (\xc3\xa9)\n")) == "p.nc:1: byte 0xC3 at column 8 is not printable ASCII");
@@ -122,8 +126,6 @@ TEST_SUITE("plugins") {
   }
 
   TEST_CASE("the NC guard refuses words after the program's end: the controller never runs them") {
-    const MachineDescription m = lathe();
-    const auto refused = [&](const std::string& text) { return refusal_of(m, text); };
     // A header that carries M30 ends the program before the cut the report describes.
     CHECK(refused("%\nG71\nM30\nM03 S20\nG1 X1 Z1\n") ==
           "p.nc:4: words after the program's end (M30 on line 3), which the controller never "
@@ -137,7 +139,7 @@ TEST_SUITE("plugins") {
     // Codes that only look like ends: M3, M300, M29, M2.5 (no integer), M98 (a call).
     CHECK(refused("M3\nM300\nM29\nM2.5\nM98(child.nc)\nG1 X1\n").empty());
     // Each file ends on its own: a child's M99 does not end the main program.
-    NcGuard guard(m);
+    NcGuard guard(lathe());
     guard.select_file(0, "main.nc");
     guard.feed("G1 X1\nM98(child.nc)\n");
     guard.select_file(1, "child.nc");
@@ -158,8 +160,6 @@ TEST_SUITE("plugins") {
     // RS-274 (LinuxCNC's reader, Fanuc's): a line of '%' alone that is the file's first
     // line with anything on it starts the program; a later one ends it, and nothing after
     // it is run.
-    const MachineDescription m = lathe();
-    const auto refused = [&](const std::string& text) { return refusal_of(m, text); };
     CHECK(refused("%\nG1 X1\nM2\n%\n").empty());
     CHECK(refused("\n  % \r\nG1 X1\nM2\n%\n").empty());  // blank lines before, spaces about it
     CHECK(refused("G1 X1\n%\n").empty());                // an end with nothing after it
@@ -175,8 +175,6 @@ TEST_SUITE("plugins") {
   }
 
   TEST_CASE("the NC guard refuses two G codes of one modal group in a block, and a negative F") {
-    const MachineDescription m = lathe();
-    const auto refused = [&](const std::string& text) { return refusal_of(m, text); };
     CHECK(refused("G0 G1 X1\n") ==
           "p.nc:1: two G codes of RS-274's motion group in one block, which a controller refuses: "
           "G0 G1 X1");

@@ -51,8 +51,13 @@ std::vector<NcBlock> parse_nc(const std::string& text, const std::string& file) 
     start = end + 1;
     ++line;
     const std::size_t first = l.find_first_not_of(" \t\r");
-    strip_nc_comments(l, code);
-    if (const TapeMark mark = tape_mark(code); mark == TapeMark::kMark) {
+    // A tape mark needs a '%': the comments are stripped for the test only then.
+    TapeMark mark = TapeMark::kNone;
+    if (l.find('%') != std::string::npos) {
+      strip_nc_comments(l, code);
+      mark = tape_mark(code);
+    }
+    if (mark == TapeMark::kMark) {
       if (seen_content) break;  // the tape's end
       seen_content = true;      // its start
       continue;
