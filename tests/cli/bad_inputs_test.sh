@@ -209,6 +209,9 @@ refused "a '%' among a header's words" "$m.yaml" "$m.machine.yaml:13:3:" "'%' in
 # Two codes of one RS-274 modal group in a block contradict each other: a controller refuses it.
 m=$(machine_variant motion_twice 's/^  header: "G71 G01 G18/  header: "G71 G01 G00 G18/' "$moore")
 refused "G01 and G00 in the Moore header's block" "$m.yaml" "$m.machine.yaml:13:3:" "two G codes of RS-274's motion group in one block"
+# A comment left open swallows the rest of its block: G01 G18 … would never be read.
+m=$(machine_variant open_comment 's/^  header: "G71/  header: "G71 (note/' "$moore")
+refused "an unclosed comment in the Moore header" "$m.yaml" "$m.machine.yaml:13:3:" "a comment '(' without ')' on its line"
 
 # A cut the machine cannot make (exit 1, nothing written) is reported at the limit it
 # crosses in the machine file, with the place on the path.

@@ -117,9 +117,39 @@ TEST_SUITE("io") {
     CHECK(mark_of("G1 X1 %") == TapeMark::kNone);
     CHECK(mark_of("(50 %)") == TapeMark::kNone);
     CHECK(mark_of("") == TapeMark::kNone);
-    // Comments nest: the code of "G1 (a (b) c) X1" is "G1  X1".
-    strip_nc_comments("G1 (a (b) c) X1 ; (d", code);
+  }
+
+  TEST_CASE("strip_nc_comments drops what a controller skips and finds what it stops on") {
+    std::string code;
+    CHECK(!strip_nc_comments("G1 (a; b) X1 ; (d (e", code));
     CHECK(code == "G1  X1 ");
+    // LinuxCNC's reader: a '(' in a comment is a nested comment, a comment open at the
+    // line's end an unclosed one, both errors; a lone ')' is no word either.
+    NcCommentError error = strip_nc_comments("G1 (a (b) c) X1", code);
+    CHECK(error.column == 7);
+    CHECK(std::string(error.what) == "'(' inside a comment: controllers do not nest comments");
+    error = strip_nc_comments("G1 X1 (open", code);
+    CHECK(error.column == 7);
+    CHECK(std::string(error.what).find("without ')'") != std::string::npos);
+    error = strip_nc_comments("(a)) X1", code);
+    CHECK(error.column == 4);
+    CHECK(std::string(error.what) == "')' outside a comment");
+    error = {};
+    CHECK(nc_comment_close("X(abc)", 1, error) == 5);
+    CHECK(!error);
+  }
+
+  TEST_CASE("the reader refuses the comments the guard refuses, at their column") {
+    CHECK_THROWS_WITH_AS(parse_nc("G1 X1\nG1 (a (b) c) X2\n", "p.nc"),
+                         doctest::Contains("p.nc:2:7: '(' inside a comment"), InputError);
+    CHECK_THROWS_WITH_AS(parse_nc("G1 X1 (open\n", "p.nc"),
+                         doctest::Contains("p.nc:1:7: a comment '(' without ')'"), InputError);
+    CHECK_THROWS_WITH_AS(parse_nc("G1 X1 ) Z2\n", "p.nc"),
+                         doctest::Contains("p.nc:1:7: ')' outside a comment"), InputError);
+    // Beside a tape mark too: before, "% (open" read as a mark.
+    CHECK_THROWS_WITH_AS(parse_nc("% (open\nG1 X1\n", "p.nc"),
+                         doctest::Contains("p.nc:1:3: a comment '(' without ')'"), InputError);
+    CHECK(xs(parse_nc("G1 X1 (a; b) ; c (d\nM98(child.nc)\n", "p.nc")) == std::vector<double>{1});
   }
 
   TEST_CASE("a child program is read beside its caller, by its name: never a path") {

@@ -182,4 +182,21 @@ TEST_SUITE("plugins") {
     CHECK(refused("G0 G90 G40 G18 G21 G94 G1.5 X1\n").empty());  // G1.5: no code of the table
     CHECK(refused("G93 G1 X1 F-0.25\n") == "p.nc:1: F-0.25 is negative: no feed or block time is");
   }
+
+  TEST_CASE(
+      "the NC guard refuses a comment a controller stops on: nested, unclosed, or a lone ')'") {
+    // A header "G71 (note" put the rest of its block in a comment: G01 G18 G90 … were never
+    // read, and the guard passed it (December 2026).
+    CHECK(refused("G71 (note G01 G18 G90\nG1 X1\n") ==
+          "p.nc:1: a comment '(' without ')' on its line: a controller stops there (column 5): "
+          "G71 (note G01 G18 G90");
+    CHECK(refused("G1 X1 (a (b) c)\n") ==
+          "p.nc:1: '(' inside a comment: controllers do not nest comments (column 10): "
+          "G1 X1 (a (b) c)");
+    CHECK(refused("G71 ) G18\n") == "p.nc:1: ')' outside a comment (column 5): G71 ) G18");
+    CHECK(refused("(a) ) X1\n").find("')' outside a comment (column 5)") != std::string::npos);
+    CHECK(refused("% (start\nG1 X1\n").find("without ')'") != std::string::npos);
+    // After a ';' every byte is comment text, parentheses too (the Precitech's header).
+    CHECK(refused("G1 X1 ; PVT on (edit for your UPx\n(a)(b) G1 X2 (c;)\nM98(child.nc)\n").empty());
+  }
 }

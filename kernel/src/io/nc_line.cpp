@@ -4,15 +4,37 @@
 
 namespace freeturn {
 
-void strip_nc_comments(std::string_view line, std::string& code) {
-  code.clear();
-  int depth = 0;
-  for (const char ch : line) {
-    if (ch == ';' && depth == 0) break;
-    if (ch == '(') ++depth;
-    else if (ch == ')' && depth > 0) --depth;
-    else if (depth == 0) code += ch;
+std::size_t nc_comment_close(std::string_view line, std::size_t open, NcCommentError& error) {
+  for (std::size_t k = open + 1; k < line.size(); ++k) {
+    if (line[k] == ')') return k;
+    if (line[k] == '(') {
+      error = {k + 1, "'(' inside a comment: controllers do not nest comments"};
+      return std::string_view::npos;
+    }
   }
+  error = {open + 1, "a comment '(' without ')' on its line: a controller stops there"};
+  return std::string_view::npos;
+}
+
+NcCommentError nc_stray_comment_close(std::size_t at) {
+  return {at + 1, "')' outside a comment"};
+}
+
+NcCommentError strip_nc_comments(std::string_view line, std::string& code) {
+  code.clear();
+  NcCommentError error;
+  for (std::size_t k = 0; k < line.size(); ++k) {
+    const char ch = line[k];
+    if (ch == ';') break;
+    if (ch == ')') return nc_stray_comment_close(k);
+    if (ch != '(') {
+      code += ch;
+      continue;
+    }
+    k = nc_comment_close(line, k, error);
+    if (error) return error;
+  }
+  return error;
 }
 
 namespace {

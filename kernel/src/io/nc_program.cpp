@@ -54,7 +54,8 @@ std::vector<NcBlock> parse_nc(const std::string& text, const std::string& file) 
     // A tape mark needs a '%': the comments are stripped for the test only then.
     TapeMark mark = TapeMark::kNone;
     if (l.find('%') != std::string::npos) {
-      strip_nc_comments(l, code);
+      if (const NcCommentError error = strip_nc_comments(l, code))
+        throw InputError(SourceLocation{file, line, static_cast<int>(error.column)}, error.what);
       mark = tape_mark(code);
     }
     if (mark == TapeMark::kMark) {
@@ -83,9 +84,15 @@ std::vector<NcBlock> parse_nc(const std::string& text, const std::string& file) 
       if (ch == ' ' || ch == '\t' || ch == '\r') {
         ++i;
       } else if (ch == '(') {
-        const std::size_t close = l.find(')', i);
-        if (close == std::string::npos) fail("a comment '(' without ')'");
+        NcCommentError error;
+        const std::size_t close = nc_comment_close(l, i, error);
+        if (error) {
+          i = error.column - 1;
+          fail(error.what);
+        }
         i = close + 1;
+      } else if (ch == ')') {
+        fail(nc_stray_comment_close(i).what);
       } else if (ch == ';') {
         break;
       } else if (ch == '/') {

@@ -136,7 +136,7 @@ void NcGuard::check_line(std::string_view line) {
   for (const char ch : line) {
     const unsigned byte = static_cast<unsigned char>(ch);
     unprintable |= (byte - 0x20u > 0x5Eu) & (byte != '\t') & (byte != '\r');
-    comments |= (byte == '(') | (byte == ';');
+    comments |= (byte == '(') | (byte == ')') | (byte == ';');
   }
   if (unprintable) {
     for (std::size_t i = 0; i < line.size(); ++i) {
@@ -149,10 +149,12 @@ void NcGuard::check_line(std::string_view line) {
       }
     }
   }
-  // The words outside comments: "( … )" and everything after ';'.
+  // The words outside comments: "( … )" and everything after ';' (io/nc_line.hpp).
   std::string_view code = line;
   if (comments) {
-    strip_nc_comments(line, code_);
+    if (const NcCommentError error = strip_nc_comments(line, code_))
+      return refuse(std::string(error.what) + " (column " + std::to_string(error.column) +
+                    "): " + std::string(line));
     code = code_;
   }
   File& this_file = files_[current_];

@@ -3,14 +3,33 @@
 // G codes' modal groups. One statement of each, shared by the reader (parse_nc, ncdiff)
 // and the guard that reads every written line back (post/nc_guard.hpp).
 
+#include <cstddef>
 #include <string>
 #include <string_view>
 
 namespace freeturn {
 
-// `line` without its comments, into `code` (cleared first): "( … )", nested, and
-// everything from a ';' outside one to the line's end.
-void strip_nc_comments(std::string_view line, std::string& code);
+// A line's comments as RS-274 readers take them (LinuxCNC's, Fanuc's): "( … )" up to the
+// first ')', and everything from a ';' outside one to the line's end. A controller stops on
+// a '(' inside a comment (LinuxCNC: "nested comment found"), on a comment still open at
+// the line's end ("unclosed comment found": the words after it would be lost) and on a
+// ')' outside a comment.
+struct NcCommentError {
+  std::size_t column = 0;  // 1-based, in the line; 0: the line keeps the rule
+  const char* what = "";
+  explicit operator bool() const { return column != 0; }
+};
+
+// The index of the ')' that closes the comment opened at line[open] (a '('), or npos with
+// `error` set.
+std::size_t nc_comment_close(std::string_view line, std::size_t open, NcCommentError& error);
+
+// The error of a ')' at line[at], outside any comment.
+NcCommentError nc_stray_comment_close(std::size_t at);
+
+// `line` without its comments, into `code` (cleared first), and the line's first breach of
+// the rule above (then `code` holds what came before it).
+NcCommentError strip_nc_comments(std::string_view line, std::string& code);
 
 // The tape's marks (RS-274, LinuxCNC, Fanuc): a line of '%' alone (spaces and comments
 // aside) starts the program when it is the file's first line with anything on it, and ends

@@ -1,8 +1,10 @@
 #pragma once
 // NC programs read back as words (ISO 6983 style: a letter and a number), for ncdiff and
 // for checking what the post-processors write. Comments — `( … )` and from `;` to the
-// end of the line — and the tape's `%` marks (io/nc_line.hpp) are dropped; macro syntax (`#`, `[`,
-// WHILE, IF) and Hollerith-like strings inside M98( … ) are kept as text words, compared literally.
+// end of the line — and the tape's `%` marks (io/nc_line.hpp) are dropped (a nested or
+// unclosed comment, or a lone `)`, is refused at its column, as a controller stops there); macro
+// syntax (`#`, `[`, WHILE, IF) and Hollerith-like strings inside M98( … ) are kept as text words,
+// compared literally.
 
 #include <string>
 #include <vector>
