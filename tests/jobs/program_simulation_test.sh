@@ -111,6 +111,22 @@ printf 'G1 X1 Z0 C0\nG1 X1 Z0 C4 Z-1\n' > "$tmp/twice.nc"
 (cd "$src/configs/jobs" && "$freeturn" simulate oap_segment.yaml -o "$tmp/twice" --quiet --program "$tmp/twice.nc") > /dev/null 2> "$tmp/err"
 [[ $? == 2 ]] || { echo "FAIL: a word twice did not exit 2"; fail=1; }
 grep -q "twice.nc:2:13: Z is given twice in one block" "$tmp/err" || { echo "FAIL: the word twice:"; cat "$tmp/err"; fail=1; }
+# Axis words under a mode the reading does not follow (G91, inches, cutter compensation, an
+# arc's mode), or after a preset of X: located at the word, exit 2, nothing written. Before
+# December 2026 each was cut as if absolute millimetres. G91 G28 X0 Z0 then G90 is fine.
+for mode in 'G91:3:1' 'G20:3:1' 'G41:3:1' 'G7:3:1' 'G2:3:1' 'G92 X1:2:5'; do
+  code=${mode%%:*} where=${mode#*:}
+  printf 'G93 G1\n%s\nX2 Z0.6 C0 F100\nX1.9 Z0.6 C10 F100\nM2\n' "$code" > "$tmp/mode.nc"
+  rm -rf "$tmp/mode"
+  (cd "$src/configs/jobs" && "$freeturn" simulate oap_segment.yaml -o "$tmp/mode" --quiet --program "$tmp/mode.nc") > /dev/null 2> "$tmp/err"
+  [[ $? == 2 ]] || { echo "FAIL: $code in the program did not exit 2"; fail=1; }
+  grep -q "mode.nc:$where: " "$tmp/err" || { echo "FAIL: $code is not located at $where:"; cat "$tmp/err"; fail=1; }
+  [[ ! -e "$tmp/mode" || -z "$(ls -A "$tmp/mode")" ]] || { echo "FAIL: $code left files"; fail=1; }
+done
+printf 'G91 G28 X0 Z0\nG90 G93 G21\nG1 X2 Z0.6 C0 F100\nG1 X1.9 Z0.6 C10 F100\nM2\n' > "$tmp/idiom.nc"
+(cd "$src/configs/jobs" && "$freeturn" simulate oap_segment.yaml -o "$tmp/idiom" --quiet --program "$tmp/idiom.nc") > /dev/null 2> "$tmp/err"
+status=$?
+[[ $status == 0 || $status == 1 ]] || { echo "FAIL: G91 G28 X0 Z0 then G90 was refused:"; cat "$tmp/err"; fail=1; }
 # Not NC: located, exit 2, nothing written.
 printf 'G1 X1 Z0 C0\nG1 X? Z0\n' > "$tmp/bad.nc"
 (cd "$src/configs/jobs" && "$freeturn" simulate oap_segment.yaml -o "$tmp/bad" --quiet --program "$tmp/bad.nc") > /dev/null 2> "$tmp/err"

@@ -88,8 +88,13 @@ TEST_SUITE("plugins") {
     CHECK(refused("G1 C360.5\n").find("C360.5 is outside") != std::string::npos);
     CHECK(refused("G1 Z60 (a comment with X999 and nan)\n").find("Z60 is outside") != std::string::npos);
     CHECK(refused("G1 Z1 ; X999 nan after the semicolon\n").empty());
-    // Out of the work frame: machine coordinates, reference returns, presets.
-    CHECK(refused("G53 Z-180.\nG28 X500\nG92 C0\n").empty());
+    // Out of the work frame: machine coordinates and presets.
+    CHECK(refused("G53 Z-180.\nG92 C0\n").empty());
+    // A reference return passes first through its axis words' point, in the work frame
+    // (LinuxCNC's G28 and G30): before December 2026 G28 X500 passed.
+    CHECK(refused("G28 X500\n") ==
+          "p.nc:1: X500 is outside the machine's range [-100.0000005, 100.0000005]");
+    CHECK(refused("G28 X0 Z0\nG30\n").empty());
     CHECK(refused("G53 Z-inf\n").find("not finite") != std::string::npos);
     // A last line without its newline is read too; each file keeps its own line count.
     NcGuard guard(m);
@@ -181,6 +186,58 @@ TEST_SUITE("plugins") {
     CHECK(refused("G93 G1 X1 G94 F2\n").find("RS-274's feed-rate mode group") != std::string::npos);
     CHECK(refused("G0 G90 G40 G18 G21 G94 G1.5 X1\n").empty());  // G1.5: no code of the table
     CHECK(refused("G93 G1 X1 F-0.25\n") == "p.nc:1: F-0.25 is negative: no feed or block time is");
+  }
+
+  TEST_CASE("the NC guard refuses axis words under a mode they were not written for") {
+    // A machine YAML's header that left G91 (or inches, cutter compensation, diameter mode,
+    // an arc) in effect turned every absolute millimetre of the cut into something else,
+    // and passed (December 2026).
+    CHECK(refused("G71 G91\nG1 X1 Z1\n") ==
+          "p.nc:2: an axis word under G91 (incremental distances, line 1), where the program's "
+          "words assume absolute millimetres in radius mode, no cutter compensation and "
+          "straight moves: G1 X1 Z1");
+    CHECK(refused("G70\nG1 X1\n").find("under G70 (inches, line 1)") != std::string::npos);
+    CHECK(refused("g20\nG1 X1\n").find("under g20 (inches, line 1)") != std::string::npos);
+    CHECK(refused("G42\nG1 X1\n").find("under G42 (cutter-radius compensation") !=
+          std::string::npos);
+    CHECK(refused("G41.1 D1\nG1 X1\n").find("under G41.1 (cutter-radius") != std::string::npos);
+    CHECK(refused("G7\nG1 X1\n").find("under G7 (diameter mode") != std::string::npos);
+    CHECK(refused("G81 R1\nX1 Z1\n").find("under G81 (a motion mode that is no straight move") !=
+          std::string::npos);
+    CHECK(refused("G02\nX1\n").find("under G02") != std::string::npos);
+    CHECK(refused("G80\nX1\n").find("under G80") != std::string::npos);
+    // On the line itself, whatever the order of its words (a controller sets the modes first).
+    CHECK(refused("G91 X1\n").find("under G91 (incremental distances, line 1)") !=
+          std::string::npos);
+    CHECK(refused("X1 G91\n").find("under G91") != std::string::npos);
+    // A child is called in the caller's modes.
+    CHECK(refused("G91\nM98(child.nc)\n").find("p.nc:2: a call of a child program under G91") !=
+          std::string::npos);
+    // Modes restored before the words, or left where no axis word follows, are fine; so are
+    // machine coordinates under G91 (always absolute) and a reference return through
+    // increments of 0 (the idiom G91 G28 X0 Z0, then G90).
+    CHECK(refused("G91\nG90\nG1 X1\nG20\nG21 G41\nG40 X2\nG7\nG8\nG81\nG1 X3\nM30\n").empty());
+    CHECK(refused("G71 G01 G18 G40 G63 G90 G94 G54\nG91\nG53 Z-180.\nG28 X0 Z0\nG90 X1\n").empty());
+    CHECK(refused("G91 G28 X1\n").find("under G91") != std::string::npos);
+    CHECK(refused("G91\nM30\n").empty());
+    // Each file keeps its own modes: a child opens as its caller stood at the call, which
+    // the call's own line checks.
+    NcGuard guard(lathe());
+    guard.select_file(0, "main.nc");
+    guard.feed("G91\n");
+    guard.select_file(1, "child.nc");
+    guard.feed("G1 X1\n");
+    CHECK(guard.ok());
+  }
+
+  TEST_CASE("the NC guard refuses a preset of an axis the program positions") {
+    CHECK(refused("G92 X5.0 C0\n") ==
+          "p.nc:1: X in a preset (G10, G52, G92) moves the frame the program's positions are "
+          "given in (a preset of C alone sets the spindle's zero): G92 X5.0 C0");
+    CHECK(refused("G52 Z0\n").find("Z in a preset") != std::string::npos);
+    CHECK(refused("G10 L20 P1 X0\n").find("X in a preset") != std::string::npos);
+    // The Moore's own header and footer: C's zero, and G52 with no axis word.
+    CHECK(refused("G09 C0.0\nG92 C0.0\nG52\nG92 C999\n").empty());
   }
 
   TEST_CASE(

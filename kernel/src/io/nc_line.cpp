@@ -111,4 +111,50 @@ const char* g_code_modal_group_name(int group) {
   return group >= 0 && group < 16 && kGroupNames[group] ? kGroupNames[group] : "no";
 }
 
+NcModeChange g_code_mode_change(double value) {
+  const double tenths = value * 10;
+  if (!(std::abs(tenths - std::round(tenths)) < 1e-9) || !(std::abs(tenths) < 1e4)) return {};
+  using M = NcMode;
+  switch (std::lround(tenths)) {
+    case 900:
+      return {int(M::kAbsolute), true, ""};
+    case 910:
+      return {int(M::kAbsolute), false, "incremental distances"};
+    case 210:
+    case 710:
+      return {int(M::kMillimetres), true, ""};
+    case 200:
+    case 700:
+      return {int(M::kMillimetres), false, "inches"};
+    case 400:
+      return {int(M::kNoCompensation), true, ""};
+    case 410:
+    case 420:
+    case 411:
+    case 421:
+      return {int(M::kNoCompensation), false, "cutter-radius compensation"};
+    case 80:
+      return {int(M::kRadius), true, ""};
+    case 70:
+      return {int(M::kRadius), false, "diameter mode"};
+    case 0:
+    case 10:
+      return {int(M::kStraightMotion), true, ""};
+    default:
+      break;
+  }
+  if (g_code_modal_group(value) == 1)
+    return {int(M::kStraightMotion), false, "a motion mode that is no straight move"};
+  return {};
+}
+
+std::string NcModeState::why(int mode) const {
+  const Left& left = left_[mode];
+  return left.code + " (" + left.what + ", line " + std::to_string(left.at) + ")";
+}
+
+bool g_code_presets_frame(double value) {
+  return value == 10 || value == 52 || value == 92;
+}
+
 }  // namespace freeturn

@@ -19,6 +19,7 @@
 #include "freeturn/core/number_text.hpp"
 #include "freeturn/core/parallel_for.hpp"
 #include "freeturn/core/version.hpp"
+#include "freeturn/io/nc_line.hpp"
 #include "freeturn/io/nc_program.hpp"
 #include "freeturn/io/output_set.hpp"
 #include "freeturn/job/job.hpp"
@@ -894,8 +895,44 @@ RunResult run_program_simulation(const Job& job, const std::string& program,
   const std::vector<NcBlock> program_blocks = read_nc_program(program, &program_files);
   detail::ProgramDynamics dynamics(machine, program_files);
   detail::ProgramDynamics::Feed feed;
+  // The modes this reading assumes (io/nc_line.hpp): a block that moves under another is
+  // refused rather than cut as if it were absolute millimetres. Calls are read in line, so
+  // one state follows the program as a controller runs it.
+  NcModeState modes;
   for (const NcBlock& b : program_blocks) {
-    bool motion = false, machine_frame = false;
+    bool motion = false, machine_frame = false, machine_words = false, reference = false,
+         presets = false, zero_words = true;
+    const NcWord* first_axis = nullptr;
+    const NcWord* preset = nullptr;
+    for (const NcWord& w : b.words) {
+      if (!w.numeric) continue;
+      if (w.letter == 'G') {
+        modes.apply(w.value, w.text, b.line);
+        machine_words |= w.value == 53;
+        reference |= w.value == 28 || w.value == 30;
+        presets |= g_code_presets_frame(w.value);
+      }
+      if (std::string_view("XYZABCUVW").find(w.letter) == std::string_view::npos) continue;
+      if (!first_axis) first_axis = &w;
+      zero_words &= w.value == 0;
+      if (!preset && w.letter != 'C') preset = &w;
+    }
+    const auto refuse_block = [&](const NcWord& w, const std::string& why) {
+      throw InputError(
+          SourceLocation{program_files[static_cast<std::size_t>(b.file)], b.line, w.column}, why);
+    };
+    if (presets && preset)
+      refuse_block(*preset, std::string(1, preset->letter) +
+                                " in a preset (G10, G52, G92) moves the frame the program's "
+                                "later positions are read in, which this reading does not follow");
+    if (first_axis) {
+      const int left = modes.left(machine_words || (reference && zero_words));
+      if (left >= 0)
+        refuse_block(*first_axis,
+                     "an axis word under " + modes.why(left) +
+                         ": the program is read as absolute millimetres in radius mode, with "
+                         "no cutter compensation and straight moves");
+    }
     double next[4] = {value[0], value[1], value[2], value[3]};
     for (const NcWord& w : b.words) {
       if (!w.numeric) continue;

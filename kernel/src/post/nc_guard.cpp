@@ -175,11 +175,17 @@ void NcGuard::check_line(std::string_view line) {
   }
   const char* const c = code.data();
   const std::size_t length = code.size();
-  // Machine-coordinate moves (G53), reference returns (G28, G30) and position presets
-  // (G92) are not in the work frame the travel is given in: their numbers need only be
-  // finite. Such a word may follow the axis words, so a word outside the travel is
-  // refused only once the whole line is read.
+  // Machine-coordinate moves (G53) and position presets (G92) are not in the work frame
+  // the travel is given in: their numbers need only be finite. Such a word may follow the
+  // axis words, so a word outside the travel is refused only once the whole line is read.
+  // A reference return's (G28, G30) axis words are the point it passes through first, in
+  // the work frame.
   bool work_frame = true, words = false;
+  // What the line asks of the modes its axis words assume (io/nc_line.hpp).
+  bool machine_frame = false, reference_return = false, presets = false, calls_child = false;
+  char axis_word = 0;           // the line's first axis word's letter (0: none)
+  bool axis_words_zero = true;  // every axis word reads 0
+  char preset_letter = 0;  // the first axis word other than C (a preset moves that axis' frame)
   // The line's G codes are read as codes only where it holds more than one: two codes of
   // one RS-274 modal group contradict each other (G0 G1, G93 G94).
   std::string_view first_g;
@@ -247,10 +253,6 @@ void NcGuard::check_line(std::string_view line) {
     words = true;
     const char letter = ascii_upper(lower);
     std::string_view number(c + i + 1, j - i - 1);
-    if (lower == 'g' && number.size() >= 2 && (number.size() == 2 || !ascii_digit(number[2]))) {
-      const std::string_view g = number.substr(0, 2);
-      if (g == "53" || g == "28" || g == "30" || g == "92") work_frame = false;
-    }
     if (!number.empty() && number.front() == '+') number.remove_prefix(1);
     if (points > 1 || digit_count == 0)
       return refuse(std::string(1, letter) + std::string(number) + " is not a number");
@@ -259,6 +261,25 @@ void NcGuard::check_line(std::string_view line) {
         first_g = number;
       else if ((g_count == 2 && g_code_conflicts(first_g)) || g_code_conflicts(number))
         return;
+      // The code's value: one or two digits (G1, G01, G93: every block of some dialects)
+      // without the general parse.
+      double g = 0;
+      if (number.size() <= 2 && ascii_digit(number[0]) && ascii_digit(number.back()))
+        for (const char ch : number) g = 10 * g + (ch - '0');
+      else if (!parse_plain_decimal(number, g))
+        return refuse("G" + std::string(number) + " is not a number");
+      machine_frame |= g == 53;
+      reference_return |= g == 28 || g == 30;
+      presets |= g_code_presets_frame(g);
+      files_[current_].modes.apply(g, std::string_view(c + i, j - i), files_[current_].lines);
+    } else if (lower == 'm' && points == 0 && number.size() <= 3 &&
+               number.find_first_not_of('0') != std::string_view::npos &&
+               number.substr(number.find_first_not_of('0')) == "98") {
+      calls_child = true;
+    } else if (std::string_view("xyzabcuvw").find(lower) != std::string_view::npos) {
+      if (axis_word == 0) axis_word = letter;
+      axis_words_zero &= !nonzero;
+      if (preset_letter == 0 && lower != 'c') preset_letter = letter;
     }
     if (lower == 'm' && points == 0) {
       std::string_view code = number;
@@ -293,7 +314,23 @@ void NcGuard::check_line(std::string_view line) {
     }
     i = j - 1;
   }
+  if (machine_frame || presets) work_frame = false;
   File& file = files_[current_];
+  if (presets && preset_letter != 0)
+    return refuse(std::string(1, preset_letter) +
+                  " in a preset (G10, G52, G92) moves the frame the program's positions are "
+                  "given in (a preset of C alone sets the spindle's zero): " +
+                  std::string(line));
+  machine_frame |= presets;
+  if (axis_word != 0 || calls_child) {
+    const int left = file.modes.left(machine_frame || (reference_return && axis_words_zero));
+    if (left >= 0)
+      return refuse(std::string(calls_child ? "a call of a child program" : "an axis word") +
+                    " under " + file.modes.why(left) +
+                    ", where the program's words assume absolute millimetres in radius "
+                    "mode, no cutter compensation and straight moves: " +
+                    std::string(line));
+  }
   if (words && file.ended_at > 0)
     return refuse("words after the program's end (" + file.end_word + " on line " +
                   std::to_string(file.ended_at) +

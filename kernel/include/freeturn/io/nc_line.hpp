@@ -59,4 +59,60 @@ int g_code_modal_group(double value);
 // The group's name ("motion", "feed-rate mode").
 const char* g_code_modal_group_name(int group);
 
+// The modes a program's axis words assume as freeturn writes them, and the G codes that
+// keep or leave each (LinuxCNC's reading, with a Moore's units):
+// - absolute distances: G90 keeps it, G91 leaves it (each word an increment);
+// - millimetres: G21 and a Moore's G71 keep it, G20 and a Moore's G70 leave it (inches);
+// - no cutter compensation: G40 keeps it, G41, G42, G41.1, G42.1 leave it (the axes carry
+//   the nose already, and the controller would offset them again);
+// - radius mode: G8 keeps it, G7 leaves it (X read as a diameter);
+// - straight motion: G0 and G1 keep it, any other code of the motion group leaves it (G80
+//   too): an arc or a canned cycle reads the next block's axis words as its own.
+enum class NcMode { kAbsolute, kMillimetres, kNoCompensation, kRadius, kStraightMotion };
+inline constexpr int kNcModeCount = 5;
+struct NcModeChange {
+  int mode = -1;          // an NcMode, or −1: the code touches none of them
+  bool keeps = true;      // sets the mode (true) or leaves it (false)
+  const char* what = "";  // what leaving it means ("incremental distances")
+};
+NcModeChange g_code_mode_change(double value);
+
+// The modes above as a program's lines set them, read in the order a controller reads them.
+class NcModeState {
+ public:
+  // G `value`, written as `code` ("G91"), on line `line`.
+  void apply(double value, std::string_view code, long long line) {
+    const NcModeChange change = g_code_mode_change(value);
+    if (change.mode < 0) return;
+    Left& left = left_[change.mode];
+    left.at = change.keeps ? 0 : line;
+    if (!change.keeps) {
+      left.code.assign(code);
+      left.what = change.what;
+    }
+  }
+  // The first mode an axis word may not move under (−1: none). `any_distance`: the words
+  // are machine coordinates (G53, absolute in every distance mode), or a reference
+  // return's increments of 0 (G91 G28 X0 Z0 passes through no other point).
+  int left(bool any_distance) const {
+    for (int m = 0; m < kNcModeCount; ++m)
+      if (left_[m].at != 0 && !(any_distance && m == static_cast<int>(NcMode::kAbsolute))) return m;
+    return -1;
+  }
+  // "G91 (incremental distances, line 3)".
+  std::string why(int mode) const;
+
+ private:
+  struct Left {
+    long long at = 0;  // the line whose code left the mode (0: kept, or never left)
+    std::string code;  // that code as written
+    const char* what = "";
+  };
+  Left left_[kNcModeCount];
+};
+
+// Whether G `value` presets a coordinate frame from its axis words (G10, G52, G92): the
+// positions written after it would then lie elsewhere on the machine.
+bool g_code_presets_frame(double value);
+
 }  // namespace freeturn

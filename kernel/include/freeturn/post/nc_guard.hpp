@@ -17,6 +17,7 @@
 #include <string_view>
 #include <vector>
 
+#include "freeturn/io/nc_line.hpp"
 #include "freeturn/machine/axis_record.hpp"
 #include "freeturn/machine/machine.hpp"
 
@@ -63,6 +64,7 @@ class NcGuard {
     long long ended_at = 0;  // the line with the file's end word (M02, M30, M99, %), 0: none yet
     std::string end_word;
     bool blank_so_far = true;  // no line with anything on it yet: a '%' here starts the tape
+    NcModeState modes;         // as this file's lines set them (a child opens in its caller's)
   };
   Range ranges_[26];  // per letter A…Z
   std::vector<File> files_;
