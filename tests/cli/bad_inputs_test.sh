@@ -209,6 +209,11 @@ refused "a '%' among a header's words" "$m.yaml" "$m.machine.yaml:13:3:" "'%' in
 # Two codes of one RS-274 modal group in a block contradict each other: a controller refuses it.
 m=$(machine_variant motion_twice 's/^  header: "G71 G01 G18/  header: "G71 G01 G00 G18/' "$moore")
 refused "G01 and G00 in the Moore header's block" "$m.yaml" "$m.machine.yaml:13:3:" "two G codes of RS-274's motion group in one block"
+# Modes the program's words were not written for: incremental distances, a preset of X.
+m=$(machine_variant incremental 's/^  header: "G71 G01 G18 G40 G63 G90/  header: "G71 G01 G18 G40 G63 G91/' "$moore")
+refused "G91 in the Moore header" "$m.yaml" "$m.machine.yaml:13:3:" "an axis word under G91 (incremental distances, line 2)"
+m=$(machine_variant preset_x 's/G92 C0.0"/G92 X5.0 C0.0"/' "$moore")
+refused "a preset of X in the Moore header" "$m.yaml" "$m.machine.yaml:13:3:" "X in a preset (G10, G52, G92)"
 # A comment left open swallows the rest of its block: G01 G18 … would never be read.
 m=$(machine_variant open_comment 's/^  header: "G71/  header: "G71 (note/' "$moore")
 refused "an unclosed comment in the Moore header" "$m.yaml" "$m.machine.yaml:13:3:" "a comment '(' without ')' on its line"
