@@ -114,7 +114,7 @@ grep -q "twice.nc:2:13: Z is given twice in one block" "$tmp/err" || { echo "FAI
 # Axis words under a mode the reading does not follow (G91, inches, cutter compensation, an
 # arc's mode), or after a preset of X: located at the word, exit 2, nothing written. Before
 # December 2026 each was cut as if absolute millimetres. G91 G28 X0 Z0 then G90 is fine.
-for mode in 'G91:3:1' 'G20:3:1' 'G41:3:1' 'G7:3:1' 'G2:3:1' 'G92 X1:2:5'; do
+for mode in 'G91:3:1' 'G20:3:1' 'G41:3:1' 'G7:3:1' 'G2:3:1' 'G95:3:1' 'G92 X1:2:5'; do
   code=${mode%%:*} where=${mode#*:}
   printf 'G93 G1\n%s\nX2 Z0.6 C0 F100\nX1.9 Z0.6 C10 F100\nM2\n' "$code" > "$tmp/mode.nc"
   rm -rf "$tmp/mode"

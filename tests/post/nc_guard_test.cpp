@@ -194,8 +194,11 @@ TEST_SUITE("plugins") {
     // and passed (December 2026).
     CHECK(refused("G71 G91\nG1 X1 Z1\n") ==
           "p.nc:2: an axis word under G91 (incremental distances, line 1), where the program's "
-          "words assume absolute millimetres in radius mode, no cutter compensation and "
-          "straight moves: G1 X1 Z1");
+          "words assume absolute millimetres in radius mode, no cutter compensation, straight "
+          "moves and feeds by time (G93 or G94): G1 X1 Z1");
+    CHECK(refused("G95\nG1 X1\n").find("under G95 (feed per revolution, line 1)") !=
+          std::string::npos);
+    CHECK(refused("G95\nG94 X1\nG93 X2 F1\n").empty());
     CHECK(refused("G70\nG1 X1\n").find("under G70 (inches, line 1)") != std::string::npos);
     CHECK(refused("g20\nG1 X1\n").find("under g20 (inches, line 1)") != std::string::npos);
     CHECK(refused("G42\nG1 X1\n").find("under G42 (cutter-radius compensation") !=

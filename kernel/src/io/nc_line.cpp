@@ -140,6 +140,11 @@ NcModeChange g_code_mode_change(double value) {
     case 0:
     case 10:
       return {int(M::kStraightMotion), true, ""};
+    case 930:
+    case 940:
+      return {int(M::kFeedByTime), true, ""};
+    case 950:
+      return {int(M::kFeedByTime), false, "feed per revolution"};
     default:
       break;
   }

@@ -928,10 +928,8 @@ RunResult run_program_simulation(const Job& job, const std::string& program,
     if (first_axis) {
       const int left = modes.left(machine_words || (reference && zero_words));
       if (left >= 0)
-        refuse_block(*first_axis,
-                     "an axis word under " + modes.why(left) +
-                         ": the program is read as absolute millimetres in radius mode, with "
-                         "no cutter compensation and straight moves");
+        refuse_block(*first_axis, "an axis word under " + modes.why(left) +
+                                      ": the program is read as " + kNcModesAssumed);
     }
     double next[4] = {value[0], value[1], value[2], value[3]};
     for (const NcWord& w : b.words) {

@@ -326,10 +326,8 @@ void NcGuard::check_line(std::string_view line) {
     const int left = file.modes.left(machine_frame || (reference_return && axis_words_zero));
     if (left >= 0)
       return refuse(std::string(calls_child ? "a call of a child program" : "an axis word") +
-                    " under " + file.modes.why(left) +
-                    ", where the program's words assume absolute millimetres in radius "
-                    "mode, no cutter compensation and straight moves: " +
-                    std::string(line));
+                    " under " + file.modes.why(left) + ", where the program's words assume " +
+                    kNcModesAssumed + ": " + std::string(line));
   }
   if (words && file.ended_at > 0)
     return refuse("words after the program's end (" + file.end_word + " on line " +

@@ -67,9 +67,22 @@ const char* g_code_modal_group_name(int group);
 //   the nose already, and the controller would offset them again);
 // - radius mode: G8 keeps it, G7 leaves it (X read as a diameter);
 // - straight motion: G0 and G1 keep it, any other code of the motion group leaves it (G80
-//   too): an arc or a canned cycle reads the next block's axis words as its own.
-enum class NcMode { kAbsolute, kMillimetres, kNoCompensation, kRadius, kStraightMotion };
-inline constexpr int kNcModeCount = 5;
+//   too): an arc or a canned cycle reads the next block's axis words as its own;
+// - feeds by time: G93 (inverse time) and G94 (per minute) keep it, G95 leaves it (per
+//   revolution: every F, the modal one too, read as millimetres a turn).
+enum class NcMode {
+  kAbsolute,
+  kMillimetres,
+  kNoCompensation,
+  kRadius,
+  kStraightMotion,
+  kFeedByTime
+};
+inline constexpr int kNcModeCount = 6;
+// The modes together, for messages.
+inline constexpr const char* kNcModesAssumed =
+    "absolute millimetres in radius mode, no cutter compensation, straight moves and feeds by "
+    "time (G93 or G94)";
 struct NcModeChange {
   int mode = -1;          // an NcMode, or −1: the code touches none of them
   bool keeps = true;      // sets the mode (true) or leaves it (false)
