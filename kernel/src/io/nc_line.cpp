@@ -158,8 +158,4 @@ std::string NcModeState::why(int mode) const {
   return left.code + " (" + left.what + ", line " + std::to_string(left.at) + ")";
 }
 
-bool g_code_presets_frame(double value) {
-  return value == 10 || value == 52 || value == 92;
-}
-
 }  // namespace freeturn

@@ -17,6 +17,10 @@ namespace {
 constexpr bool ascii_digit(char c) { return c >= '0' && c <= '9'; }
 constexpr bool ascii_letter(char c) { return (c >= 'a' && c <= 'z') || (c >= 'A' && c <= 'Z'); }
 constexpr char ascii_lower(char c) { return c >= 'A' && c <= 'Z' ? static_cast<char>(c + 32) : c; }
+// The axis letters of RS-274 (X Y Z A B C U V W), a bit each from 'a'.
+constexpr unsigned kAxisLetters = 1u << ('x' - 'a') | 1u << ('y' - 'a') | 1u << ('z' - 'a') |
+                                  1u << ('a' - 'a') | 1u << ('b' - 'a') | 1u << ('c' - 'a') |
+                                  1u << ('u' - 'a') | 1u << ('v' - 'a') | 1u << ('w' - 'a');
 constexpr char ascii_upper(char c) { return c >= 'a' && c <= 'z' ? static_cast<char>(c - 32) : c; }
 
 std::string ascii_upper_text(std::string_view word) {
@@ -272,19 +276,15 @@ void NcGuard::check_line(std::string_view line) {
       reference_return |= g == 28 || g == 30;
       presets |= g_code_presets_frame(g);
       files_[current_].modes.apply(g, std::string_view(c + i, j - i), files_[current_].lines);
-    } else if (lower == 'm' && points == 0 && number.size() <= 3 &&
-               number.find_first_not_of('0') != std::string_view::npos &&
-               number.substr(number.find_first_not_of('0')) == "98") {
-      calls_child = true;
-    } else if (std::string_view("xyzabcuvw").find(lower) != std::string_view::npos) {
-      if (axis_word == 0) axis_word = letter;
-      axis_words_zero &= !nonzero;
-      if (preset_letter == 0 && lower != 'c') preset_letter = letter;
-    }
-    if (lower == 'm' && points == 0) {
+    } else if (lower == 'm' && points == 0) {
       std::string_view code = number;
       while (code.size() > 1 && code.front() == '0') code.remove_prefix(1);
       if (code == "2" || code == "30" || code == "99") end_word = std::string_view(c + i, j - i);
+      calls_child |= code == "98";
+    } else if ((kAxisLetters >> (lower - 'a')) & 1u) {
+      if (axis_word == 0) axis_word = letter;
+      axis_words_zero &= !nonzero;
+      if (preset_letter == 0 && lower != 'c') preset_letter = letter;
     }
     // F is a feed, or a block's time or its inverse: none of them can be 0 in any mode (a
     // feed of 0 stalls or alarms the machine, an inverse time of 0 has no block time). A

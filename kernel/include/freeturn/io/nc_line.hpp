@@ -95,11 +95,19 @@ class NcModeState {
  public:
   // G `value`, written as `code` ("G91"), on line `line`.
   void apply(double value, std::string_view code, long long line) {
+    if (value == 1 || value == 0) {  // every block of some dialects: no table
+      left_[static_cast<int>(NcMode::kStraightMotion)].at = 0;
+      left_mask_ &= ~(1u << static_cast<int>(NcMode::kStraightMotion));
+      return;
+    }
     const NcModeChange change = g_code_mode_change(value);
     if (change.mode < 0) return;
     Left& left = left_[change.mode];
     left.at = change.keeps ? 0 : line;
-    if (!change.keeps) {
+    if (change.keeps) {
+      left_mask_ &= ~(1u << change.mode);
+    } else {
+      left_mask_ |= 1u << change.mode;
       left.code.assign(code);
       left.what = change.what;
     }
@@ -108,6 +116,7 @@ class NcModeState {
   // are machine coordinates (G53, absolute in every distance mode), or a reference
   // return's increments of 0 (G91 G28 X0 Z0 passes through no other point).
   int left(bool any_distance) const {
+    if (left_mask_ == 0) return -1;
     for (int m = 0; m < kNcModeCount; ++m)
       if (left_[m].at != 0 && !(any_distance && m == static_cast<int>(NcMode::kAbsolute))) return m;
     return -1;
@@ -122,10 +131,13 @@ class NcModeState {
     const char* what = "";
   };
   Left left_[kNcModeCount];
+  unsigned left_mask_ = 0;  // a bit per mode left
 };
 
 // Whether G `value` presets a coordinate frame from its axis words (G10, G52, G92): the
 // positions written after it would then lie elsewhere on the machine.
-bool g_code_presets_frame(double value);
+inline bool g_code_presets_frame(double value) {
+  return value == 10 || value == 52 || value == 92;
+}
 
 }  // namespace freeturn
