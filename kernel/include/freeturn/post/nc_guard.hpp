@@ -7,11 +7,15 @@
 // read back outside its comments: each number must be finite and parse whole, the text
 // must hold no "nan" or "inf", no F word may read 0 (a feed or a block time), and each
 // axis word of the machine's layout must lie inside the travel within half a unit of its
-// declared decimals (except on lines that leave the work frame: G53, G28, G30, G92), and
-// no line with a word may follow the file's end (M02, M30, M99: a controller never runs
-// it, so the cut the report describes would not be made). The first violation is kept
-// with its file and line; PostProgram turns it into an error naming the plugin, and no NC
-// file is committed.
+// declared decimals (except on lines that leave the work frame: G53, G92), and no line with
+// a word may follow the file's end (M02, M30, M99: a controller never runs it, so the cut
+// the report describes would not be made). A line's comments must be ones a controller
+// reads (none nested, none left open, no lone ')'), its G codes one per modal group, and
+// its axis words and child calls must stand in the modes the program's words assume
+// (absolute millimetres, radius mode, no cutter compensation, straight moves, feeds by
+// time: io/nc_line.hpp); no preset (G10, G52, G92) may move an axis' frame. The first
+// violation is kept with its file and line; PostProgram turns it into an error naming the
+// plugin, and no NC file is committed.
 
 #include <string>
 #include <string_view>
