@@ -9,6 +9,7 @@
 #include <cmath>
 #include <cstdio>
 #include <string>
+#include <string_view>
 
 #include "freeturn/post_adapter.hpp"
 #include "freeturn/post_format.hpp"
@@ -37,12 +38,17 @@ class PrecitechPost {
           "feed's value follows it), not '" +
           feed_line_ + "'");
     time_word_ = s.text("time_word", "");
-    // A word letter of its own: not an axis, and not a code (G, M, N) or the feed.
+    // A word letter of its own: not an axis of RS-274's (A B C U V W X Y Z: a time read as a
+    // position, or on a lathe as an increment of X or Z), and not a code (G, M), a line
+    // or program number (N, O), the feed (F) or the spindle speed (S).
     if (time_word_.size() > 1 ||
-        (time_word_.size() == 1 && (time_word_[0] < 'A' || time_word_[0] > 'Z' ||
-                                    std::string("XZCBGMNF").find(time_word_[0]) != std::string::npos)))
-      throw PostError("time_word must be one capital letter other than X, Z, C, B, G, M, N and F, not '" +
-                      time_word_ + "'");
+        (time_word_.size() == 1 &&
+         (time_word_[0] < 'A' || time_word_[0] > 'Z' ||
+          std::string_view("ABCUVWXYZGMNOFS").find(time_word_[0]) != std::string_view::npos)))
+      throw PostError(
+          "time_word must be one capital letter that is no axis (A B C U V W X Y Z), code (G "
+          "M), number (N O), feed (F) or spindle speed (S), not '" +
+          time_word_ + "'");
     profile_ = true;
     for (int i = 0; i < info.layout.count; ++i)
       if (info.layout.letters[i] == 'C') profile_ = false;

@@ -267,6 +267,14 @@ TEST_SUITE("plugins") {
           std::string::npos);
     CHECK(refusal("precitech-nanoform-250", "precitech", "; end of data", "; fin\xC3\xA9")
               .find("dialect setting 'footer' holds the byte 0xC3") != std::string::npos);
+    // The time word is a letter of its own: Y, A or W would move an axis (W is Z's
+    // increment on a lathe), S set the spindle's speed to each block's time.
+    for (const char* letter : {"Y", "A", "U", "W", "S", "O"})
+      CHECK(refusal("precitech-nanoform-250", "precitech", "; end of data",
+                    std::string("; end of data\ntime_word: ") + letter)
+                .find("time_word must be one capital letter that is no axis") != std::string::npos);
+    CHECK(refusal("precitech-nanoform-250", "precitech", "; end of data",
+                  "; end of data\ntime_word: T") == "accepted");
     // A header that ends the program: the controller would stop before the cut. Refused as
     // the header is written (line 8 of the main program: the title, then seven lines).
     const std::string ended =
