@@ -213,7 +213,10 @@ refused "G01 and G00 in the Moore header's block" "$m.yaml" "$m.machine.yaml:13:
 m=$(machine_variant incremental 's/^  header: "G71 G01 G18 G40 G63 G90/  header: "G71 G01 G18 G40 G63 G91/' "$moore")
 refused "G91 in the Moore header" "$m.yaml" "$m.machine.yaml:13:3:" "an axis word under G91 (incremental distances, line 2)"
 m=$(machine_variant preset_x 's/G92 C0.0"/G92 X5.0 C0.0"/' "$moore")
-refused "a preset of X in the Moore header" "$m.yaml" "$m.machine.yaml:13:3:" "X in a preset (G10, G52, G92)"
+refused "a preset of X in the Moore header" "$m.yaml" "$m.machine.yaml:13:11:" "dialect setting 'header' gives X or Z in the work frame ('G92 X5.0 C0.0')"
+# A footer that moves in the work frame: after the retract, into the part's centre.
+m=$(machine_variant footer_plunge 's/^  footer: "G53 Z-180./  footer: "G00 X0 Z-0.5\\nG53 Z-180./' "$moore")
+refused "a footer's move into the part" "$m.yaml" "$m.machine.yaml:14:11:" "dialect setting 'footer' gives X or Z in the work frame ('G00 X0 Z-0.5')"
 # A comment left open swallows the rest of its block: G01 G18 … would never be read.
 m=$(machine_variant open_comment 's/^  header: "G71/  header: "G71 (note/' "$moore")
 refused "an unclosed comment in the Moore header" "$m.yaml" "$m.machine.yaml:13:3:" "a comment '(' without ')' on its line"

@@ -267,6 +267,19 @@ TEST_SUITE("plugins") {
           std::string::npos);
     CHECK(refusal("precitech-nanoform-250", "precitech", "; end of data", "; fin\xC3\xA9")
               .find("dialect setting 'footer' holds the byte 0xC3") != std::string::npos);
+    // A footer's move in the work frame is not checked against the part: after the
+    // retract, G00 X0 Z-0.5 went into its centre, and the program passed (December 2026).
+    CHECK(refusal("moore-nanotech-250upl", "moore", "G53 Z-180.\\nM79",
+                  "G00 X0 Z-0.5\\nG53 Z-180.\\nM79")
+              .find("dialect setting 'footer' gives X or Z in the work frame ('G00 X0 Z-0.5')") !=
+          std::string::npos);
+    CHECK(refusal("precitech-nanoform-250", "precitech", "; PVT on", "g1 w-2 ; PVT on")
+              .find("'header' gives X or Z in the work frame ('g1 w-2 ; PVT on (edit for your "
+                    "UPx)')") != std::string::npos);
+    // Machine coordinates park; words in comments, B, Y and C, and keywords are no such move.
+    CHECK(refusal("moore-nanotech-250upl", "moore", "G53 Z-180.\\nM79",
+                  "G053 X-100 Z-180.\\n(X0 Z0) ; Z-1\\nY0 B0 C0\\nWHILE [1] DO1\\nM79") ==
+          "accepted");
     // The time word is a letter of its own: Y, A or W would move an axis (W is Z's
     // increment on a lathe), S set the spindle's speed to each block's time.
     for (const char* letter : {"Y", "A", "U", "W", "S", "O"})

@@ -87,6 +87,10 @@ class FlatSettings {
   // Lines of codes for the controller (a header, a footer), "\n" between lines: printable
   // ASCII only. The guard would refuse such a byte in the program anyway; here the refusal
   // names the setting, which the host places in the machine file.
+  // Nor may a line give X or Z in the work frame (an X, Z, U or W word on a line without
+  // G53): the program's own approach and retract stay clear of the part, and a header's or
+  // footer's move would not ("G00 X0 Z-0.5" after the retract plunges into the part's
+  // centre). Parking goes by machine coordinates (G53).
   bool code_lines(const std::string& key, const std::string& fallback, std::string& out,
                   std::string& error) {
     out = unescape_lines(text(key, fallback));
@@ -98,6 +102,20 @@ class FlatSettings {
       error = "dialect setting '" + key + "' holds the byte " + hex +
               ", which is not printable ASCII: no controller may get it";
       return false;
+    }
+    std::size_t start = 0;
+    while (start <= out.size()) {
+      std::size_t end = out.find('\n', start);
+      if (end == std::string::npos) end = out.size();
+      const std::string line = out.substr(start, end - start);
+      start = end + 1;
+      if (moves_in_work_frame(line)) {
+        error = "dialect setting '" + key + "' gives X or Z in the work frame ('" + line +
+                "'): the program's own approach and retract keep clear of the part, a move "
+                "here would not be checked against it (and a preset would shift the frame); "
+                "park in machine coordinates (G53)";
+        return false;
+      }
     }
     return true;
   }
@@ -131,6 +149,32 @@ class FlatSettings {
     char buf[32];
     std::snprintf(buf, sizeof buf, "%.15g", v);
     return buf;
+  }
+  // Whether `line` carries an X, Z, U or W word outside its comments and no G53.
+  static bool moves_in_work_frame(const std::string& line) {
+    bool moves = false, machine = false;
+    int depth = 0;
+    for (std::size_t i = 0; i < line.size(); ++i) {
+      const char ch = line[i];
+      if (ch == ';' && depth == 0) break;
+      if (ch == '(' || ch == ')') {
+        depth += ch == '(' ? 1 : (depth > 0 ? -1 : 0);
+        continue;
+      }
+      if (depth > 0) continue;
+      const char letter = ch >= 'a' && ch <= 'z' ? static_cast<char>(ch - 32) : ch;
+      const char next = i + 1 < line.size() ? line[i + 1] : '\0';
+      const bool number = (next >= '0' && next <= '9') || next == '-' || next == '+' || next == '.';
+      if (!number) continue;
+      if (letter == 'X' || letter == 'Z' || letter == 'U' || letter == 'W') moves = true;
+      if (letter == 'G') {
+        std::size_t j = i + 1;
+        while (j < line.size() && line[j] == '0') ++j;
+        machine |= line.compare(j, 2, "53") == 0 &&
+                   (j + 2 >= line.size() || !(line[j + 2] >= '0' && line[j + 2] <= '9'));
+      }
+    }
+    return moves && !machine;
   }
   static std::string trim(const std::string& s) {
     const std::size_t a = s.find_first_not_of(" \t\r");
