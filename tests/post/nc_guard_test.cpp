@@ -231,6 +231,22 @@ TEST_SUITE("plugins") {
     guard.select_file(1, "child.nc");
     guard.feed("G1 X1\n");
     CHECK(guard.ok());
+    // A child that leaves a mode leaves it for its caller too.
+    NcGuard returns(lathe());
+    returns.select_file(0, "main.nc");
+    returns.feed("G1 X1\nM98(child.nc)\nG1 X2\n");
+    returns.select_file(1, "child.nc");
+    returns.feed("G1 X1\nG91\nM99\n");
+    returns.end_files();
+    CHECK(returns.reason() ==
+          "child.nc:3: the child returns to its caller under G91 (incremental distances, line "
+          "2), where the caller's words assume absolute millimetres in radius mode, no cutter "
+          "compensation, straight moves and feeds by time (G93 or G94)");
+    NcGuard restores(lathe());
+    restores.select_file(1, "child.nc");
+    restores.feed("G91\nG90 G1 X1\nM99\n");
+    restores.end_files();
+    CHECK(restores.ok());
   }
 
   TEST_CASE("the NC guard refuses a preset of an axis the program positions") {

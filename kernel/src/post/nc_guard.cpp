@@ -122,6 +122,15 @@ void NcGuard::end_files() {
     check_line(files_[k].line);
     files_[k].line.clear();
   }
+  // A child runs in its caller's modes and returns its own to it: one that left a mode
+  // would move its caller's later words under it, which the caller's file does not show.
+  for (std::size_t k = 1; k < files_.size(); ++k) {
+    const int left = files_[k].modes.left(false);
+    if (left < 0) continue;
+    current_ = k;
+    return refuse("the child returns to its caller under " + files_[k].modes.why(left) +
+                  ", where the caller's words assume " + kNcModesAssumed);
+  }
 }
 
 void NcGuard::refuse(const std::string& what) {
