@@ -114,6 +114,12 @@ TEST_SUITE("plugins") {
     CHECK(refused(std::string("G93 F\x01\x9c\n")) == "p.nc:1: byte 0x01 at column 6 is not printable ASCII");
     CHECK(refused(std::string("G1 X1 (\xc3\xa9)\n")) == "p.nc:1: byte 0xC3 at column 8 is not printable ASCII");
     CHECK(refused(std::string("G1 X1\0\n", 7)).find("byte 0x00 at column 6") != std::string::npos);
+    // A line longer than a controller's buffer (LinuxCNC: 255 characters).
+    CHECK(refused("(" + std::string(253, 'a') + ")\nG1 X1\n").empty());
+    CHECK(refused("(" + std::string(253, 'a') + ")\r\n").empty());
+    CHECK(refused("G1 X1\n(" + std::string(254, 'a') + ")\n") ==
+          "p.nc:2: a line of 256 characters, longer than the 255 a controller reads: (" +
+              std::string(39, 'a') + "…");
     // An axis or feed letter standing alone, or before a letter that is no number.
     CHECK(refused("G93 F\n") == "p.nc:1: F without a number after it: G93 F");
     CHECK(refused("G1 X Z1\n") == "p.nc:1: X without a number after it: G1 X Z1");
