@@ -139,6 +139,13 @@ TEST_SUITE("io") {
     CHECK(!error);
   }
 
+  TEST_CASE("the reader refuses a line longer than a controller reads, as the guard does") {
+    CHECK(xs(parse_nc("G1 X1 (" + std::string(247, 'a') + ")\r\n", "p.nc")) ==
+          std::vector<double>{1});
+    CHECK_THROWS_WITH_AS(parse_nc("G1 X1\nG1 X2 (" + std::string(248, 'a') + ")\n", "p.nc"),
+                         doctest::Contains("p.nc:2:256: a line of 256 characters"), InputError);
+  }
+
   TEST_CASE("the reader refuses the comments the guard refuses, at their column") {
     CHECK_THROWS_WITH_AS(parse_nc("G1 X1\nG1 (a (b) c) X2\n", "p.nc"),
                          doctest::Contains("p.nc:2:7: '(' inside a comment"), InputError);

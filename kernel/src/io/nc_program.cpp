@@ -50,6 +50,10 @@ std::vector<NcBlock> parse_nc(const std::string& text, const std::string& file) 
     const std::string l = text.substr(start, end - start);
     start = end + 1;
     ++line;
+    if (nc_line_too_long(l))
+      throw InputError(SourceLocation{file, line, static_cast<int>(kMaxNcLineLength) + 1},
+                       "a line of " + std::to_string(l.size()) + " characters, longer than the " +
+                           std::to_string(kMaxNcLineLength) + " a controller reads");
     const std::size_t first = l.find_first_not_of(" \t\r");
     // A tape mark needs a '%': the comments are stripped for the test only then.
     TapeMark mark = TapeMark::kNone;

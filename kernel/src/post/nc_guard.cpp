@@ -21,8 +21,6 @@ constexpr char ascii_lower(char c) { return c >= 'A' && c <= 'Z' ? static_cast<c
 constexpr unsigned kAxisLetters = 1u << ('x' - 'a') | 1u << ('y' - 'a') | 1u << ('z' - 'a') |
                                   1u << ('a' - 'a') | 1u << ('b' - 'a') | 1u << ('c' - 'a') |
                                   1u << ('u' - 'a') | 1u << ('v' - 'a') | 1u << ('w' - 'a');
-// The longest line a controller reads (LinuxCNC's LINELEN).
-constexpr std::size_t kMaxLineLength = 255;
 constexpr char ascii_upper(char c) { return c >= 'a' && c <= 'z' ? static_cast<char>(c - 32) : c; }
 
 std::string ascii_upper_text(std::string_view word) {
@@ -153,11 +151,9 @@ void NcGuard::check_line(std::string_view line) {
     unprintable |= (byte - 0x20u > 0x5Eu) & (byte != '\t') & (byte != '\r');
     comments |= (byte == '(') | (byte == ')') | (byte == ';');
   }
-  // A controller reads a line into a buffer of its own: LinuxCNC's holds 255 characters and
-  // stops on a longer line ("command too long").
-  if (line.size() > kMaxLineLength && !(line.size() == kMaxLineLength + 1 && line.back() == '\r'))
+  if (nc_line_too_long(line))
     return refuse("a line of " + std::to_string(line.size()) + " characters, longer than the " +
-                  std::to_string(kMaxLineLength) +
+                  std::to_string(kMaxNcLineLength) +
                   " a controller reads: " + std::string(line.substr(0, 40)) + "…");
   if (unprintable) {
     for (std::size_t i = 0; i < line.size(); ++i) {

@@ -9,6 +9,14 @@
 
 namespace freeturn {
 
+// The longest line a controller reads: LinuxCNC's buffer holds 255 characters and stops on
+// a longer line ("command too long"). A trailing CR is not counted.
+inline constexpr std::size_t kMaxNcLineLength = 255;
+inline bool nc_line_too_long(std::string_view line) {
+  return line.size() > kMaxNcLineLength &&
+         !(line.size() == kMaxNcLineLength + 1 && line.back() == '\r');
+}
+
 // A line's comments as RS-274 readers take them (LinuxCNC's, Fanuc's): "( … )" up to the
 // first ')', and everything from a ';' outside one to the line's end. A controller stops on
 // a '(' inside a comment (LinuxCNC: "nested comment found"), on a comment still open at
