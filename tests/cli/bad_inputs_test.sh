@@ -217,6 +217,9 @@ refused "a preset of X in the Moore header" "$m.yaml" "$m.machine.yaml:13:11:" "
 # A footer that moves in the work frame: after the retract, into the part's centre.
 m=$(machine_variant footer_plunge 's/^  footer: "G53 Z-180./  footer: "G00 X0 Z-0.5\\nG53 Z-180./' "$moore")
 refused "a footer's move into the part" "$m.yaml" "$m.machine.yaml:14:11:" "dialect setting 'footer' gives X or Z in the work frame ('G00 X0 Z-0.5')"
+# An approach feed beyond Z's velocity (25 mm/s = 1500 mm/min): at the dialect settings.
+m=$(machine_variant fast_approach 's/^  approach_feed: 200/  approach_feed: 9000/' "$moore")
+refused "an approach feed beyond Z's velocity" "$m.yaml" "$m.machine.yaml:13:3:" "F9000.000 a minute (G94) moves Z at 150 mm/s, beyond its max_velocity 25"
 # A comment left open swallows the rest of its block: G01 G18 … would never be read.
 m=$(machine_variant open_comment 's/^  header: "G71/  header: "G71 (note/' "$moore")
 refused "an unclosed comment in the Moore header" "$m.yaml" "$m.machine.yaml:13:3:" "a comment '(' without ')' on its line"

@@ -5,6 +5,9 @@ usage: nc_dynamics.py PROGRAM.nc MACHINE.yaml {moore|iso} [--cycle SECONDS]
 
 Follows M98 calls into child files beside the program, takes every inverse-time (G93)
 block: its time from F (Moore: seconds; ISO/LinuxCNC: F = 1/minutes) and its axis words.
+A feed move per minute (G1 outside G93, F in mm/min) moves each linear axis at its share
+of F along the move, a rotary axis alone at F in degrees a minute: velocity only (the
+controller ramps such moves itself).
 Over each block an axis moves at v = Δ/t (C unwrapped); between two blocks it accelerates
 by |Δv| / min(t1, t2); the first block starts from rest and the last ends at rest. Prints
 each axis's peak velocity and acceleration against the machine YAML's limits and the sum
@@ -69,11 +72,17 @@ def main():
     peak_rate = 0.0
     total = 0.0
     blocks = 0
+    rapid = False
+    feed = None  # the modal F
     for line in lines_of(program):
         if line.startswith("(") or line.startswith(";") or not line:
             continue
         words = WORD.findall(line)
         for letter, value in words:
+            if letter == "G" and float(value) in (0, 1):
+                rapid = float(value) == 0
+            if letter == "F":
+                feed = float(value)
             if letter == "G" and float(value) == 93:
                 inverse_time = True
             elif letter == "G" and float(value) in (94, 0):
@@ -89,6 +98,17 @@ def main():
         moves = {l: float(v) for l, v in words if l in limits}
         if not moves:
             continue
+        if any(l == "G" and float(v) == 53 for l, v in words):
+            continue  # machine coordinates: not the work frame's positions
+        if not inverse_time and not rapid and feed:
+            # A feed per minute: the speed along the linear axes' move (a rotary axis
+            # alone: along its own); each axis at its share of it.
+            delta = {a: moves[a] - position[a] for a in moves if a in position}
+            linear = [a for a in delta if a not in ("B", "C")]
+            length = math.sqrt(sum(delta[a] ** 2 for a in linear))
+            for a in linear if length > 0 else delta:
+                share = abs(delta[a]) / length if length > 0 else 1.0
+                peak_v[a] = max(peak_v[a], feed / 60 * share)
         if inverse_time and block_time:
             t = block_time
             total += t

@@ -255,6 +255,27 @@ TEST_SUITE("plugins") {
     CHECK(restores.ok());
   }
 
+  TEST_CASE("the NC guard refuses a feed per minute that asks an axis for more than its velocity") {
+    // The lathe's X and Z go at most 50 mm/s (3000 mm/min), C 3600 °/s. A Moore with
+    // approach_feed 9000 had plunged at 150 mm/s on a 25 mm/s Z, and passed (December 2026).
+    CHECK(refused("G94 G1 Z1 F3000\n").empty());
+    CHECK(refused("G94 G1 Z1 F3000.1\n") ==
+          "p.nc:1: F3000.1 a minute (G94) moves Z at 50.001666666666665 mm/s, beyond its "
+          "max_velocity 50 in the machine file: G94 G1 Z1 F3000.1");
+    // The feed is modal, and so is G94, a controller's power-on default; G93's F is a time.
+    CHECK(refused("G1 X1 F6000\n").find("moves X at 100 mm/s") != std::string::npos);
+    CHECK(refused("G93 G1 X1 F6000\nX2 F7000\n").empty());
+    CHECK(refused("G93 G1 X1 F6000\nG94\nX2\n").find("p.nc:3: F6000 a minute") !=
+          std::string::npos);
+    // Rapids go at the machine's own rate, machine coordinates are not the work's move.
+    CHECK(refused("G94 F6000\nG0 X1\nG53 G1 Z-1\n").empty());
+    // A rotary axis turning alone goes at the feed in °/min; with a linear one it takes the
+    // linear move's time, which the line alone does not tell.
+    CHECK(refused("G94 G1 C10 F300000\n")
+              .find("moves C at 5000 deg/s, beyond its max_velocity 3600") != std::string::npos);
+    CHECK(refused("G94 G1 X1 C10 F2000\n").empty());
+  }
+
   TEST_CASE("the NC guard refuses a preset of an axis the program positions") {
     CHECK(refused("G92 X5.0 C0\n") ==
           "p.nc:1: X in a preset (G10, G52, G92) moves the frame the program's positions are "

@@ -1,8 +1,10 @@
 #include "freeturn/post/nc_guard.hpp"
 
+#include <algorithm>
 #include <charconv>
 #include <cmath>
 #include <cstdio>
+#include <limits>
 #include <string>
 #include <system_error>
 
@@ -32,8 +34,11 @@ std::string ascii_upper_text(std::string_view word) {
 }  // namespace
 
 NcGuard::NcGuard(const MachineDescription& machine) {
+  std::fill(std::begin(max_velocity_), std::end(max_velocity_),
+            std::numeric_limits<double>::infinity());
   for (const AxisSpec& s : machine.axes) {
     const char letter = axis_letter(s.axis)[0];
+    max_velocity_[letter - 'A'] = s.max_velocity;
     Range& r = ranges_[letter - 'A'];
     const double half_unit = 0.5 * std::pow(10.0, -s.decimals);
     if (s.axis == Axis::kC) {
@@ -220,6 +225,11 @@ void NcGuard::check_line(std::string_view line) {
     g_groups |= 1u << group;
     return false;
   };
+  // For a feed per minute: the line's F, whether it moves a linear axis, and its axis words
+  // of the least velocity limit.
+  std::string_view feed_number;
+  bool linear_words = false;
+  char slowest_linear = 0, slowest_rotary = 0;
   std::string_view end_word;
   char outside_letter = 0;
   std::string_view outside_number;
@@ -288,13 +298,22 @@ void NcGuard::check_line(std::string_view line) {
       machine_frame |= g == 53;
       reference_return |= g == 28 || g == 30;
       presets |= g_code_presets_frame(g);
-      files_[current_].modes.apply(g, std::string_view(c + i, j - i), files_[current_].lines);
+      File& f = files_[current_];
+      f.modes.apply(g, std::string_view(c + i, j - i), f.lines);
+      if (g == 0 || g == 1) f.rapid = g == 0;
+      if (g == 93 || g == 94) f.per_minute = g == 94;
     } else if (lower == 'm' && points == 0) {
       std::string_view code = number;
       while (code.size() > 1 && code.front() == '0') code.remove_prefix(1);
       if (code == "2" || code == "30" || code == "99") end_word = std::string_view(c + i, j - i);
       calls_child |= code == "98";
     } else if ((kAxisLetters >> (lower - 'a')) & 1u) {
+      const bool rotary = lower == 'a' || lower == 'b' || lower == 'c';
+      linear_words |= !rotary;
+      // The axis with the least velocity limit among the line's linear, and rotary, words.
+      char& slowest = rotary ? slowest_rotary : slowest_linear;
+      if (slowest == 0 || max_velocity_[letter - 'A'] < max_velocity_[slowest - 'A'])
+        slowest = letter;
       if (axis_word == 0) axis_word = letter;
       axis_words_zero &= !nonzero;
       if (preset_letter == 0 && lower != 'c') preset_letter = letter;
@@ -303,6 +322,7 @@ void NcGuard::check_line(std::string_view line) {
     // feed of 0 stalls or alarms the machine, an inverse time of 0 has no block time). A
     // job's tiny feed, or a long block, can round to it at the word's decimals.
     // Nor negative: no mode has a negative feed or time.
+    if (lower == 'f') feed_number = number;
     if (lower == 'f' && (!nonzero || negative))
       return refuse(std::string(1, letter) + std::string(number) +
                     (nonzero ? " is negative: no feed or block time is"
@@ -341,6 +361,23 @@ void NcGuard::check_line(std::string_view line) {
       return refuse(std::string(calls_child ? "a call of a child program" : "an axis word") +
                     " under " + file.modes.why(left) + ", where the program's words assume " +
                     kNcModesAssumed + ": " + std::string(line));
+  }
+  if (!feed_number.empty()) file.feed.assign(feed_number);
+  // A feed per minute is the speed along the move: no linear axis goes faster than it, and
+  // a rotary axis turning alone goes at it (°/min). (A rotary axis turning with linear ones
+  // takes the linear move's time, which the line alone does not tell: not judged.)
+  if (axis_word != 0 && file.per_minute && !file.rapid && !file.feed.empty() && !machine_frame) {
+    const char slowest = linear_words ? slowest_linear : slowest_rotary;
+    const double limit = max_velocity_[slowest - 'A'];
+    double feed = 0;
+    if (limit < std::numeric_limits<double>::infinity() && parse_plain_decimal(file.feed, feed) &&
+        feed / 60 > limit * (1 + 1e-12)) {
+      crossed_ = {slowest, true, true};
+      return refuse("F" + file.feed + " a minute (G94) moves " + std::string(1, slowest) + " at " +
+                    shortest_text(feed / 60) + (linear_words ? " mm/s" : " deg/s") +
+                    ", beyond its max_velocity " + shortest_text(limit) +
+                    " in the machine file: " + std::string(line));
+    }
   }
   if (words && file.ended_at > 0)
     return refuse("words after the program's end (" + file.end_word + " on line " +

@@ -81,6 +81,11 @@ void PostProgram::check_output(const char* stage) {
     // plugin's own move (an approach or a retract, from its settings and the clearance
     // base), reported at the bound it crosses in the machine file.
     const NcGuard::Crossed crossed = guard_.crossed();
+    // A feed per minute beyond an axis' velocity is the plugin's own (an approach or a
+    // retract feed, from its settings): reported at the dialect settings.
+    if (crossed.velocity)
+      throw InputError(machine_.place_of_setting_in(what),
+                       who + " " + what + " (its feed comes from the dialect settings here)");
     for (const AxisSpec& a : machine_.axes)
       if (crossed.letter == axis_letter(a.axis)[0]) {
         const auto& places = machine_.travel_places[static_cast<int>(a.axis)];

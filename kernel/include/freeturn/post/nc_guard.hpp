@@ -47,6 +47,7 @@ class NcGuard {
   struct Crossed {
     char letter = 0;
     bool upper = false;
+    bool velocity = false;  // a feed per minute beyond the letter's max_velocity instead
   };
   Crossed crossed() const { return crossed_; }
   long long file_bytes() const { return files_[current_].bytes; }
@@ -69,8 +70,13 @@ class NcGuard {
     std::string end_word;
     bool blank_so_far = true;  // no line with anything on it yet: a '%' here starts the tape
     NcModeState modes;         // as this file's lines set them (a child opens in its caller's)
+    // The modal motion and feed: G0 rather than G1, G94 (a controller's power-on default)
+    // rather than G93, and the last F as written ("": none yet).
+    bool rapid = false, per_minute = true;
+    std::string feed;
   };
   Range ranges_[26];  // per letter A…Z
+  double max_velocity_[26];  // per letter: mm/s or °/s (infinite: not an axis, or no limit)
   std::vector<File> files_;
   std::size_t current_ = 0;
   std::string reason_;
