@@ -228,8 +228,7 @@ void NcGuard::check_line(std::string_view line) {
   // For a feed per minute: the line's F, whether it moves a linear axis, and its axis words
   // of the least velocity limit.
   std::string_view feed_number;
-  bool linear_words = false;
-  char slowest_linear = 0, slowest_rotary = 0;
+  unsigned axis_letters = 0;  // a bit per axis letter on the line, from 'a'
   std::string_view end_word;
   char outside_letter = 0;
   std::string_view outside_number;
@@ -308,12 +307,7 @@ void NcGuard::check_line(std::string_view line) {
       if (code == "2" || code == "30" || code == "99") end_word = std::string_view(c + i, j - i);
       calls_child |= code == "98";
     } else if ((kAxisLetters >> (lower - 'a')) & 1u) {
-      const bool rotary = lower == 'a' || lower == 'b' || lower == 'c';
-      linear_words |= !rotary;
-      // The axis with the least velocity limit among the line's linear, and rotary, words.
-      char& slowest = rotary ? slowest_rotary : slowest_linear;
-      if (slowest == 0 || max_velocity_[letter - 'A'] < max_velocity_[slowest - 'A'])
-        slowest = letter;
+      axis_letters |= 1u << (lower - 'a');
       if (axis_word == 0) axis_word = letter;
       axis_words_zero &= !nonzero;
       if (preset_letter == 0 && lower != 'c') preset_letter = letter;
@@ -362,16 +356,26 @@ void NcGuard::check_line(std::string_view line) {
                     " under " + file.modes.why(left) + ", where the program's words assume " +
                     kNcModesAssumed + ": " + std::string(line));
   }
-  if (!feed_number.empty()) file.feed.assign(feed_number);
+  if (!feed_number.empty()) {
+    file.feed.assign(feed_number);
+    file.feed_value = std::numeric_limits<double>::quiet_NaN();  // read when first asked
+  }
   // A feed per minute is the speed along the move: no linear axis goes faster than it, and
   // a rotary axis turning alone goes at it (°/min). (A rotary axis turning with linear ones
   // takes the linear move's time, which the line alone does not tell: not judged.)
   if (axis_word != 0 && file.per_minute && !file.rapid && !file.feed.empty() && !machine_frame) {
-    const char slowest = linear_words ? slowest_linear : slowest_rotary;
+    constexpr unsigned kRotary = 1u << ('a' - 'a') | 1u << ('b' - 'a') | 1u << ('c' - 'a');
+    const bool linear_words = (axis_letters & ~kRotary) != 0;
+    const unsigned judged = linear_words ? axis_letters & ~kRotary : axis_letters;
+    char slowest = 0;  // the judged axis of the least velocity limit
+    for (int k = 0; k < 26; ++k)
+      if (((judged >> k) & 1u) && (slowest == 0 || max_velocity_[k] < max_velocity_[slowest - 'A']))
+        slowest = static_cast<char>('A' + k);
     const double limit = max_velocity_[slowest - 'A'];
-    double feed = 0;
-    if (limit < std::numeric_limits<double>::infinity() && parse_plain_decimal(file.feed, feed) &&
-        feed / 60 > limit * (1 + 1e-12)) {
+    if (std::isnan(file.feed_value) && !parse_plain_decimal(file.feed, file.feed_value))
+      file.feed_value = 0;
+    const double feed = file.feed_value;
+    if (limit < std::numeric_limits<double>::infinity() && feed / 60 > limit * (1 + 1e-12)) {
       crossed_ = {slowest, true, true};
       return refuse("F" + file.feed + " a minute (G94) moves " + std::string(1, slowest) + " at " +
                     shortest_text(feed / 60) + (linear_words ? " mm/s" : " deg/s") +

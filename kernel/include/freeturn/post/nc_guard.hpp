@@ -74,6 +74,7 @@ class NcGuard {
     // rather than G93, and the last F as written ("": none yet).
     bool rapid = false, per_minute = true;
     std::string feed;
+    double feed_value = 0;  // feed read as a number (NaN: not yet)
   };
   Range ranges_[26];  // per letter A…Z
   double max_velocity_[26];  // per letter: mm/s or °/s (infinite: not an axis, or no limit)
