@@ -130,6 +130,10 @@ refused "an arc step of 1e-12 mm" "$job" "$job:15:25:" "length must be within"
 job=$(variant arc_many 's/chord: {tolerance: 0.001, max_angle_deg: 5}/equal_arc: {length: 1e-5}/')
 echo "limits: {max_points: 1000000}" >> "$job"
 refused "an arc step over the point limit" "$job" "$job:15:25:" "limits.max_points"
+# A pitch typo: the turns alone, at 3 points each, pass the limit. Named at the pitch, not
+# at the points' rule (which it had been).
+job=$(variant pitch_tiny 's/pitch: 0.05/pitch: 1e-300/')
+refused "a pitch of 1e-300 mm" "$job" "$job:13:10:" "strategy.pitch makes 2e+300 revolutions, which at 3 points each"
 
 job=$(variant rpm 's/spindle_rpm: 20/spindle_rpm: 1e9/')
 refused "1e9 rpm" "$job" "$job:17:16:" "spindle_rpm must be within [0.001, 20000]"

@@ -78,6 +78,8 @@ struct StepEstimate {
   double per_pass = 0;
   SourceLocation place;
   std::string key;
+  double turns = 0;  // a spiral's revolutions: over the limit at 3 points each, the pitch's typo
+  SourceLocation pitch_place;
 };
 
 void read_points(MapReader& s, JobPlan& plan, const Aperture& aperture, StepEstimate& estimate) {
@@ -124,6 +126,10 @@ void read_points(MapReader& s, JobPlan& plan, const Aperture& aperture, StepEsti
   }
   if (rules != 1) pm.fail("equal_angle", "strategy.points takes exactly one of equal_angle, equal_arc, chord");
   pm.finish();
+  if (spiral) {
+    estimate.turns = turns;
+    estimate.pitch_place = location_of(s.node()["pitch"], s.file());
+  }
 }
 
 void read_strategy(MapReader& job, JobPlan& plan, const Aperture& aperture,
@@ -314,6 +320,12 @@ std::optional<JobPlan> read_job_plan(MapReader& job, const Aperture& aperture,
   // Before any work: a typo in a step or pitch is refused at once, at its key, rather
   // than after minutes of planning (the planner stops at the limit too).
   const double passes = static_cast<double>(plan.cutting.roughing_depths.size() + 1);
+  if (3 * estimate.turns * passes > static_cast<double>(plan.limits.max_points))
+    throw InputError(estimate.pitch_place,
+                     "strategy.pitch makes " + significant_text(estimate.turns, 6) +
+                         " revolutions, which at 3 points each (" + fixed_text(passes, 0) +
+                         " passes) is over limits.max_points (" +
+                         std::to_string(plan.limits.max_points) + "): a typo in the pitch?");
   if (estimate.per_pass * passes > static_cast<double>(plan.limits.max_points)) {
     const double points = std::ceil(estimate.per_pass * passes);
     throw InputError(estimate.place, "strategy.points." + estimate.key + " asks for at least " +
