@@ -130,6 +130,12 @@ refused "an arc step of 1e-12 mm" "$job" "$job:15:25:" "length must be within"
 job=$(variant arc_many 's/chord: {tolerance: 0.001, max_angle_deg: 5}/equal_arc: {length: 1e-5}/')
 echo "limits: {max_points: 1000000}" >> "$job"
 refused "an arc step over the point limit" "$job" "$job:15:25:" "limits.max_points"
+# A profile's feed beyond an axis' velocity (the X-Z lathe: 50 mm/s, 3000 mm/min): it had
+# been written as F6000 and passed.
+sed -e 's/^  mode: spiral/  mode: profile/' -e '/^  spiral: planar/d' -e '/^  pitch: 0.05/d' \
+  -e 's/chord: {tolerance: 0.001, max_angle_deg: 5}/chord: {tolerance: 0.001}/' \
+  -e 's/^  spindle_rpm: 20/  feed: 6000/' -e 's/^machine: .*/machine: iso-lathe-xz/' "$base" > "$tmp/fast_feed.yaml"
+refused "a profile feed beyond X's velocity" "$tmp/fast_feed.yaml" "$tmp/fast_feed.yaml:15:9:" "cutting.feed 6000 mm/min moves X at up to 100 mm/s, beyond the max_velocity 50 mm/s"
 # A pitch typo: the turns alone, at 3 points each, pass the limit. Named at the pitch, not
 # at the points' rule (which it had been).
 job=$(variant pitch_tiny 's/pitch: 0.05/pitch: 1e-300/')

@@ -282,6 +282,16 @@ MachineDescription machine_for(const Job& job, const std::string& machine_file,
     for (const AxisSpec& a : m.axes)
       if (a.axis == Axis::kX || a.axis == Axis::kZ) xz.push_back(a);
     m.axes = xz;
+    // The feed is the speed along the path: an axis moving alone goes at all of it.
+    for (const AxisSpec& a : m.axes)
+      if (plan.cutting.feed / 60 > a.max_velocity)
+        throw InputError(job.place("cutting.feed"),
+                         "cutting.feed " + shortest_text(plan.cutting.feed) + " mm/min moves " +
+                             axis_letter(a.axis) + " at up to " +
+                             shortest_text(plan.cutting.feed / 60) +
+                             " mm/s, beyond the max_velocity " + shortest_text(a.max_velocity) +
+                             " mm/s of machine '" + m.name + "': give a feed of at most " +
+                             shortest_text(60 * a.max_velocity) + " mm/min");
   }
   return m;
 }
