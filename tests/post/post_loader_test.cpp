@@ -276,6 +276,16 @@ TEST_SUITE("plugins") {
     CHECK(refusal("precitech-nanoform-250", "precitech", "; PVT on", "g1 w-2 ; PVT on")
               .find("'header' gives X or Z in the work frame ('g1 w-2 ; PVT on (edit for your "
                     "UPx)')") != std::string::npos);
+    // Nor does a reference return through increments of 0 (Fanuc's G28 U0 W0); through
+    // work coordinates, or a real increment, it does.
+    CHECK(refusal("moore-nanotech-250upl", "moore", "G53 Z-180.\\nM79",
+                  "G28 U0 W0.\\nG53 Z-180.\\nM79") == "accepted");
+    CHECK(refusal("moore-nanotech-250upl", "moore", "G53 Z-180.\\nM79",
+                  "G28 X0 Z0\\nG53 Z-180.\\nM79")
+              .find("gives X or Z in the work frame ('G28 X0 Z0')") != std::string::npos);
+    CHECK(refusal("moore-nanotech-250upl", "moore", "G53 Z-180.\\nM79",
+                  "G28 U0 W5\\nG53 Z-180.\\nM79")
+              .find("gives X or Z in the work frame ('G28 U0 W5')") != std::string::npos);
     // Machine coordinates park; words in comments, B, Y and C, and keywords are no such move.
     CHECK(refusal("moore-nanotech-250upl", "moore", "G53 Z-180.\\nM79",
                   "G053 X-100 Z-180.\\n(X0 Z0) ; Z-1\\nY0 B0 C0\\nWHILE [1] DO1\\nM79") ==

@@ -9,6 +9,7 @@
 #include <cmath>
 #include <cstdio>
 #include <cstdlib>
+#include <cstring>
 #include <initializer_list>
 #include <map>
 #include <string>
@@ -151,8 +152,10 @@ class FlatSettings {
     return buf;
   }
   // Whether `line` carries an X, Z, U or W word outside its comments and no G53.
+  // A reference return through increments of 0 (Fanuc's G28 U0 W0) passes through no
+  // point of the work frame.
   static bool moves_in_work_frame(const std::string& line) {
-    bool moves = false, machine = false;
+    bool moves = false, machine = false, reference = false, zero_increments = true;
     int depth = 0;
     for (std::size_t i = 0; i < line.size(); ++i) {
       const char ch = line[i];
@@ -166,15 +169,27 @@ class FlatSettings {
       const char next = i + 1 < line.size() ? line[i + 1] : '\0';
       const bool number = (next >= '0' && next <= '9') || next == '-' || next == '+' || next == '.';
       if (!number) continue;
-      if (letter == 'X' || letter == 'Z' || letter == 'U' || letter == 'W') moves = true;
+      if (letter == 'X' || letter == 'Z' || letter == 'U' || letter == 'W') {
+        moves = true;
+        bool zero = letter == 'U' || letter == 'W';
+        for (std::size_t j = i + 1;
+             j < line.size() && std::strchr("0123456789.+-", line[j]) && line[j] != '\0'; ++j)
+          zero &= !(line[j] >= '1' && line[j] <= '9');
+        zero_increments &= zero;
+      }
       if (letter == 'G') {
         std::size_t j = i + 1;
         while (j < line.size() && line[j] == '0') ++j;
-        machine |= line.compare(j, 2, "53") == 0 &&
-                   (j + 2 >= line.size() || !(line[j + 2] >= '0' && line[j + 2] <= '9'));
+        const auto code = [&](const char* digits) {
+          return line.compare(j, 2, digits) == 0 &&
+                 (j + 2 >= line.size() ||
+                  !((line[j + 2] >= '0' && line[j + 2] <= '9') || line[j + 2] == '.'));
+        };
+        machine |= code("53");
+        reference |= code("28") || code("30");
       }
     }
-    return moves && !machine;
+    return moves && !machine && !(reference && zero_increments);
   }
   static std::string trim(const std::string& s) {
     const std::size_t a = s.find_first_not_of(" \t\r");
