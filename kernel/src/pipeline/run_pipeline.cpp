@@ -922,7 +922,7 @@ RunResult run_program_simulation(const Job& job, const std::string& program,
         reference |= w.value == 28 || w.value == 30;
         presets |= g_code_presets_frame(w.value);
       }
-      if (std::string_view("XYZABCUVW").find(w.letter) == std::string_view::npos) continue;
+      if (!nc_axis_letter(w.letter)) continue;
       if (!first_axis) first_axis = &w;
       zero_words &= w.value == 0;
       if (!preset && w.letter != 'C') preset = &w;

@@ -1,6 +1,7 @@
 #include "freeturn/post/nc_guard.hpp"
 
 #include <algorithm>
+#include <bit>
 #include <charconv>
 #include <cmath>
 #include <cstdio>
@@ -18,11 +19,9 @@ namespace {
 // library's (locale-dependent, one call a byte) would cost more than the rest of the guard.
 constexpr bool ascii_digit(char c) { return c >= '0' && c <= '9'; }
 constexpr bool ascii_letter(char c) { return (c >= 'a' && c <= 'z') || (c >= 'A' && c <= 'Z'); }
-constexpr char ascii_lower(char c) { return c >= 'A' && c <= 'Z' ? static_cast<char>(c + 32) : c; }
-// The axis letters of RS-274 (X Y Z A B C U V W), a bit each from 'a'.
-constexpr unsigned kAxisLetters = 1u << ('x' - 'a') | 1u << ('y' - 'a') | 1u << ('z' - 'a') |
-                                  1u << ('a' - 'a') | 1u << ('b' - 'a') | 1u << ('c' - 'a') |
-                                  1u << ('u' - 'a') | 1u << ('v' - 'a') | 1u << ('w' - 'a');
+constexpr char ascii_lower(char c) {
+  return c >= 'A' && c <= 'Z' ? static_cast<char>(c + 32) : c;
+}
 constexpr char ascii_upper(char c) { return c >= 'a' && c <= 'z' ? static_cast<char>(c - 32) : c; }
 
 std::string ascii_upper_text(std::string_view word) {
@@ -197,15 +196,15 @@ void NcGuard::check_line(std::string_view line) {
   }
   const char* const c = code.data();
   const std::size_t length = code.size();
-  // Machine-coordinate moves (G53) and position presets (G92) are not in the work frame
-  // the travel is given in: their numbers need only be finite. Such a word may follow the
-  // axis words, so a word outside the travel is refused only once the whole line is read.
-  // A reference return's (G28, G30) axis words are the point it passes through first, in
-  // the work frame.
-  bool work_frame = true, words = false;
+  // Machine-coordinate moves (G53) and position presets (G10, G52, G92) are not in the work
+  // frame the travel is given in: their numbers need only be finite. Such a word may follow
+  // the axis words, so a word outside the travel is refused only once the whole line is
+  // read. A reference return's (G28, G30) axis words are the point it passes through
+  // first, in the work frame.
+  bool words = false;
   // What the line asks of the modes its axis words assume (io/nc_line.hpp).
   bool machine_frame = false, reference_return = false, presets = false, calls_child = false;
-  char axis_word = 0;           // the line's first axis word's letter (0: none)
+  unsigned axis_letters = 0;    // a bit per axis letter on the line, from 'A'
   bool axis_words_zero = true;  // every axis word reads 0
   char preset_letter = 0;  // the first axis word other than C (a preset moves that axis' frame)
   // The line's G codes are read as codes only where it holds more than one: two codes of
@@ -225,10 +224,7 @@ void NcGuard::check_line(std::string_view line) {
     g_groups |= 1u << group;
     return false;
   };
-  // For a feed per minute: the line's F, whether it moves a linear axis, and its axis words
-  // of the least velocity limit.
-  std::string_view feed_number;
-  unsigned axis_letters = 0;  // a bit per axis letter on the line, from 'a'
+  std::string_view feed_number;  // the line's F, for a feed per minute
   std::string_view end_word;
   char outside_letter = 0;
   std::string_view outside_number;
@@ -306,9 +302,8 @@ void NcGuard::check_line(std::string_view line) {
       while (code.size() > 1 && code.front() == '0') code.remove_prefix(1);
       if (code == "2" || code == "30" || code == "99") end_word = std::string_view(c + i, j - i);
       calls_child |= code == "98";
-    } else if ((kAxisLetters >> (lower - 'a')) & 1u) {
+    } else if (nc_axis_letter(lower)) {
       axis_letters |= 1u << (lower - 'a');
-      if (axis_word == 0) axis_word = letter;
       axis_words_zero &= !nonzero;
       if (preset_letter == 0 && lower != 'c') preset_letter = letter;
     }
@@ -341,16 +336,15 @@ void NcGuard::check_line(std::string_view line) {
     }
     i = j - 1;
   }
-  if (machine_frame || presets) work_frame = false;
+  const bool outside_frame = machine_frame || presets;
   File& file = files_[current_];
   if (presets && preset_letter != 0)
     return refuse(std::string(1, preset_letter) +
                   " in a preset (G10, G52, G92) moves the frame the program's positions are "
                   "given in (a preset of C alone sets the spindle's zero): " +
                   std::string(line));
-  machine_frame |= presets;
-  if (axis_word != 0 || calls_child) {
-    const int left = file.modes.left(machine_frame || (reference_return && axis_words_zero));
+  if (axis_letters != 0 || calls_child) {
+    const int left = file.modes.left(outside_frame || (reference_return && axis_words_zero));
     if (left >= 0)
       return refuse(std::string(calls_child ? "a call of a child program" : "an axis word") +
                     " under " + file.modes.why(left) + ", where the program's words assume " +
@@ -363,14 +357,16 @@ void NcGuard::check_line(std::string_view line) {
   // A feed per minute is the speed along the move: no linear axis goes faster than it, and
   // a rotary axis turning alone goes at it (°/min). (A rotary axis turning with linear ones
   // takes the linear move's time, which the line alone does not tell: not judged.)
-  if (axis_word != 0 && file.per_minute && !file.rapid && !file.feed.empty() && !machine_frame) {
+  if (axis_letters != 0 && file.per_minute && !file.rapid && !file.feed.empty() && !outside_frame) {
     constexpr unsigned kRotary = 1u << ('a' - 'a') | 1u << ('b' - 'a') | 1u << ('c' - 'a');
     const bool linear_words = (axis_letters & ~kRotary) != 0;
     const unsigned judged = linear_words ? axis_letters & ~kRotary : axis_letters;
     char slowest = 0;  // the judged axis of the least velocity limit
-    for (int k = 0; k < 26; ++k)
-      if (((judged >> k) & 1u) && (slowest == 0 || max_velocity_[k] < max_velocity_[slowest - 'A']))
+    for (unsigned rest = judged; rest != 0; rest &= rest - 1) {
+      const int k = std::countr_zero(rest);
+      if (slowest == 0 || max_velocity_[k] < max_velocity_[slowest - 'A'])
         slowest = static_cast<char>('A' + k);
+    }
     const double limit = max_velocity_[slowest - 'A'];
     if (std::isnan(file.feed_value) && !parse_plain_decimal(file.feed, file.feed_value))
       file.feed_value = 0;
@@ -391,7 +387,7 @@ void NcGuard::check_line(std::string_view line) {
     file.ended_at = file.lines;
     file.end_word = ascii_upper_text(end_word);
   }
-  if (outside_letter != 0 && work_frame) {
+  if (outside_letter != 0 && !outside_frame) {
     const Range& r = ranges_[outside_letter - 'A'];
     crossed_ = {outside_letter, outside_value > r.max};
     return refuse(std::string(1, outside_letter) + std::string(outside_number) +

@@ -9,7 +9,6 @@
 #include <cmath>
 #include <cstdio>
 #include <cstdlib>
-#include <cstring>
 #include <initializer_list>
 #include <map>
 #include <string>
@@ -166,15 +165,15 @@ class FlatSettings {
       }
       if (depth > 0) continue;
       const char letter = ch >= 'a' && ch <= 'z' ? static_cast<char>(ch - 32) : ch;
-      const char next = i + 1 < line.size() ? line[i + 1] : '\0';
-      const bool number = (next >= '0' && next <= '9') || next == '-' || next == '+' || next == '.';
-      if (!number) continue;
+      const auto numeric = [&](std::size_t k) {
+        return k < line.size() && ((line[k] >= '0' && line[k] <= '9') || line[k] == '-' ||
+                                   line[k] == '+' || line[k] == '.');
+      };
+      if (!numeric(i + 1)) continue;
       if (letter == 'X' || letter == 'Z' || letter == 'U' || letter == 'W') {
         moves = true;
         bool zero = letter == 'U' || letter == 'W';
-        for (std::size_t j = i + 1;
-             j < line.size() && std::strchr("0123456789.+-", line[j]) && line[j] != '\0'; ++j)
-          zero &= !(line[j] >= '1' && line[j] <= '9');
+        for (std::size_t j = i + 1; numeric(j); ++j) zero &= !(line[j] >= '1' && line[j] <= '9');
         zero_increments &= zero;
       }
       if (letter == 'G') {

@@ -142,6 +142,15 @@ class NcModeState {
   unsigned left_mask_ = 0;  // a bit per mode left
 };
 
+// Whether `letter` (either case) is an axis word of RS-274's: X Y Z A B C U V W.
+inline bool nc_axis_letter(char letter) {
+  const unsigned k = static_cast<unsigned>((letter | 0x20) - 'a');
+  constexpr unsigned kAxes = 1u << ('x' - 'a') | 1u << ('y' - 'a') | 1u << ('z' - 'a') |
+                             1u << ('a' - 'a') | 1u << ('b' - 'a') | 1u << ('c' - 'a') |
+                             1u << ('u' - 'a') | 1u << ('v' - 'a') | 1u << ('w' - 'a');
+  return k < 26 && ((kAxes >> k) & 1u);
+}
+
 // Whether G `value` presets a coordinate frame from its axis words (G10, G52, G92): the
 // positions written after it would then lie elsewhere on the machine.
 inline bool g_code_presets_frame(double value) {
