@@ -83,15 +83,25 @@ class MoorePost {
     line_.clear();
     for (std::size_t k = 0; k < count; ++k) {
       if (first_) {
-        // Approach in feed per minute: to the clearance height, over the first point at
-        // it, then down to the point.
+        // Approach in feed per minute. The rotary axes turn first, alone, where the header
+        // left Z: a feed per minute times a turn only when no linear axis moves with it (a
+        // turn beside X takes X's time, and where X was is not written). Then to the
+        // clearance height, over the first point at it, and down to the point.
         first_ = false;
         ft_block above = b[k];
         above.z = clear_z_;
-        line_ += "G94 G01 ";
+        line_ += "G94 G01";
+        const bool turned = words(above, kRotaryWords);
+        line_ += turned ? " F" : " ";
+        if (turned) {
+          append_number(line_, approach_feed_, 3);
+          line_ += "\n";
+        }
         append_word(line_, 'Z', clear_z_, z_decimals_);
-        line_ += " F";
-        append_number(line_, approach_feed_, 3);
+        if (!turned) {
+          line_ += " F";
+          append_number(line_, approach_feed_, 3);
+        }
         line_ += "\n";
         words(above);
         line_ += "\n";
@@ -156,20 +166,24 @@ class MoorePost {
 
   // The axis words of a block (the order of word_axes_), appended to the line once: the
   // words are formatted into a buffer on the stack, not appended one by one.
-  void words(const ft_block& b) {
+  // Returns whether it wrote a word; `which`: every axis, or the rotary ones alone.
+  enum Words { kAllWords, kRotaryWords };
+  bool words(const ft_block& b, Words which = kAllWords) {
     const ft_axis_layout& l = info_.layout;
     char text[4 * (freeturn::post::kNumberCapacity + 2)];
     int length = 0;
     for (int w = 0; w < word_count_; ++w) {
       const int i = word_axes_[w];
       const char letter = l.letters[i];
+      if (which == kRotaryWords && letter != 'C' && letter != 'B') continue;
       const double v = letter == 'X' ? b.x : letter == 'Z' ? b.z : letter == 'C' ? b.c : b.b;
-      if (w > 0) text[length++] = ' ';
+      if (length > 0) text[length++] = ' ';
       length += freeturn::post::format_word(letter, v, l.decimals[i],
                                             letter == 'C' && info_.c_wrapped, text + length);
     }
     if (!line_.empty() && line_.back() != '\n' && length > 0) line_.push_back(' ');
     line_.append(text, static_cast<std::size_t>(length));
+    return length > 0;
   }
 
   const ft_program_info& info_;

@@ -6,8 +6,9 @@ usage: nc_dynamics.py PROGRAM.nc MACHINE.yaml {moore|iso} [--cycle SECONDS]
 Follows M98 calls into child files beside the program, takes every inverse-time (G93)
 block: its time from F (Moore: seconds; ISO/LinuxCNC: F = 1/minutes) and its axis words.
 A feed move per minute (G1 outside G93, F in mm/min) moves each linear axis at its share
-of F along the move, a rotary axis alone at F in degrees a minute: velocity only (the
-controller ramps such moves itself).
+of F along the move, a rotary axis alone at F in degrees a minute, a rotary axis beside
+linear ones at its turn over their move's time (infinite where a start is not written):
+velocity only (the controller ramps such moves itself).
 Over each block an axis moves at v = Δ/t (C unwrapped); between two blocks it accelerates
 by |Δv| / min(t1, t2); the first block starts from rest and the last ends at rest. Prints
 each axis's peak velocity and acceleration against the machine YAML's limits and the sum
@@ -109,6 +110,16 @@ def main():
             for a in linear if length > 0 else delta:
                 share = abs(delta[a]) / length if length > 0 else 1.0
                 peak_v[a] = max(peak_v[a], feed / 60 * share)
+            # A rotary axis turning beside linear ones takes their move's time: its turn
+            # over that time, infinite where a linear axis' start was never written.
+            moved_linear = [a for a in moves if a not in ("B", "C")]
+            if length > 0 or any(a not in position for a in moved_linear):
+                for a in ("B", "C"):
+                    if a not in moves or (a in position and moves[a] == position[a]):
+                        continue
+                    known = a in position and all(l in position for l in moved_linear)
+                    turn = abs(moves[a] - position[a]) if known else math.inf
+                    peak_v[a] = max(peak_v[a], turn * feed / 60 / length if known else math.inf)
         if inverse_time and block_time:
             t = block_time
             total += t

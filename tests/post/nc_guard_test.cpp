@@ -269,11 +269,42 @@ TEST_SUITE("plugins") {
           std::string::npos);
     // Rapids go at the machine's own rate, machine coordinates are not the work's move.
     CHECK(refused("G94 F6000\nG0 X1\nG53 G1 Z-1\n").empty());
-    // A rotary axis turning alone goes at the feed in °/min; with a linear one it takes the
-    // linear move's time, which the line alone does not tell.
+    // A rotary axis turning alone goes at the feed in °/min.
     CHECK(refused("G94 G1 C10 F300000\n")
               .find("moves C at 5000 deg/s, beyond its max_velocity 3600") != std::string::npos);
-    CHECK(refused("G94 G1 X1 C10 F2000\n").empty());
+  }
+
+  TEST_CASE("the NC guard refuses a rotary axis turning beside a linear one in a feed per minute") {
+    // The turn takes the linear move's time: 10° beside a 1 µm move of X at F2000 is C at
+    // 333 333 °/s, and where X was need not be written. The Moore's approach had turned B
+    // beside X so, from wherever the header left X (December 2026).
+    CHECK(refused("G94 G1 X1 C10 F2000\n") ==
+          "p.nc:1: C10 turns from an angle no earlier line of the file gives together with a "
+          "linear axis in a feed per minute (G94): its speed would follow from the linear "
+          "move's length, which the program does not settle; turn it on a line of its own: "
+          "G94 G1 X1 C10 F2000");
+    CHECK(refused("G94 G1 C10 F2000\nX1 C11\n").find("p.nc:2: C11 turns from C10 together") !=
+          std::string::npos);
+    // Turned first on its own line, it stands still beside X, however the angle is written.
+    CHECK(refused("G94 G1 C10 F2000\nX1 C10\nX2 C10.000 Z1\nX3 C+10.\n").empty());
+    CHECK(refused("G92 C0\nG94 G1 X1 C0 F2000\n").empty());  // G92: C is now at 0
+    // Timed blocks (G93), rapids, and moves without a feed are not timed by a feed per minute.
+    CHECK(refused("G93 G1 X1 C10 F2000\nG0 X2 C20\n").empty());
+    CHECK(refused("G1 X1 C10\n").empty());
+    // Outside the work frame, or after a file switch, the angle is no longer known.
+    CHECK(refused("G94 G1 C10 F2000\nG53 C10\nX1 C10\n").find("p.nc:3: C10 turns from an angle") !=
+          std::string::npos);
+    CHECK(refused("G94 G1 C10 F2000\nG28 C10\nX1 C10\n").find("p.nc:3: C10 turns") !=
+          std::string::npos);
+    NcGuard switched(lathe());
+    switched.select_file(0, "main.nc");
+    switched.feed("G94 G1 C10 F2000\nM98(child.nc)\n");
+    switched.select_file(1, "child.nc");
+    switched.feed("G93 X2 C30 F5\nM99\n");
+    switched.select_file(0, "main.nc");
+    switched.feed("G94 X1 C10\n");
+    switched.end_files();
+    CHECK(switched.reason().find("main.nc:3: C10 turns from an angle no earlier") == 0);
   }
 
   TEST_CASE("the NC guard refuses a preset of an axis the program positions") {

@@ -5,6 +5,7 @@
 #include <charconv>
 #include <cmath>
 #include <cstdio>
+#include <cstring>
 #include <limits>
 #include <string>
 #include <system_error>
@@ -93,6 +94,10 @@ std::string NcGuard::check_record(const AxisRecord& record, long long block) con
 void NcGuard::select_file(std::size_t index, const std::string& name) {
   if (files_.size() <= index) files_.resize(index + 1);
   if (files_[index].name.empty()) files_[index].name = name;
+  // A file's lines need not follow the last file's in the order they run: its angles are
+  // not known from them.
+  if (index != current_)
+    for (RotaryAngle& a : rotary_) a.length = -1;
   current_ = index;
 }
 
@@ -204,6 +209,7 @@ void NcGuard::check_line(std::string_view line) {
   bool words = false;
   // What the line asks of the modes its axis words assume (io/nc_line.hpp).
   bool machine_frame = false, reference_return = false, presets = false, calls_child = false;
+  bool sets_position = false;   // G92: the axis words are where the axes now are
   unsigned axis_letters = 0;    // a bit per axis letter on the line, from 'A'
   bool axis_words_zero = true;  // every axis word reads 0
   char preset_letter = 0;  // the first axis word other than C (a preset moves that axis' frame)
@@ -226,6 +232,7 @@ void NcGuard::check_line(std::string_view line) {
   };
   std::string_view feed_number;  // the line's F, for a feed per minute
   std::string_view end_word;
+  std::string_view rotary_number[3];  // the line's A, B and C words' numbers (by axis_letters)
   char outside_letter = 0;
   std::string_view outside_number;
   double outside_value = 0;
@@ -293,6 +300,7 @@ void NcGuard::check_line(std::string_view line) {
       machine_frame |= g == 53;
       reference_return |= g == 28 || g == 30;
       presets |= g_code_presets_frame(g);
+      sets_position |= g == 92;
       File& f = files_[current_];
       f.modes.apply(g, std::string_view(c + i, j - i), f.lines);
       if (g == 0 || g == 1) f.rapid = g == 0;
@@ -304,6 +312,7 @@ void NcGuard::check_line(std::string_view line) {
       calls_child |= code == "98";
     } else if (nc_axis_letter(lower)) {
       axis_letters |= 1u << (lower - 'a');
+      if (lower <= 'c') rotary_number[lower - 'a'] = number;
       axis_words_zero &= !nonzero;
       if (preset_letter == 0 && lower != 'c') preset_letter = letter;
     }
@@ -355,10 +364,47 @@ void NcGuard::check_line(std::string_view line) {
     file.feed_value = std::numeric_limits<double>::quiet_NaN();  // read when first asked
   }
   // A feed per minute is the speed along the move: no linear axis goes faster than it, and
-  // a rotary axis turning alone goes at it (°/min). (A rotary axis turning with linear ones
-  // takes the linear move's time, which the line alone does not tell: not judged.)
-  if (axis_letters != 0 && file.per_minute && !file.rapid && !file.feed.empty() && !outside_frame) {
-    constexpr unsigned kRotary = 1u << ('a' - 'a') | 1u << ('b' - 'a') | 1u << ('c' - 'a');
+  // a rotary axis turning alone goes at it (°/min). A rotary axis turning with linear ones
+  // takes the linear move's time (RS-274: the feed times the linear axes), so its speed is
+  // its turn over the linear length: a plunge of 1 µm with a turn of 2° asks 2° in 20 µs.
+  // The lines do not settle that length (the program need not say where X was), so no such
+  // move is written: the angle must be the last one written on this file.
+  constexpr unsigned kRotary = 1u << ('a' - 'a') | 1u << ('b' - 'a') | 1u << ('c' - 'a');
+  const bool feed_move =
+      axis_letters != 0 && file.per_minute && !file.rapid && !file.feed.empty() && !outside_frame;
+  if (feed_move && (axis_letters & kRotary) != 0 && (axis_letters & ~kRotary) != 0) {
+    for (unsigned rest = axis_letters & kRotary; rest != 0; rest &= rest - 1) {
+      const int k = std::countr_zero(rest);
+      const std::string_view number = rotary_number[k];
+      const RotaryAngle& last = rotary_[k];
+      const std::string_view before(last.text, static_cast<std::size_t>(std::max(last.length, 0)));
+      double now = 0, then = 0;
+      if (last.length >= 0 &&
+          (number == before ||
+           (parse_plain_decimal(number, now) && parse_plain_decimal(before, then) && now == then)))
+        continue;
+      const char letter = static_cast<char>('A' + k);
+      return refuse(std::string(1, letter) + std::string(number) + " turns " +
+                    (last.length < 0 ? "from an angle no earlier line of the file gives"
+                                     : "from " + std::string(1, letter) + std::string(before)) +
+                    " together with a linear axis in a feed per minute (G94): its speed would "
+                    "follow from the linear move's length, which the program does not settle; "
+                    "turn it on a line of its own: " +
+                    std::string(line));
+    }
+  }
+  for (unsigned rest = axis_letters & kRotary; rest != 0; rest &= rest - 1) {
+    const int k = std::countr_zero(rest);
+    const std::string_view number = rotary_number[k];
+    RotaryAngle& last = rotary_[k];
+    // Outside the work frame, or a preset other than G92's "the axis is here", the angle
+    // in the work frame is not known.
+    const bool known = !machine_frame && !reference_return && (!presets || sets_position) &&
+                       number.size() <= sizeof last.text;
+    last.length = known ? static_cast<int>(number.size()) : -1;
+    if (known) std::memcpy(last.text, number.data(), number.size());
+  }
+  if (feed_move) {
     const bool linear_words = (axis_letters & ~kRotary) != 0;
     const unsigned judged = linear_words ? axis_letters & ~kRotary : axis_letters;
     char slowest = 0;  // the judged axis of the least velocity limit

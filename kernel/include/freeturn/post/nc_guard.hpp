@@ -13,7 +13,10 @@
 // reads (none nested, none left open, no lone ')'), its G codes one per modal group, and
 // its axis words and child calls must stand in the modes the program's words assume
 // (absolute millimetres, radius mode, no cutter compensation, straight moves, feeds by
-// time: io/nc_line.hpp); no preset (G10, G52, G92) may move an axis' frame. The first
+// time: io/nc_line.hpp); no preset (G10, G52, G92) may move an axis' frame. Under a feed per
+// minute (G94), no linear axis may go faster than its max_velocity, nor a rotary one turning
+// alone; a rotary axis may not turn together with a linear one, as its speed would follow
+// from the linear move's length (a feed per minute times linear axes only). The first
 // violation is kept with its file and line; PostProgram turns it into an error naming the
 // plugin, and no NC file is committed.
 
@@ -76,6 +79,15 @@ class NcGuard {
     std::string feed;
     double feed_value = 0;  // feed read as a number (NaN: not yet)
   };
+  // The last angle written for a rotary axis (A, B, C), as its word's number: a feed move
+  // per minute that turns one together with a linear axis is judged against it. Kept
+  // across the lines of one file in the order written; unknown (length −1) at a file's
+  // start, after a switch of file, and after a move outside the work frame.
+  struct RotaryAngle {
+    char text[24];
+    int length = -1;
+  };
+  RotaryAngle rotary_[3];
   Range ranges_[26];  // per letter A…Z
   double max_velocity_[26];  // per letter: mm/s or °/s (infinite: not an axis, or no limit)
   std::vector<File> files_;
