@@ -83,26 +83,20 @@ class MoorePost {
     line_.clear();
     for (std::size_t k = 0; k < count; ++k) {
       if (first_) {
-        // Approach in feed per minute. The rotary axes turn first, alone, where the header
-        // left Z: a feed per minute times a turn only when no linear axis moves with it (a
-        // turn beside X takes X's time, and where X was is not written). Then to the
-        // clearance height, over the first point at it, and down to the point.
+        // Approach in feed per minute: to the clearance height in Z alone, then the
+        // rotary axes alone (a feed per minute times a turn only where no linear axis
+        // moves with it: beside X it takes X's time, and where X was is not written), over
+        // the first point at that height, and down to the point. The clearance bounds the
+        // nose for any B (tool/clearance.hpp), so B may turn there.
         first_ = false;
         ft_block above = b[k];
         above.z = clear_z_;
-        line_ += "G94 G01";
-        const bool turned = words(above, kRotaryWords);
-        line_ += turned ? " F" : " ";
-        if (turned) {
-          append_number(line_, approach_feed_, 3);
-          line_ += "\n";
-        }
+        line_ += "G94 G01 ";
         append_word(line_, 'Z', clear_z_, z_decimals_);
-        if (!turned) {
-          line_ += " F";
-          append_number(line_, approach_feed_, 3);
-        }
+        line_ += " F";
+        append_number(line_, approach_feed_, 3);
         line_ += "\n";
+        if (words(above, kRotaryWords)) line_ += "\n";
         words(above);
         line_ += "\n";
         words(b[k]);
