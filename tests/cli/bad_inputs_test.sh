@@ -230,6 +230,9 @@ refused "a footer's move into the part" "$m.yaml" "$m.machine.yaml:14:11:" "dial
 # An approach feed beyond Z's velocity (25 mm/s = 1500 mm/min): at the dialect settings.
 m=$(machine_variant fast_approach 's/^  approach_feed: 200/  approach_feed: 9000/' "$moore")
 refused "an approach feed beyond Z's velocity" "$m.yaml" "$m.machine.yaml:13:3:" "F9000.000 a minute (G94) moves Z at 150 mm/s, beyond its max_velocity 25"
+# A turn of C beside Y under a feed per minute takes Y's time, which no line settles.
+m=$(machine_variant turn_beside 's/G92 C0.0"/G92 C0.0\\nF100\\nY0 C10"/' "$moore")
+refused "a turn of C beside Y in the Moore header" "$m.yaml" "$m.machine.yaml:13:3:" "C10 turns from C0.0 together with a linear axis in a feed per minute (G94)"
 # A comment left open swallows the rest of its block: G01 G18 … would never be read.
 m=$(machine_variant open_comment 's/^  header: "G71/  header: "G71 (note/' "$moore")
 refused "an unclosed comment in the Moore header" "$m.yaml" "$m.machine.yaml:13:3:" "a comment '(' without ')' on its line"
