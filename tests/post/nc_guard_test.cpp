@@ -86,6 +86,13 @@ TEST_SUITE("plugins") {
     CHECK(refused("G1 X-inf\n").find("not finite") != std::string::npos);
     CHECK(refused("G1 X1.2.3\n") == "p.nc:1: X1.2.3 is not a number");
     CHECK(refused("G1 C360.5\n").find("C360.5 is outside") != std::string::npos);
+    // At the bounds, where the integer part alone cannot settle it (half a unit of C's 5
+    // decimals and X's 6 beyond each).
+    CHECK(refused("G1 C360.000004 X-99.9999999 Z49.5\nG1 C-0.000004 X100.0000005\n").empty());
+    CHECK(refused("G1 C360.000006\n").find("C360.000006 is outside") != std::string::npos);
+    CHECK(refused("G1 C-0.000006\n").find("C-0.000006 is outside") != std::string::npos);
+    CHECK(refused("G1 X-100.0000006\n").find("X-100.0000006 is outside") != std::string::npos);
+    CHECK(refused("G1 Z00050.0000006\n").find("Z00050.0000006 is outside") != std::string::npos);
     CHECK(refused("G1 Z60 (a comment with X999 and nan)\n").find("Z60 is outside") != std::string::npos);
     CHECK(refused("G1 Z1 ; X999 nan after the semicolon\n").empty());
     // Out of the work frame: machine coordinates and presets.

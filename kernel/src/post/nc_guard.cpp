@@ -256,6 +256,7 @@ void NcGuard::check_line(std::string_view line) {
     if (j < length && (c[j] == '-' || c[j] == '+')) ++j;
     const std::size_t digits = j;
     int integer_digits = 0, points = 0, digit_count = 0;
+    double integer_part = 0;  // the digits before the point (exact up to 15 of them)
     bool nonzero = false;
     for (; j < length; ++j) {
       const char ch = c[j];
@@ -263,6 +264,7 @@ void NcGuard::check_line(std::string_view line) {
         ++digit_count;
         nonzero |= ch != '0';
         integer_digits += (points == 0) & ((integer_digits != 0) | (ch != '0'));
+        if (points == 0) integer_part = 10 * integer_part + (ch - '0');
       } else if (ch == '.') {
         ++points;
       } else {
@@ -333,6 +335,14 @@ void NcGuard::check_line(std::string_view line) {
     }
     if (r.checked && integer_digits <= (negative ? r.digits_below : r.digits_above)) {
       i = j - 1;  // inside: |v| < 10ⁿ, within the range on its sign's side
+      continue;
+    }
+    // Inside where the whole interval its integer part allows is: [n, n + 1) for a
+    // positive number, (−n − 1, −n] for a negative one (C's 100 to 359 on a wrapped C).
+    if (r.checked && integer_digits <= 15 &&
+        (negative ? -(integer_part + 1) >= r.min && -integer_part <= r.max
+                  : integer_part >= r.min && integer_part + 1 <= r.max)) {
+      i = j - 1;
       continue;
     }
     double v = 0;
