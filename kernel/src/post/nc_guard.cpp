@@ -376,7 +376,8 @@ void NcGuard::check_line(std::string_view line) {
   // A feed per minute is the speed along the move: no linear axis goes faster than it, and
   // a rotary axis turning alone goes at it (°/min). A rotary axis turning with linear ones
   // takes the linear move's time (RS-274: the feed times the linear axes), so its speed is
-  // its turn over the linear length: a plunge of 1 µm with a turn of 2° asks 2° in 20 µs.
+  // its turn over the linear length: at F3000 (50 mm/s) a move of 1 µm beside a turn of 2°
+  // asks 2° in 20 µs.
   // The lines do not settle that length (the program need not say where X was), so no such
   // move is written: the angle must be the last one written on this file.
   constexpr unsigned kRotary = 1u << ('a' - 'a') | 1u << ('b' - 'a') | 1u << ('c' - 'a');
