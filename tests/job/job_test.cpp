@@ -98,6 +98,12 @@ TEST_SUITE("job") {
         {"name: a b\naperture: {outer_radius: 5}\nsurface: {type: plane}\n",
          "job.yaml:1:7: job name 'a b' must use only letters, digits, '-', '_' and '.' (it "
          "names files)"},
+        {"name: -rf\naperture: {outer_radius: 5}\nsurface: {type: plane}\n",
+         "job.yaml:1:7: job name '-rf' must begin with a letter, a digit or '_' (it names files: a "
+         "leading '-' reads as a command's option)"},
+        {"name: ..\naperture: {outer_radius: 5}\nsurface: {type: plane}\n",
+         "job.yaml:1:7: job name '..' must begin with a letter, a digit or '_' (it names files: a "
+         "leading '.' hides them)"},
         {"name: a\naperture: {outer_radius: 5, inner_radius: 6}\nsurface: {type: plane}\n",
          "job.yaml:2:43: aperture.inner_radius must be smaller than outer_radius"},
         {"name: a\naperture: [5]\nsurface: {type: plane}\n",

@@ -388,9 +388,16 @@ std::string MapReader::file_name(const std::string& key) {
     return (ch >= 'a' && ch <= 'z') || (ch >= 'A' && ch <= 'Z') || (ch >= '0' && ch <= '9') ||
            ch == '-' || ch == '_' || ch == '.';
   };
-  if (name[0] == '.' || !std::all_of(name.begin(), name.end(), allowed))
+  if (!std::all_of(name.begin(), name.end(), allowed))
     fail(key, what_ + " " + key + " '" + escape_control_bytes(name) +
                   "' must use only letters, digits, '-', '_' and '.' (it names files)");
+  // A file whose name begins with '.' is hidden, and one that begins with '-' is read as
+  // an option by the commands a user runs on it (`rm -rf.moore….nc`).
+  if (name[0] == '.' || name[0] == '-')
+    fail(key, what_ + " " + key + " '" + name +
+                  "' must begin with a letter, a digit or '_' (it names files: a leading '" +
+                  name[0] + "' " + (name[0] == '.' ? "hides them" : "reads as a command's option") +
+                  ")");
   return name;
 }
 
