@@ -158,10 +158,11 @@ class MoorePost {
  private:
   double time_scale() const { return freeturn::post::decimal_scale(time_decimals_); }
 
-  // The axis words of a block (the order of word_axes_), appended to the line once: the
-  // words are formatted into a buffer on the stack, not appended one by one.
-  // Returns whether it wrote a word; `which`: every axis, or the rotary ones alone.
   enum Words { kAllWords, kRotaryWords };
+
+  // The axis words of a block (the order of word_axes_), appended to the line once: the
+  // words are formatted into a buffer on the stack, not appended one by one. `which`:
+  // every axis, or the rotary ones alone; returns whether it wrote a word.
   bool words(const ft_block& b, Words which = kAllWords) {
     const ft_axis_layout& l = info_.layout;
     char text[4 * (freeturn::post::kNumberCapacity + 2)];
