@@ -69,6 +69,13 @@ variant() { sed "$2" "$base" > "$tmp/$1.yaml"; echo "$tmp/$1.yaml"; }
 job=$(variant narrow_ring 's/^  outer_radius: 2.0/  outer_radius: 2.0\n  inner_radius: 1.99999/')
 refused "a ring narrower than the pitch" "$job" "$job:14:10:" "strategy.pitch 0.05 mm is wider than the aperture's ring (1e-05 mm" "turn 0.0002 of a revolution"
 
+# A ring whose troughs bend to 1/(A ω²) = 1/(0.5 (2π/0.01)²) = 5.066 nm, under the stand-off
+# of half the 1 µm tolerance: no nose radius follows them, and none is suggested (the
+# message once said "use a nose radius under -0.000495 mm").
+job=$(variant sharp_ring 's/type: sphere/type: sinusoidal_ring\n  amplitude: 0.5\n  period: 0.01/; /radius: 50.0/d')
+refused "troughs tighter than the stand-off" "$job" "$job:16:24:" "concave radius of 5.066e-06 mm" "no nose radius does: the stand-off of 0.5 µm"
+if grep -qF "under -" "$tmp/err"; then echo "FAIL: troughs tighter than the stand-off: a negative nose radius is suggested"; fail=1; fi
+
 # YAML that a person would not mean.
 job=$(variant dup_key 's/^  pitch: 0.05/  pitch: 0.05\n  pitch: 0.5/')
 refused "a duplicate key" "$job" "$job:14:3:" "'pitch' appears twice"

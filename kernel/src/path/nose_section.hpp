@@ -72,11 +72,19 @@ class NoseSection {
                                  ? significant_text(R_, 6) + " mm"
                                  : significant_text(R_, 6) + " mm with its stand-off of " +
                                        significant_text(stand_off_ * 1e3, 3) + " µm";
+    // A nose follows the section where its radius plus the stand-off stays under the
+    // section's: where the stand-off alone reaches that radius no nose does, and the
+    // radius to suggest would be 0 or negative.
+    const double largest_nose = 1 / sharpest - stand_off_;
+    const std::string instead =
+        largest_nose > 0
+            ? "use a nose radius under " + significant_text(largest_nose, 3) + " mm"
+            : "no nose radius does: the stand-off of " + significant_text(stand_off_ * 1e3, 3) +
+                  " µm alone is that radius or more, a section no nose can follow";
     return "the design's section bends to a concave radius of " +
            significant_text(1 / sharpest, 4) + " mm at r = " + fixed_text(std::abs(where), 4) +
-           " mm, tighter than the nose radius " + nose +
-           ": no nose position follows it (use a nose radius under " +
-           significant_text(1 / sharpest - stand_off_, 3) + " mm)";
+           " mm, tighter than the nose radius " + nose + ": no nose position follows it (" +
+           instead + ")";
   }
 
   // Why no step of a path through contact_r on the line c holds the chord tolerance, as far
