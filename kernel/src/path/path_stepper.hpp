@@ -209,27 +209,36 @@ inline bool peak_within_bracket_bound(const double (&t)[4], const double (&f)[4]
   return found >= (1 - 5e-3) * bound;
 }
 
+// How well a smooth segment's fourths know its peak (peak_of_one_parabola) besides its part
+// in a hundred. The blocks' zeros are exact, but the samples between them are overlaps a
+// search settled (section_envelope.cpp), and on a compound eye's base at a 2 µm pitch they
+// stand a few 1e-13 mm off all along segments whose sag is no larger: such a profile is
+// flat, no parabola through the zeros fits it, and two in five of those segments were
+// sampled in full for a peak of 0.0005 nm. 1e-12 mm is a hundred-thousandth of the finest
+// chord tolerance a job may ask (0.1 nm).
+constexpr double kSagKnownTo = 1e-12;  // mm
+
 // A smooth segment's fourths: where the deviation's sizes at 1/4, 1/2 and 3/4 (e[2], e[4],
 // e[6] of eight intervals) and the blocks' zeros at both ends lie on one concave parabola
-// (the zeros within 1 % of its vertex's height), and the deviation at that vertex is the
-// parabola's there within 1 % as well, the peak is known as the eight intervals' parabola
-// check knows it (to 1 %), from six values on one parabola instead of three, in four
-// evaluations instead of eight. The deviation over a short segment of a smooth design is
-// the chord's sag, about 4·d·t(1 − t) with higher-order terms a small part of it; where it
-// is not (a turn of sign, two peaks, a feature between the samples) the six values do not
-// agree, and the caller samples the eighths. Every sample and the vertex under
-// kPeakKnownTo: rounding, where no parabola shows, and the peak is known to that.
+// (the zeros within 1 % of its vertex's height, or kSagKnownTo), and the deviation at that
+// vertex is the parabola's there within as much, the peak is known as the eight intervals'
+// parabola check knows it (to 1 %), from six values on one parabola instead of three, in
+// four evaluations instead of eight. The deviation over a short segment of a smooth design
+// is the chord's sag, about 4·d·t(1 − t) with higher-order terms a small part of it; where
+// it is not (a turn of sign, two peaks, a feature between the samples) the six values do
+// not agree, and the caller samples the eighths. Fourths all under half of kSagKnownTo
+// know the peak to that (a sag's fourths are 3/4 of its peak).
 template <class DeviationAt>
 bool peak_of_one_parabola(const double* e, DeviationAt&& deviation_at) {
+  if (std::max({e[2], e[4], e[6]}) <= 0.5 * kSagKnownTo) return true;
   const double second = e[2] - 2 * e[4] + e[6];  // per half of the segment
   const double slope = 0.5 * (e[6] - e[2]);      // per half, at the middle
   // q(u) = e[4] + slope·u + second·u²/2 at u = (j − 4)/2 half-segments from the middle.
-  if (std::max({e[2], e[4], e[6]}) <= 0.5 * kPeakKnownTo) return true;
   if (!(second < 0)) return false;
   const double u = std::clamp(-slope / second, -1.5, 1.5);
   const double predicted = e[4] + slope * u + 0.5 * second * u * u;
   const double at_start = e[4] - 2 * slope + 2 * second, at_end = e[4] + 2 * slope + 2 * second;
-  const double allowed = 1e-2 * predicted + kPeakKnownTo;
+  const double allowed = 1e-2 * predicted + kSagKnownTo;
   if (!(std::abs(at_start) <= allowed && std::abs(at_end) <= allowed)) return false;
   const double at_vertex = deviation_at(0.5 + 0.25 * u);
   return std::abs(at_vertex - predicted) <= allowed;
