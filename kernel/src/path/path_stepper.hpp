@@ -518,10 +518,12 @@ bool block_touch_clear(const Path& path, const RadialLine& line, const AxisState
 // throughout, neither the interpolated nose nor the path's can meet one (the envelope of
 // touch_clear_of_creases), and the segment is measured as on a smooth design: 8 intervals,
 // no crease search, no slide. Known only after the samples, from their touches: those of
-// the interpolated nose at the 9 samples, and the path's own at the blocks and at the middle
-// sample's angle, each clear by a margin for what lies between (the largest step between
-// neighbouring touches, and twice how far the path's touch there lies from the interpolated
-// one; the path's touches are the blocks' at the ends). A segment rejected on these samples
+// the interpolated nose at the samples on the eighths' grid (the fourths alone where they
+// settle the peak, all nine where they do not or where the fourths' certificate fails),
+// and the path's own at the blocks and at the middle sample's angle, each clear by a margin
+// for what lies between (the largest step between neighbouring sampled touches, and twice
+// how far the path's touch there lies from the interpolated one; the path's touches are the
+// blocks' at the ends). A segment rejected on these samples
 // needs no certificate: a crease the search left out could only raise the section toward
 // the nose, which is rejected either way or would have been, at worst, a step too short.
 // True when the segment is measured so, its deviation (or a rejection's estimate) in `gap`;
