@@ -1,10 +1,12 @@
 #include <doctest/doctest.h>
 
+#include <algorithm>
 #include <array>
 #include <cmath>
 #include <memory>
 #include <numbers>
 #include <string>
+#include <vector>
 
 #include "freeturn/core/error.hpp"
 #include "freeturn/path/profile.hpp"
@@ -41,16 +43,29 @@ std::vector<ContactPoint> contacts(const std::vector<CutterLocation>& cls) {
 // 0.05 mm pitch with a nose of radius R, ε as given, steps up to 1 rad.
 const TransformedSurface decentred_sphere(std::make_unique<EvenAsphere>(1 / 30.0, 0), 8, 0,
                                           Eigen::Matrix3d::Identity());
-SpiralOptions sphere_spiral(double inner, double eps, double R, Interpolation mode) {
+// A spiral over [inner, outer] mm at `pitch` with a nose of radius R, planned by chord ε,
+// steps up to `max_angle` rad.
+SpiralOptions nose_spiral(double outer, double inner, double pitch, double eps, double R,
+                          double max_angle = 1.0, Interpolation mode = Interpolation::kLinear) {
   SpiralOptions o;
-  o.outer_radius = 1.0;
+  o.outer_radius = outer;
   o.inner_radius = inner;
-  o.pitch = 0.05;
+  o.pitch = pitch;
   o.tool.nose_radius = R;
   o.points.tolerance = eps;
-  o.points.max_angle_step = 1.0;
+  o.points.max_angle_step = max_angle;
   o.points.interpolation = mode;
   return o;
+}
+SpiralOptions sphere_spiral(double inner, double eps, double R, Interpolation mode) {
+  return nose_spiral(1.0, inner, 0.05, eps, R, 1.0, mode);
+}
+
+// The largest chord error the planner reported for its own segments.
+double largest_planned_chord(const std::vector<CutterLocation>& cls) {
+  double planned = 0;
+  for (const CutterLocation& cl : cls) planned = std::max(planned, cl.contact.chord_error);
+  return planned;
 }
 
 // Paper 001's sinusoidal ring, period 2 mm, in profile from 5 mm to 0.5 mm: away from the
@@ -83,9 +98,7 @@ TEST_SUITE("path") {
     CHECK(nose <= 1.002 * eps);
     CHECK(nose >= 0.9 * eps);
     // The planner's own figure per segment agrees with the brute force.
-    double planned = 0;
-    for (const CutterLocation& cl : cls) planned = std::max(planned, cl.contact.chord_error);
-    CHECK(planned == doctest::Approx(nose).epsilon(0.01).scale(0));
+    CHECK(largest_planned_chord(cls) == doctest::Approx(nose).epsilon(0.01).scale(0));
   }
 
   TEST_CASE("an asphere off its axis: a segment's peak from its fourths is the dense sampler's") {
@@ -98,19 +111,12 @@ TEST_SUITE("path") {
         std::make_unique<EvenAsphere>(1 / 20.0, -1.5, std::array<double, 9>{2e-4, -1e-5}), 3, 1,
         Eigen::Matrix3d::Identity());
     const double eps = 3e-4, R = 0.5;
-    SpiralOptions o;
-    o.outer_radius = 1.5;
-    o.inner_radius = 0.3;
-    o.pitch = 0.05;
-    o.tool.nose_radius = R;
-    o.points.tolerance = eps;
-    o.points.max_angle_step = 1.0;
+    const SpiralOptions o = nose_spiral(1.5, 0.3, 0.05, eps, R);
     const auto cls = compensated(asphere, R, [&](ContactSink& sink) {
       plan_spiral(asphere, BaseSurface::plane(1.5), o, sink);
     });
     const double nose = test::densest_nose_error(asphere, cls, R);
-    double planned = 0;
-    for (const CutterLocation& cl : cls) planned = std::max(planned, cl.contact.chord_error);
+    const double planned = largest_planned_chord(cls);
     MESSAGE("ε " << eps * 1e6 << " nm: nose motion " << nose * 1e6 << " nm, planned "
                  << planned * 1e6 << " nm, " << cls.size() << " points");
     CHECK(nose <= 1.002 * eps);
@@ -127,13 +133,7 @@ TEST_SUITE("path") {
     // within ε of it.
     const SinusoidalGrid grid(0.02, 0.8, 0.8);
     const double eps = 1e-3, R = 0.8;
-    SpiralOptions o;
-    o.outer_radius = 3.0;
-    o.inner_radius = 2.6;
-    o.pitch = 0.02;
-    o.tool.nose_radius = R;
-    o.points.tolerance = eps;
-    o.points.max_angle_step = 5 * std::numbers::pi / 180;
+    const SpiralOptions o = nose_spiral(3.0, 2.6, 0.02, eps, R, 5 * std::numbers::pi / 180);
     const auto cls = compensated(
         grid, R, [&](ContactSink& sink) { plan_spiral(grid, BaseSurface::plane(3.0), o, sink); });
     const test::DenseNoseFigures f = test::dense_nose_figures(grid, cls, R, 24, 300);
@@ -376,15 +376,9 @@ TEST_SUITE("path") {
     CompensationOptions c;
     c.b_mode = BMode::kFollow;
     c.pivot_distance = L;
-    SpiralOptions o;
-    o.outer_radius = 3.0;
-    o.inner_radius = 1.0;
-    o.pitch = 0.1;
-    o.tool.nose_radius = R;
+    SpiralOptions o = nose_spiral(3.0, 1.0, 0.1, eps, R);
     o.tool.axis_offset = L;
     o.tool.b_follows = true;
-    o.points.tolerance = eps;
-    o.points.max_angle_step = 1.0;
     c.tool.nose_radius = R;
     const auto cls = compensated(
         plate, R, [&](ContactSink& sink) { plan_spiral(plate, BaseSurface::plane(3.0), o, sink); },
