@@ -832,23 +832,71 @@ inline bool apart(const AxisState& a, const AxisState& b) {
 }
 
 // Where the nose begins or ends a hold at a crease (section_envelope.hpp) the axis motion
-// kinks: the first state past the change in (a, b], by bisection, until the states either
-// side of it are within the program's resolution (`apart`: a kink placed closer than that
-// to its block cannot be told from one on it) or within 1e-12 of τ apart (where the axes
-// jump, they never come closer). A block there puts the kink on a block boundary, and the
-// chords on either side follow smooth pieces (with a jump in held state the blocks on
-// either side stay where they were). Bisecting to 1e-12 in τ alone took 21 path states a
-// change on the compound eye (now 15), most of them finer than the program can say.
+// kinks: the first state past the change in (a, b], until the states either side of it are
+// within the program's resolution (`apart`: a kink placed closer than that to its block
+// cannot be told from one on it) or within 1e-12 of τ apart (where the axes jump, they never
+// come closer). A block there puts the kink on a block boundary, and the chords on either
+// side follow smooth pieces (with a jump in held state the blocks on either side stay where
+// they were).
+//
+// The bracket closes by a safeguarded secant, not by bisection alone (15 path states a
+// change on the compound eye's chord cut; now 8.5). While the nose is held the path's own
+// contact moves on past the held touch: path_r − contact_r grows smoothly from about 0 at
+// the change. The line through the held side's last two states gives the change's place;
+// the state asked for is that estimate moved by 0.4 of the resolution toward the
+// bracket's farther end, so that an estimate good to that closes the bracket from both
+// sides in two states. An estimate that fell short (a free state, which says nothing of
+// the gap) is moved a sixteenth of the way on toward the held end the next time, for a
+// held state near the change. Where there is no estimate in the bracket, or after two
+// secant states that did not halve it, the bracket is bisected. The bracket and the
+// test that ends the search are bisection's: only which state in the last 1 nm the block
+// takes differs.
 template <class Path>
 void end_at_hold_change(const Path& path, const AxisState& a, const AxisState& b,
                         AxisState& first_changed) {
   first_changed = b;
   AxisState last_same = a, mid;
   double lo = a.tau, hi = b.tau;
+  // The held side's last two states: τ, and how far the path's contact has moved past the
+  // held touch.
+  double held_tau[2] = {0, 0}, held_gap[2] = {0, 0};
+  int held_count = 0;
+  const auto note_held = [&](const AxisState& s) {
+    if (!s.held) return;
+    held_tau[0] = held_tau[1];
+    held_gap[0] = held_gap[1];
+    held_tau[1] = s.tau;
+    held_gap[1] = s.path_r - s.contact_r;
+    held_count = std::min(held_count + 1, 2);
+  };
+  note_held(a.held ? a : b);
+  int slow_secants = 0;  // secant states in a row that did not halve the bracket
+  bool fell_short = false;
   for (int it = 0;
        it < 60 && hi - lo > 1e-12 * std::max(1.0, std::abs(hi)) && apart(last_same, first_changed);
        ++it) {
-    path.at(0.5 * (lo + hi), mid);
+    const double width = hi - lo;
+    double t = 0.5 * (lo + hi);
+    bool secant = false;
+    if (slow_secants < 2 && held_count == 2 && held_gap[0] * held_gap[1] > 0 &&
+        held_gap[0] != held_gap[1]) {
+      double estimate =
+          held_tau[1] - held_gap[1] * (held_tau[1] - held_tau[0]) / (held_gap[1] - held_gap[0]);
+      if (fell_short) estimate += 0.0625 * ((a.held ? lo : hi) - estimate);
+      // The resolution in τ: 1 nm of axis travel at the bracket's mean rate.
+      const double arc = 0.5 * (std::abs(last_same.x_axis) + std::abs(first_changed.x_axis)) *
+                         (first_changed.c - last_same.c);
+      const double travel =
+          std::hypot(first_changed.x_axis - last_same.x_axis, first_changed.z - last_same.z, arc);
+      const double resolution = travel > 0 ? 1e-6 * width / travel : 0.0;
+      const double toward = estimate - lo > hi - estimate ? -1.0 : 1.0;
+      const double asked = estimate + toward * 0.4 * resolution;
+      if (asked > lo && asked < hi) {
+        t = asked;
+        secant = true;
+      }
+    }
+    path.at(t, mid);
     if (mid.held == a.held) {
       lo = mid.tau;
       last_same = mid;
@@ -856,6 +904,9 @@ void end_at_hold_change(const Path& path, const AxisState& a, const AxisState& b
       hi = mid.tau;
       first_changed = mid;
     }
+    note_held(mid);
+    slow_secants = secant && hi - lo > 0.5 * width ? slow_secants + 1 : 0;
+    fell_short = secant && !mid.held;
   }
 }
 
