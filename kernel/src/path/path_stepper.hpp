@@ -840,17 +840,19 @@ inline bool apart(const AxisState& a, const AxisState& b) {
 // they were).
 //
 // The bracket closes by a safeguarded secant, not by bisection alone (15 path states a
-// change on the compound eye's chord cut; now 8.5). While the nose is held the path's own
+// change on the compound eye's chord cut; now 8). While the nose is held the path's own
 // contact moves on past the held touch: path_r − contact_r grows smoothly from about 0 at
-// the change. The line through the held side's last two states gives the change's place;
-// the state asked for is that estimate moved by 0.4 of the resolution toward the
-// bracket's farther end, so that an estimate good to that closes the bracket from both
-// sides in two states. An estimate that fell short (a free state, which says nothing of
-// the gap) is moved a sixteenth of the way on toward the held end the next time, for a
-// held state near the change. Where there is no estimate in the bracket, or after two
-// secant states that did not halve it, the bracket is bisected. The bracket and the
-// test that ends the search are bisection's: only which state in the last 1 nm the block
-// takes differs.
+// the change. (It changes sign where the contact crosses the crease and the touch moves to
+// the other flank: a held state across that from the latest tells nothing of this end, and
+// is dropped.) The line through the held side's last two states gives the change's place;
+// the state asked for is that estimate moved by 0.4 of the resolution toward the bracket's
+// farther end, so that an estimate good to that closes the bracket from both sides in two
+// states. An estimate that fell short (a free state, which says nothing of the gap) is
+// moved a sixteenth of the way on toward the held end the next time, for a held state near
+// the change. With one held state, the bracket's held end, the second is asked a sixteenth
+// of the way in from it. After two such states that did not halve the bracket, or with no
+// estimate inside it, the bracket is bisected. The bracket and the test that ends the
+// search are bisection's: only which state in the last 1 nm the block takes differs.
 template <class Path>
 void end_at_hold_change(const Path& path, const AxisState& a, const AxisState& b,
                         AxisState& first_changed) {
@@ -863,11 +865,12 @@ void end_at_hold_change(const Path& path, const AxisState& a, const AxisState& b
   int held_count = 0;
   const auto note_held = [&](const AxisState& s) {
     if (!s.held) return;
+    const double gap = s.path_r - s.contact_r;
     held_tau[0] = held_tau[1];
     held_gap[0] = held_gap[1];
     held_tau[1] = s.tau;
-    held_gap[1] = s.path_r - s.contact_r;
-    held_count = std::min(held_count + 1, 2);
+    held_gap[1] = gap;
+    held_count = held_count > 0 && held_gap[0] * gap <= 0 ? 1 : std::min(held_count + 1, 2);
   };
   note_held(a.held ? a : b);
   int slow_secants = 0;  // secant states in a row that did not halve the bracket
@@ -895,6 +898,12 @@ void end_at_hold_change(const Path& path, const AxisState& a, const AxisState& b
         t = asked;
         secant = true;
       }
+    } else if (slow_secants < 2 && held_count < 2) {
+      // One held state, the bracket's held end: a second a sixteenth of the way in from it
+      // (most changes lie well inside a trial; where this one does not, the bracket
+      // shrinks sixteenfold instead).
+      t = a.held ? lo + 0.0625 * width : hi - 0.0625 * width;
+      secant = true;
     }
     path.at(t, mid);
     if (mid.held == a.held) {
