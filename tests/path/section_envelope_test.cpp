@@ -184,11 +184,11 @@ LensletArray microlens_plate(double lens_radius) {
   return LensletArray(lo);
 }
 
-// Convex lenslets (R 0.3 mm, D 0.2 mm) on a square 0.25 mm lattice over `extent`: flats
-// 0.05 mm wide between rims, narrower than a 0.2 mm nose can reach into.
-LensletArray close_lenslets(double extent) {
+// Convex lenslets (R 0.3 mm unless given, D 0.2 mm) on a square 0.25 mm lattice over
+// `extent`: flats 0.05 mm wide between rims, narrower than a 0.2 mm nose can reach into.
+LensletArray close_lenslets(double extent, double lens_radius = -0.3) {
   LensletArrayOptions lo;
-  lo.lens_radius = -0.3;
+  lo.lens_radius = lens_radius;
   lo.lens_diameter = 0.2;
   lo.pitch = 0.25;
   lo.pattern = LensletArrayOptions::Pattern::kSquare;
@@ -1071,6 +1071,46 @@ TEST_SUITE("path") {
       CHECK(held > contacts / 10);
       CHECK(deepest <= 1e-9);
     }
+  }
+
+  TEST_CASE("steep domes closer than the nose is wide: the stand-off's nose overhangs no wall") {
+    // Domes of radius 0.11 mm (walls at 65° where they meet the plane) on a 0.25 mm pitch,
+    // D 0.2 mm, under a 0.2 mm nose placed with a 0.1 µm stand-off (the envelope of a
+    // 0.2001 mm nose). The overhang of a dome behind the contact was searched from its near
+    // rim over a piece bounded by its far rim, beyond the nose's reach: the first Newton
+    // step left the arc's footprint and the search ended on the rim's value. A free nose
+    // was placed 3 nm from a wall its envelope overhung by 122 nm (θ = 26.374141126 rad,
+    // ρ = 0.979012125 mm, the chord rule stopping with "the path is not smooth here"); over
+    // the sweep below the deepest envelope stood 47.3 µm into a wall, 276 of 2240 held.
+    // Each placed envelope against the section by brute force (nose_brute_force.hpp).
+    const LensletArray mla = close_lenslets(1.0, -0.11);
+    const double R = 0.2, stand_off = 1e-4, lifted = R + stand_off;
+    const auto worst_overhang = [&](const RadialLine& line, double rho, bool& held) {
+      double z, zx, zy;
+      mla.sag_gradient(rho * line.cos, rho * line.sin, z, zx, zy);
+      const NoseTouch t =
+          nose_touch(mla, line, R, rho, z, zx * line.cos + zy * line.sin, stand_off);
+      held = t.held;
+      return brute_overlap(mla, t.centre_x, t.centre_z, lifted, line.theta, 4000);
+    };
+    bool held = false;
+    const double found = worst_overhang(RadialLine(26.374141126), 0.979012125, held);
+    MESSAGE("the contact found: held ", held, ", overhang ", found * 1e6, " nm");
+    CHECK(held);
+    CHECK(found <= 1e-9);
+    double deepest = -1;
+    long held_count = 0, contacts = 0;
+    for (int k = 0; k < 8; ++k) {
+      const RadialLine line(26.374141126 + k * 2 * std::numbers::pi / 8);
+      for (double rho = 0.70; rho <= 0.98; rho += 1e-3) {
+        deepest = std::max(deepest, worst_overhang(line, rho, held));
+        held_count += held;
+        ++contacts;
+      }
+    }
+    MESSAGE(contacts, " contacts, ", held_count, " held, deepest ", deepest * 1e6, " nm");
+    CHECK(held_count > contacts / 10);
+    CHECK(deepest <= 1e-9);
   }
 
   TEST_CASE(

@@ -216,14 +216,19 @@ void search(const Section& section, double x_c, double z_c, double R, double sta
   }
 }
 
-// The pieces between creases: the bounds of the piece on `side` (±1) of crease k.
+// The pieces between creases: the bounds of the piece on `side` (±1) of crease k, within
+// [lo, hi] (the nose's reach). A crease found beyond the reach (the creases are listed 2R
+// about the contact) bounds no piece under the nose: a search's Newton step clamped to it
+// left the arc's footprint and ended the search on its first value. On a steep dome's
+// wall (a 0.11 mm lens under a 0.2 mm nose) the first step from the near rim overshot so,
+// and a free nose was placed 3 nm from a wall its stand-off's envelope overhung by 122 nm.
 void piece_bounds(const SectionCreases& c, int k, int side, double lo, double hi, double& a,
                   double& b) {
   if (side > 0) {
     a = c.rho[k] + kOffCrease;
-    b = k + 1 < c.count ? c.rho[k + 1] - kOffCrease : hi;
+    b = k + 1 < c.count ? std::min(hi, c.rho[k + 1] - kOffCrease) : hi;
   } else {
-    a = k > 0 ? c.rho[k - 1] + kOffCrease : lo;
+    a = k > 0 ? std::max(lo, c.rho[k - 1] + kOffCrease) : lo;
     b = c.rho[k] - kOffCrease;
   }
 }
