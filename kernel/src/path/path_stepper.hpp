@@ -824,11 +824,15 @@ inline void set_chord(ContactPoint& p, const AxisState& s, double error, bool ju
   p.uncut_residual = s.uncut;
 }
 
+// How far the axes move between two states (mm): X, Z and the arc of C at their mean X.
+inline double axis_travel(const AxisState& a, const AxisState& b) {
+  const double arc = 0.5 * (std::abs(a.x_axis) + std::abs(b.x_axis)) * (b.c - a.c);
+  return std::hypot(b.x_axis - a.x_axis, b.z - a.z, arc);
+}
 // Two blocks farther apart than the program's resolution (1 nm along X, Z and the arc of C):
 // a nose held at a crease of a profile does not move, and its hold's end is no new block.
 inline bool apart(const AxisState& a, const AxisState& b) {
-  const double arc = 0.5 * (std::abs(a.x_axis) + std::abs(b.x_axis)) * (b.c - a.c);
-  return std::hypot(b.x_axis - a.x_axis, b.z - a.z, arc) > 1e-6;
+  return axis_travel(a, b) > 1e-6;
 }
 
 // Where the nose begins or ends a hold at a crease (section_envelope.hpp) the axis motion
@@ -887,10 +891,7 @@ void end_at_hold_change(const Path& path, const AxisState& a, const AxisState& b
           held_tau[1] - held_gap[1] * (held_tau[1] - held_tau[0]) / (held_gap[1] - held_gap[0]);
       if (fell_short) estimate += 0.0625 * ((a.held ? lo : hi) - estimate);
       // The resolution in τ: 1 nm of axis travel at the bracket's mean rate.
-      const double arc = 0.5 * (std::abs(last_same.x_axis) + std::abs(first_changed.x_axis)) *
-                         (first_changed.c - last_same.c);
-      const double travel =
-          std::hypot(first_changed.x_axis - last_same.x_axis, first_changed.z - last_same.z, arc);
+      const double travel = axis_travel(last_same, first_changed);
       const double resolution = travel > 0 ? 1e-6 * width / travel : 0.0;
       const double toward = estimate - lo > hi - estimate ? -1.0 : 1.0;
       const double asked = estimate + toward * 0.4 * resolution;
