@@ -5,7 +5,8 @@
 # NC words alone: a sphere of radius 5 mm decentred by 1 mm (slopes to 0.44), chord rule,
 # was cut 588 nm into the design near the axis before the nose was laid in the rake plane;
 # the compound eye's lenslets at 1000 points a turn 6.1 nm into their rims. Both must
-# stay above the design, and `simulate --program` must find them so. A profile on the PVT
+# stay above the design, and `simulate --program` must find them so. Domes with one on the
+# axis, h = −0.2 µm, must plan and stay above the design too. A profile on the PVT
 # Precitech is read back along the controller's cubics.
 # usage: centre_height_test.sh <freeturn> <source dir>
 set -u
@@ -48,6 +49,35 @@ job decentred "{outer_radius: 1.0, inner_radius: 0.1}" "{type: sphere, radius: 5
 job eye "{outer_radius: 1.6, inner_radius: 0.03}" \
   "{type: compound_eye, base_radius: 20, lens_radius: -5, lens_diameter: 0.9, pitch: 1.0, pattern: rings}" 0.02 \
   "{equal_angle: {per_rev: 1000}}" && check eye compound_eye:20:-5:0.9:1.0:1.6 0.05 1.6
+# Domes with one on the axis (0.29 mm in radius, 0.22 mm across, 0.2357 mm apart), h = −0.2 µm:
+# a 0.2 mm nose is held in the 16 µm valleys around the central dome with a touch about
+# 0.07 mm from the axis. The reach was taken from a window that reached the axis (β = π/2)
+# and the job refused for any h (0.26 mm); the held nose's own touches give 149 nm, and
+# with the blocks standing off by it the edge stays 80 nm above the design (with no reach,
+# 66 nm into it).
+domes() {
+  cat > "$tmp/domes.yaml" <<YAML
+name: domes
+aperture: {outer_radius: 0.45, inner_radius: 0.01}
+surface: {type: microlens_array, lens_radius: -0.2908, lens_diameter: 0.2198, pitch: 0.2357, lattice: square}
+tool: {nose_radius: 0.2, included_angle_deg: 120, clearance_angle_deg: 40, centre_height: -0.0002}
+strategy:
+  mode: spiral
+  spiral: planar
+  pitch: 0.005
+  points: {chord: {tolerance: 0.0002, max_angle_deg: 4}}
+cutting: {spindle_rpm: 20}
+machine: moore-nanotech-250upl
+outputs: {nc: true, report: false}
+YAML
+  "$freeturn" run "$tmp/domes.yaml" -o "$tmp/domes" --quiet || { echo "FAIL: domes: the run failed"; fail=1; return; }
+  local deepest
+  deepest=$("$py" "$src/tests/jobs/nc_rake_gouge.py" "$tmp/domes/domes.moore-nanotech-250upl.nc" \
+    microlens_array:-0.2908:0.2198:0.2357:0.45 0.2 -0.0002 60 0.01 0.45) || { fail=1; return; }
+  echo "domes: the edge's deepest below the design: $deepest nm"
+  "$py" -c "import sys; sys.exit(0 if float('$deepest') <= 0 else 1)" || { echo "FAIL: domes cut into the design"; fail=1; }
+}
+domes
 # Profile mode on the Precitech (PVT): the part turns under the edge, each edge point cut at
 # radius √(x² + h²), between the blocks along the controller's cubics (nc_profile_gouge.py).
 cat > "$tmp/profile.yaml" <<YAML

@@ -194,4 +194,34 @@ TEST_SUITE("tool") {
     CHECK(once > 0);
     CHECK(twice == doctest::Approx(2 * once).epsilon(2e-4));
   }
+
+  TEST_CASE(
+      "a centre height's reach by domes with one on the axis: in proportion to h, not a "
+      "window's quarter turn") {
+    // Domes 0.29 mm in radius and 0.22 mm across at a 0.2357 mm pitch, one on the axis:
+    // valleys 16 µm wide between the central dome and the first ring, where a 0.2 mm nose is
+    // held touching both domes, its nearer touch about 0.07 mm from the axis. The window
+    // about such a rim took in the next domes' slopes until it reached the axis and took
+    // β = π/2 whatever h: a reach of 0.26 mm for h = 10 nm. β = asin(h/ρ) at the held
+    // nose's own touches doubles with h to within (h/ρ)²/2 < 10⁻⁷ here.
+    LensletArrayOptions o;
+    o.lens_radius = -0.2908;
+    o.lens_diameter = 0.2198;
+    o.pitch = 0.2357;
+    o.pattern = LensletArrayOptions::Pattern::kSquare;
+    o.extent = 0.45;
+    const LensletArray domes(o);
+    ToolMotion motion;
+    motion.nose_radius = 0.2;
+    motion.centre_height = 0.00001;
+    const double once = centre_height_reach(motion, domes, 0.01, 0.45);
+    motion.centre_height = -0.00002;
+    const double twice = centre_height_reach(motion, domes, 0.01, 0.45);
+    MESSAGE("reach for h = 10 nm: ", once * 1e6, " nm");
+    CHECK(once > 0);
+    // 2·s_t·(h/ρ)·Δ with the domes' steepest s_t = tan(asin(0.1099/0.2908)) = 0.408, the
+    // touches Δ ≤ 2R·0.378 = 0.151 mm apart, the nearer ρ ≳ 0.07 mm: about 1.8 h at most.
+    CHECK(once < 2 * 0.00001);
+    CHECK(twice == doctest::Approx(2 * once).epsilon(1e-4));
+  }
 }
