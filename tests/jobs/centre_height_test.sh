@@ -78,6 +78,37 @@ YAML
   "$py" -c "import sys; sys.exit(0 if float('$deepest') <= 0 else 1)" || { echo "FAIL: domes cut into the design"; fail=1; }
 }
 domes
+# To the axis with the centre check downgraded: the edge reaches no radius under h, and
+# the program is written without those blocks (material left about the axis), its verdict
+# UNSAFE (exit 1) with the centre check's finding. It stopped with "X is not a finite
+# number" and no file:line:col (exit 2, nothing written) before.
+cat > "$tmp/axis.yaml" <<YAML
+name: axis
+aperture: {outer_radius: 1.0}
+surface: {type: compound_eye, base_radius: 20, lens_radius: -5, lens_diameter: 0.9, pitch: 1.0, pattern: rings}
+tool: {nose_radius: 0.2, included_angle_deg: 100, clearance_angle_deg: 25, centre_height: 0.002,
+       checks: {centre: warning}}
+strategy:
+  mode: spiral
+  spiral: space
+  pitch: 0.02
+  points: {equal_angle: {per_rev: 400}}
+cutting: {spindle_rpm: 10}
+machine: moore-nanotech-250upl
+outputs: {nc: true, report: true}
+YAML
+"$freeturn" run "$tmp/axis.yaml" -o "$tmp/axis" --quiet 2> "$tmp/axis.err"
+code=$?
+if [[ $code != 1 ]]; then
+  echo "FAIL: axis: exit $code, expected 1 (UNSAFE)"; cat "$tmp/axis.err"; fail=1
+elif ! grep -q "centre: .* (the check is downgraded to a warning in the job)" "$tmp/axis.err"; then
+  echo "FAIL: axis: the centre finding is not the reason:"; cat "$tmp/axis.err"; fail=1
+else
+  deepest=$("$py" "$src/tests/jobs/nc_rake_gouge.py" "$tmp/axis/axis.moore-nanotech-250upl.nc" \
+    compound_eye:20:-5:0.9:1.0:1.0 0.2 0.002 50 0 1.0) || fail=1
+  echo "axis: the edge's deepest below the design: $deepest nm"
+  "$py" -c "import sys; sys.exit(0 if float('$deepest') <= 0 else 1)" || { echo "FAIL: axis cuts into the design"; fail=1; }
+fi
 # Profile mode on the Precitech (PVT): the part turns under the edge, each edge point cut at
 # radius √(x² + h²), between the blocks along the controller's cubics (nc_profile_gouge.py).
 cat > "$tmp/profile.yaml" <<YAML
