@@ -152,6 +152,15 @@ contains "the gouge is a structured warning" "$tmp/gouge/sinusoidal_ring.report.
 "$freeturn" check "$tmp/gouge.yaml" > "$tmp/stdout"; expect "check with a downgraded gouge" 1 $?
 contains "check says UNSAFE" "$tmp/stdout" "UNSAFE: finish: gouge: "
 if grep -q "^PASS" "$tmp/stdout"; then echo "FAIL: check printed PASS for a gouging program"; fail=1; fi
+# Switched off, the same checks still run and still mark it UNSAFE: `off` is read as
+# `warning`. With `off` skipping them, this program was written under a PASS (exit 0),
+# and tests/jobs/nc_profile_gouge.py reads it 4.5 µm into the troughs.
+sed -e 's/amplitude: 0.005 /amplitude: 0.05 /' -e 's/period: 2.5 /period: 1.0 /' \
+    -e 's/nose_radius: 0.5/nose_radius: 0.6\n  checks: {gouge: off, global_gouge: off}/' \
+    "$src/configs/jobs/sinusoidal_ring.yaml" > "$tmp/gouge_off.yaml"
+"$freeturn" run "$tmp/gouge_off.yaml" -o "$tmp/gouge_off" > /dev/null 2> "$tmp/err"; expect "run with the gouge checks off" 1 $?
+contains "run with the checks off says UNSAFE at the gouge" "$tmp/err" "UNSAFE: finish: gouge: "
+contains "its report says UNSAFE" "$tmp/gouge_off/sinusoidal_ring.report.json" '"status": "UNSAFE"'
 # A 1 mm nose in those troughs: past r = 1.04 mm no step meets the tolerance. In PVT mode
 # (this machine's) the planner once took slivers of no length there without end; now it
 # stops as linear motion does: exit 2, the place named, nothing written.
