@@ -78,6 +78,35 @@ YAML
   "$py" -c "import sys; sys.exit(0 if float('$deepest') <= 0 else 1)" || { echo "FAIL: domes cut into the design"; fail=1; }
 }
 domes
+# Bowls in a hexagonal array with one on the axis (0.148 mm in radius, 0.1371 mm across,
+# 0.1965 mm apart), h = −0.2 µm under a 0.1 mm nose and ε = 0.5 µm: each rim a ridge the nose
+# rolls over. The window about the central rim reached the axis and the job was refused with
+# a reach of 0.2 mm; with β at the ridge it plans (reach 376 nm), and its edge stands 385 nm
+# above the design (the array to 0.68 mm planned with no reach at all: 12 nm above it, the
+# ridges' effect being of second order in h).
+bowls() {
+  cat > "$tmp/bowls.yaml" <<YAML
+name: bowls
+aperture: {outer_radius: 0.45, inner_radius: 0.01}
+surface: {type: microlens_array, lens_radius: 0.148, lens_diameter: 0.1371, pitch: 0.1965, lattice: hexagonal}
+tool: {nose_radius: 0.1, included_angle_deg: 120, clearance_angle_deg: 40, centre_height: -0.0002}
+strategy:
+  mode: spiral
+  spiral: planar
+  pitch: 0.01
+  points: {chord: {tolerance: 0.0005, max_angle_deg: 4}}
+cutting: {spindle_rpm: 20}
+machine: moore-nanotech-250upl
+outputs: {nc: true, report: false}
+YAML
+  "$freeturn" run "$tmp/bowls.yaml" -o "$tmp/bowls" --quiet || { echo "FAIL: bowls: the run failed"; fail=1; return; }
+  local deepest
+  deepest=$("$py" "$src/tests/jobs/nc_rake_gouge.py" "$tmp/bowls/bowls.moore-nanotech-250upl.nc" \
+    microlens_array:0.148:0.1371:0.1965:0.45:hexagonal 0.1 -0.0002 60 0.01 0.45) || { fail=1; return; }
+  echo "bowls: the edge's deepest below the design: $deepest nm"
+  "$py" -c "import sys; sys.exit(0 if float('$deepest') <= 0 else 1)" || { echo "FAIL: bowls cut into the design"; fail=1; }
+}
+bowls
 # To the axis with the centre check downgraded: the edge reaches no radius under h, and
 # the program is written without those blocks (material left about the axis), its verdict
 # UNSAFE (exit 1) with the centre check's finding. It stopped with "X is not a finite

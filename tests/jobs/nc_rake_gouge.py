@@ -9,7 +9,7 @@ sharing no code with freeturn.
 
 usage: nc_rake_gouge.py PROGRAM.nc DESIGN R H HALF_ANGLE_DEG R_MIN R_MAX [WAVINESS]
 DESIGN: decentred_sphere:RADIUS:DX, compound_eye:BASE:LENS:DIAMETER:PITCH:EXTENT (rings),
-        or microlens_array:LENS:DIAMETER:PITCH:EXTENT (square)
+        or microlens_array:LENS:DIAMETER:PITCH:EXTENT[:hexagonal] (square unless hexagonal)
 WAVINESS: the edge's radius error, DEG:MM,DEG:MM,... (linear between, the ends held): the
 edge's point at phi lies R + delta(phi) from the centre.
 Prints the deepest point (nm, > 0 below the design).
@@ -82,13 +82,17 @@ def compound_eye(base, lens, diameter, pitch, extent):
     return z
 
 
-def microlens_array(lens, diameter, pitch, extent):
-    """Spherical lenslets on the plane z = 0, a square lattice (docs/surfaces.md)."""
+def microlens_array(lens, diameter, pitch, extent, lattice="square"):
+    """Spherical lenslets on the plane z = 0 (docs/surfaces.md): a square lattice, or a
+    hexagonal one, rows pitch*sqrt(3)/2 apart, every odd row moved half a pitch along x."""
     c = 1 / lens
     rim = sphere_sag(c, (diameter / 2) ** 2)
-    n = int(np.ceil(extent / pitch)) + 1
-    centres = [(i * pitch, j * pitch) for i in range(-n, n + 1) for j in range(-n, n + 1)
-               if np.hypot(i * pitch, j * pitch) <= extent - diameter / 2 + 1e-12]
+    hexagonal = lattice == "hexagonal"
+    dy = pitch * np.sqrt(3.0) / 2 if hexagonal else pitch
+    n = int(np.ceil(extent / dy)) + 1
+    grid = [((i + (0.5 if hexagonal and j % 2 != 0 else 0.0)) * pitch, j * dy)
+            for i in range(-n, n + 1) for j in range(-n, n + 1)]
+    centres = [(x, y) for x, y in grid if np.hypot(x, y) <= extent - diameter / 2 + 1e-12]
 
     def z(x, y):
         out = np.zeros(np.broadcast(x, y).shape)
@@ -108,7 +112,8 @@ def main():
     kind, *p = design.split(":")
     designs = {"decentred_sphere": decentred_sphere, "compound_eye": compound_eye,
                "microlens_array": microlens_array}
-    z_of = designs[kind](*map(float, p))
+    numbers = [float(v) for v in p if v not in ("square", "hexagonal")]
+    z_of = designs[kind](*numbers, *[v for v in p if v in ("square", "hexagonal")])
     b = np.array(read(path, [], {"X": None, "Z": None, "C": 0.0}))
     X, Z, C = b[:, 0], b[:, 1], np.unwrap(np.radians(b[:, 2]))
     t = np.array([0.0, 0.5])

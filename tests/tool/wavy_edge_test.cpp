@@ -224,4 +224,34 @@ TEST_SUITE("tool") {
     CHECK(once < 2 * 0.00001);
     CHECK(twice == doctest::Approx(2 * once).epsilon(1e-4));
   }
+
+  TEST_CASE(
+      "a centre height's reach by bowls with one on the axis: in proportion to h, β at the "
+      "ridge the nose rolls over") {
+    // Bowls 0.148 mm in radius, 0.1371 mm across, in a hexagonal array 0.1965 mm apart: each
+    // rim a ridge that a 0.1 mm nose rolls over, touching once. The window about the central
+    // bowl's rim (ρ = 0.0686 mm) took in the next bowls' slopes and reached the axis, and
+    // took β = π/2 whatever h: 0.2 mm for h = 10 nm. With β at the ridge, asin(h/ρ) ≈ h/ρ
+    // doubles with h to within (h/ρ)²/2 < 10⁻⁷.
+    LensletArrayOptions o;
+    o.lens_radius = 0.148;
+    o.lens_diameter = 0.1371;
+    o.pitch = 0.1965;
+    o.pattern = LensletArrayOptions::Pattern::kHexagonal;
+    o.extent = 0.45;
+    const LensletArray bowls(o);
+    ToolMotion motion;
+    motion.nose_radius = 0.1;
+    motion.centre_height = 0.00001;
+    const double once = centre_height_reach(motion, bowls, 0.01, 0.45);
+    motion.centre_height = -0.00002;
+    const double twice = centre_height_reach(motion, bowls, 0.01, 0.45);
+    MESSAGE("reach for h = 10 nm: ", once * 1e6, " nm");
+    CHECK(once > 0);
+    // 2·(s_t + its change between samples)·(h/ρ)·R·Δψ: the steepest s_t alone,
+    // tan(asin(0.06855/0.148)) = 0.52, with Δψ ≤ 2·0.482 rad, R = 0.1 and ρ = 0.0686 at the
+    // central rim gives 1.47 h; the change adds to it. Under 4 h (0.2 mm before).
+    CHECK(once < 4 * 0.00001);
+    CHECK(twice == doctest::Approx(2 * once).epsilon(1e-4));
+  }
 }

@@ -60,32 +60,37 @@ double centre_height_reach(const ToolMotion& tool, const Surface& design, double
     }
     return w;
   };
-  // Where the nose is held at the crease c (a valley), its own touches ρ₁, ρ₂ take the
-  // window's place: (s_t(ρ₁) + s_t(ρ₂))·β·|ρ₂ − ρ₁| ≤ 2·max s_t·β·|ρ₂ − ρ₁|, β at the nearer. The
-  // window about c, by contrast, takes in every flank within R·Δψ, and near the axis, where the
-  // neighbours' slopes widen Δψ until the window reaches the axis (c − R·Δψ ≤ h), it
-  // takes β as π/2 whatever h is: domes 0.29 mm in radius, 0.22 mm across, with one on the
-  // axis, were refused with a reach of 0.26 mm for h = 10 nm. s_t is taken at both touches'
-  // radii on this line and on the lines half-way to its neighbours (the grid's lines are
-  // 2π/512 apart), the largest of the three. The nose is placed from a contact on either
-  // flank, as the planner places it (nose_touch), held at c or at a crease beside it (a
-  // trough narrower than the nose); a free nose touches once and adds nothing. false where
-  // it rolls (a ridge), is held from neither side, or the design is undefined there: the
-  // window's bound stands.
+  // How the nose meets the crease c on `line`, placed as the planner places it
+  // (nose_touch) from a contact on either side of it.
+  //  - Held (a valley, or a trough narrower than the nose, at c or a crease beside it): its
+  //    own touches ρ₁, ρ₂ take the window's place, (s_t(ρ₁) + s_t(ρ₂))·β·|ρ₂ − ρ₁| ≤
+  //    2·max s_t·β·|ρ₂ − ρ₁|, β at the nearer touch, s_t the largest at either touch's
+  //    radius on this line and on the lines half-way to its neighbours (2π/512 apart).
+  //  - Rolling (a ridge): it touches once, at the ridge or beside it, and the first-order
+  //    term does not arise; the window's bound stands for the second-order ones, but with
+  //    β at the ridge, where the touch is, not at c − R·Δψ, where a second touch would be.
+  //  - Neither, or the design undefined there: the window's bound as it is.
+  // The window alone took β at c − R·Δψ, and near the axis, where the next lenslets' slopes
+  // widen Δψ until that falls below h, it took β = π/2 whatever h was: domes 0.29 mm in
+  // radius, 0.22 mm across, with one on the axis, and bowls in a hexagonal array, were
+  // refused with reaches of 0.26 and 0.23 mm for h of 10 nm and 2 µm.
+  struct CreaseTouches {
+    bool defined = true, held = false, rolls = false;
+    double held_reach = 0;
+  };
   const double half_gap = std::numbers::pi / kLines;
-  const auto held_nose_reach = [&](const RadialLine& line, double c, double& reach) {
-    reach = 0;
-    bool held = false;
+  const auto touches_at = [&](const RadialLine& line, double c) {
+    CreaseTouches out;
     for (const double side : {-1.0, 1.0}) {
       const double contact = c + side * 1e-7;
       double z, zx, zy;
       design.sag_gradient(contact * line.cos, contact * line.sin, z, zx, zy);
       const double slope = zx * line.cos + zy * line.sin;
-      if (!std::isfinite(z) || !std::isfinite(slope)) return false;
+      if (!std::isfinite(z) || !std::isfinite(slope)) return CreaseTouches{false};
       const NoseTouch t = nose_touch(design, line, R, contact, z, slope);
-      if (t.rolling) return false;
+      out.rolls |= t.rolling;
       if (!t.held) continue;  // one touch: nothing to turn out of the plane
-      held = true;
+      out.held = true;
       const double near = std::min(std::abs(t.rho), std::abs(t.far_rho));
       const double beta = std::asin(std::min(1.0, h / std::max(near, h)));
       double tangential = 0;
@@ -94,13 +99,15 @@ double centre_height_reach(const ToolMotion& tool, const Surface& design, double
         for (const double rho : {t.rho, t.far_rho}) {
           double p, s_t;
           sample(beside, rho, p, s_t);
-          if (!std::isfinite(s_t)) return false;
+          if (!std::isfinite(s_t)) return CreaseTouches{false};
           tangential = std::max(tangential, s_t);
         }
       }
-      reach = std::max(reach, 2 * tangential * beta * std::abs(t.far_rho - t.rho));
+      out.held_reach =
+          std::max(out.held_reach, 2 * tangential * beta * std::abs(t.far_rho - t.rho));
     }
-    return held && std::isfinite(reach);
+    if (!std::isfinite(out.held_reach)) out.defined = false;
+    return out;
   };
   double largest = 0;
   for (int j = 0; j < kLines; ++j) {
@@ -123,13 +130,17 @@ double centre_height_reach(const ToolMotion& tool, const Surface& design, double
           w = window(c, apart);
         }
         if (!(w.psi_hi > w.psi_lo)) continue;
-        double held = 0;
-        if (held_nose_reach(line, c, held)) {
-          largest = std::max(largest, held);
-          continue;
-        }
-        const double beta = std::asin(std::min(1.0, h / std::max(c - apart, h)));
-        largest = std::max(largest, 2 * (w.steepest + w.change) * beta * R * (w.psi_hi - w.psi_lo));
+        const CreaseTouches t = touches_at(line, c);
+        const auto window_reach = [&](double nearest) {
+          const double beta = std::asin(std::min(1.0, h / std::max(nearest, h)));
+          return 2 * (w.steepest + w.change) * beta * R * (w.psi_hi - w.psi_lo);
+        };
+        double reach = t.held ? t.held_reach : 0.0;
+        if (!t.defined || !(t.held || t.rolls))
+          reach = window_reach(c - apart);
+        else if (t.rolls)
+          reach = std::max(reach, window_reach(c));
+        largest = std::max(largest, reach);
       }
       if (found < kCreases) break;
       from = std::nextafter(creases[kCreases - 1], INFINITY);
