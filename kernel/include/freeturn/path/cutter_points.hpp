@@ -123,8 +123,10 @@ double smooth_wavy_edge_reach(const ToolMotion& tool, const Surface& design, dou
 // about the contact moves that touch by β·R·Δψ along e_θ, and tilting the nose in it to
 // stay tangent (by at most s_t·β, s_t = |∇z · e_θ|) moves it by as much again, so it may
 // reach (s_t(ρ2) + s_t(ρ1))·β·R·Δψ past the design, β taken at the nearer touch
-// (ρ1 ≥ ρ2 − R·Δψ). The largest over the annulus (surface/slope_profile.hpp, sampled);
-// 0 without a centre height or creases.
+// (ρ1 ≥ ρ2 − R·Δψ). Where the nose placed beside a crease is held, its own touches give
+// ρ1, ρ2 and R·Δψ = |ρ2 − ρ1|; where it rolls over a ridge (one touch, no first-order
+// term), β is taken at the ridge. The largest over the annulus (sampled); 0 without a
+// centre height or creases.
 double centre_height_reach(const ToolMotion& tool, const Surface& design, double inner_radius,
                            double outer_radius);
 
