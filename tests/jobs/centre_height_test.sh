@@ -49,64 +49,48 @@ job decentred "{outer_radius: 1.0, inner_radius: 0.1}" "{type: sphere, radius: 5
 job eye "{outer_radius: 1.6, inner_radius: 0.03}" \
   "{type: compound_eye, base_radius: 20, lens_radius: -5, lens_diameter: 0.9, pitch: 1.0, pattern: rings}" 0.02 \
   "{equal_angle: {per_rev: 1000}}" && check eye compound_eye:20:-5:0.9:1.0:1.6 0.05 1.6
+# lenslets NAME SURFACE NOSE PITCH TOLERANCE DESIGN: a microlens array with h = −0.2 µm, cut
+# from 0.01 to 0.45 mm, must plan and its edge stay above the design read back from the NC.
+lenslets() {
+  cat > "$tmp/$1.yaml" <<YAML
+name: $1
+aperture: {outer_radius: 0.45, inner_radius: 0.01}
+surface: $2
+tool: {nose_radius: $3, included_angle_deg: 120, clearance_angle_deg: 40, centre_height: -0.0002}
+strategy:
+  mode: spiral
+  spiral: planar
+  pitch: $4
+  points: {chord: {tolerance: $5, max_angle_deg: 4}}
+cutting: {spindle_rpm: 20}
+machine: moore-nanotech-250upl
+outputs: {nc: true, report: false}
+YAML
+  "$freeturn" run "$tmp/$1.yaml" -o "$tmp/$1" --quiet || { echo "FAIL: $1: the run failed"; fail=1; return; }
+  local deepest
+  deepest=$("$py" "$src/tests/jobs/nc_rake_gouge.py" "$tmp/$1/$1.moore-nanotech-250upl.nc" \
+    "$6" "$3" -0.0002 60 0.01 0.45) || { fail=1; return; }
+  echo "$1: the edge's deepest below the design: $deepest nm"
+  "$py" -c "import sys; sys.exit(0 if float('$deepest') <= 0 else 1)" || { echo "FAIL: $1 cuts into the design"; fail=1; }
+}
 # Domes with one on the axis (0.29 mm in radius, 0.22 mm across, 0.2357 mm apart), h = −0.2 µm:
 # a 0.2 mm nose is held in the 16 µm valleys around the central dome with a touch about
 # 0.07 mm from the axis. The reach was taken from a window that reached the axis (β = π/2)
 # and the job refused for any h (0.26 mm); the held nose's own touches give 149 nm, and
 # with the blocks standing off by it the edge stays 80 nm above the design (with no reach,
 # 66 nm into it).
-domes() {
-  cat > "$tmp/domes.yaml" <<YAML
-name: domes
-aperture: {outer_radius: 0.45, inner_radius: 0.01}
-surface: {type: microlens_array, lens_radius: -0.2908, lens_diameter: 0.2198, pitch: 0.2357, lattice: square}
-tool: {nose_radius: 0.2, included_angle_deg: 120, clearance_angle_deg: 40, centre_height: -0.0002}
-strategy:
-  mode: spiral
-  spiral: planar
-  pitch: 0.005
-  points: {chord: {tolerance: 0.0002, max_angle_deg: 4}}
-cutting: {spindle_rpm: 20}
-machine: moore-nanotech-250upl
-outputs: {nc: true, report: false}
-YAML
-  "$freeturn" run "$tmp/domes.yaml" -o "$tmp/domes" --quiet || { echo "FAIL: domes: the run failed"; fail=1; return; }
-  local deepest
-  deepest=$("$py" "$src/tests/jobs/nc_rake_gouge.py" "$tmp/domes/domes.moore-nanotech-250upl.nc" \
-    microlens_array:-0.2908:0.2198:0.2357:0.45 0.2 -0.0002 60 0.01 0.45) || { fail=1; return; }
-  echo "domes: the edge's deepest below the design: $deepest nm"
-  "$py" -c "import sys; sys.exit(0 if float('$deepest') <= 0 else 1)" || { echo "FAIL: domes cut into the design"; fail=1; }
-}
-domes
+lenslets domes \
+  "{type: microlens_array, lens_radius: -0.2908, lens_diameter: 0.2198, pitch: 0.2357, lattice: square}" \
+  0.2 0.005 0.0002 microlens_array:-0.2908:0.2198:0.2357:0.45
 # Bowls in a hexagonal array with one on the axis (0.148 mm in radius, 0.1371 mm across,
 # 0.1965 mm apart), h = −0.2 µm under a 0.1 mm nose and ε = 0.5 µm: each rim a ridge the nose
 # rolls over. The window about the central rim reached the axis and the job was refused with
 # a reach of 0.2 mm; with β at the ridge it plans (reach 376 nm), and its edge stands 385 nm
 # above the design (the array to 0.68 mm planned with no reach at all: 12 nm above it, the
 # ridges' effect being of second order in h).
-bowls() {
-  cat > "$tmp/bowls.yaml" <<YAML
-name: bowls
-aperture: {outer_radius: 0.45, inner_radius: 0.01}
-surface: {type: microlens_array, lens_radius: 0.148, lens_diameter: 0.1371, pitch: 0.1965, lattice: hexagonal}
-tool: {nose_radius: 0.1, included_angle_deg: 120, clearance_angle_deg: 40, centre_height: -0.0002}
-strategy:
-  mode: spiral
-  spiral: planar
-  pitch: 0.01
-  points: {chord: {tolerance: 0.0005, max_angle_deg: 4}}
-cutting: {spindle_rpm: 20}
-machine: moore-nanotech-250upl
-outputs: {nc: true, report: false}
-YAML
-  "$freeturn" run "$tmp/bowls.yaml" -o "$tmp/bowls" --quiet || { echo "FAIL: bowls: the run failed"; fail=1; return; }
-  local deepest
-  deepest=$("$py" "$src/tests/jobs/nc_rake_gouge.py" "$tmp/bowls/bowls.moore-nanotech-250upl.nc" \
-    microlens_array:0.148:0.1371:0.1965:0.45:hexagonal 0.1 -0.0002 60 0.01 0.45) || { fail=1; return; }
-  echo "bowls: the edge's deepest below the design: $deepest nm"
-  "$py" -c "import sys; sys.exit(0 if float('$deepest') <= 0 else 1)" || { echo "FAIL: bowls cut into the design"; fail=1; }
-}
-bowls
+lenslets bowls \
+  "{type: microlens_array, lens_radius: 0.148, lens_diameter: 0.1371, pitch: 0.1965, lattice: hexagonal}" \
+  0.1 0.01 0.0005 microlens_array:0.148:0.1371:0.1965:0.45:hexagonal
 # To the axis with the centre check downgraded: the edge reaches no radius under h, and
 # the program is written without those blocks (material left about the axis), its verdict
 # UNSAFE (exit 1) with the centre check's finding. It stopped with "X is not a finite

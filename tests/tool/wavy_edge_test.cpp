@@ -176,6 +176,21 @@ TEST_SUITE("tool") {
   }
 }
 
+// centre_height_reach over 0.01 ≤ ρ ≤ 0.45 mm of a lenslet array with a nose of radius R,
+// for h = 10 nm and h = −20 nm: the second twice the first where the reach is in proportion
+// to |h|.
+struct ReachAtTwoHeights {
+  double once = 0, twice = 0;
+};
+ReachAtTwoHeights reach_at_10_and_minus_20_nm(const LensletArray& lenslets, double R) {
+  ToolMotion motion;
+  motion.nose_radius = R;
+  motion.centre_height = 0.00001;
+  const double once = centre_height_reach(motion, lenslets, 0.01, 0.45);
+  motion.centre_height = -0.00002;
+  return {once, centre_height_reach(motion, lenslets, 0.01, 0.45)};
+}
+
 TEST_SUITE("tool") {
   TEST_CASE(
       "a centre height's reach at a held nose: none on a smooth design or on the spindle "
@@ -210,13 +225,7 @@ TEST_SUITE("tool") {
     o.pitch = 0.2357;
     o.pattern = LensletArrayOptions::Pattern::kSquare;
     o.extent = 0.45;
-    const LensletArray domes(o);
-    ToolMotion motion;
-    motion.nose_radius = 0.2;
-    motion.centre_height = 0.00001;
-    const double once = centre_height_reach(motion, domes, 0.01, 0.45);
-    motion.centre_height = -0.00002;
-    const double twice = centre_height_reach(motion, domes, 0.01, 0.45);
+    const auto [once, twice] = reach_at_10_and_minus_20_nm(LensletArray(o), 0.2);
     MESSAGE("reach for h = 10 nm: ", once * 1e6, " nm");
     CHECK(once > 0);
     // 2·s_t·(h/ρ)·Δ with the domes' steepest s_t = tan(asin(0.1099/0.2908)) = 0.408, the
@@ -239,13 +248,7 @@ TEST_SUITE("tool") {
     o.pitch = 0.1965;
     o.pattern = LensletArrayOptions::Pattern::kHexagonal;
     o.extent = 0.45;
-    const LensletArray bowls(o);
-    ToolMotion motion;
-    motion.nose_radius = 0.1;
-    motion.centre_height = 0.00001;
-    const double once = centre_height_reach(motion, bowls, 0.01, 0.45);
-    motion.centre_height = -0.00002;
-    const double twice = centre_height_reach(motion, bowls, 0.01, 0.45);
+    const auto [once, twice] = reach_at_10_and_minus_20_nm(LensletArray(o), 0.1);
     MESSAGE("reach for h = 10 nm: ", once * 1e6, " nm");
     CHECK(once > 0);
     // 2·(s_t + its change between samples)·(h/ρ)·R·Δψ: the steepest s_t alone,

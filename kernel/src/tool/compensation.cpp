@@ -60,7 +60,7 @@ CutterLocation compensate(const ContactPoint& contact, const CompensationOptions
     // projected into (e, z). The checks and the planner keep the radial plane's nose
     // (nose_centre, ψ, B): the two touch the design at the same point, and differ by
     // first order in β only where the nose touches it twice (docs/tool.md).
-    if (!(std::abs(p_r) >= std::abs(h))) {
+    if (!edge_reaches(p_r, h)) {
       // The edge cannot reach a radius under |h| (the centre check reports it).
       cl.x = std::numeric_limits<double>::quiet_NaN();
       return cl;

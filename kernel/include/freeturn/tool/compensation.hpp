@@ -15,6 +15,8 @@
 // √(ρ² − h²) along e = (cos C, sin C, 0), and the section above takes e for e_r. The nose
 // then touches the design tangentially in the plane it cuts in (docs/tool.md).
 
+#include <cmath>
+
 #include "freeturn/path/cutter_points.hpp"
 #include "freeturn/surface/surface.hpp"
 #include "freeturn/tool/cutter_location.hpp"
@@ -42,6 +44,13 @@ double programmed_point_offset(const CompensationOptions& options);
 
 // What the machine's axes carry, for the planner's chord error (path/cutter_points.hpp).
 ToolMotion tool_motion(const CompensationOptions& options);
+
+// Whether the edge, `centre_height` off the spindle line, reaches the signed radius `rho`
+// of the contact's radial line: it reaches no radius under |h|. Where it does not,
+// compensate() leaves X undefined (NaN) and the centre check reports it.
+inline bool edge_reaches(double rho, double centre_height) {
+  return centre_height == 0 || std::abs(rho) >= std::abs(centre_height);
+}
 
 // The cutter location for one contact point. No checks (tool_checks.hpp); no allocation.
 CutterLocation compensate(const ContactPoint& contact, const CompensationOptions& options);

@@ -2,10 +2,10 @@
 // The stage between the planner and the machine: contact points in, checked cutter
 // locations out, chunk by chunk (the chunk in is the chunk out; nothing else is held).
 
-#include <cmath>
 #include <vector>
 
 #include "freeturn/path/contact_point.hpp"
+#include "freeturn/tool/compensation.hpp"
 #include "freeturn/tool/tool_checks.hpp"
 
 namespace freeturn {
@@ -31,7 +31,9 @@ class ToolCompensator final : public ContactSink {
       // leaves X undefined there, and the centre check reports it (an error stops the run).
       // Downgraded, the program is written without those blocks, leaving material about
       // the axis, and the finding marks it UNSAFE.
-      if (!std::isfinite(cl.x) && beyond_edge_reach(p, line)) continue;
+      if (!edge_reaches(p.point.x() * line.cos + p.point.y() * line.sin,
+                        options_.tool.centre_height))
+        continue;
       buffer_.push_back(cl);
     }
     out_.write(buffer_);
@@ -40,12 +42,6 @@ class ToolCompensator final : public ContactSink {
   const ToolCheckReport& report() const { return checker_.report(); }
 
  private:
-  bool beyond_edge_reach(const ContactPoint& p, const RadialLine& line) const {
-    const double h = options_.tool.centre_height;
-    const double rho = p.point.x() * line.cos + p.point.y() * line.sin;
-    return h != 0 && !(std::abs(rho) >= std::abs(h));
-  }
-
   CompensationOptions options_;
   ToolChecker checker_;
   CutterSink& out_;
