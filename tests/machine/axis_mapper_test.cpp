@@ -100,20 +100,22 @@ TEST_SUITE("machine") {
   }
 
   TEST_CASE("PVT dynamics are the controller's cubics: twice the acceleration at a kink") {
-    // X steps s1 per block, then s2 from block 100 on; C 3.6° a block at 20 rpm (h = 0.03 s).
-    // The controller's velocities are central differences, so at the kink's block the
-    // velocity is (s1 + s2)/2h, and the cubics either side accelerate by 2(s2 − s1)/h²
-    // at the kink (pvt_rule.hpp: a(0) = (6Δ − 4va − 2vb)/h), twice what linear motion
-    // reads back, (s2 − s1)/h². The block after the kink overshoots: its velocity
-    // a u² + b u + va peaks at u = 2/3 at s2 + (s2 − s1)/6, per h.
-    const double s1 = 1e-3, s2 = 3e-3, h = 0.03;
+    // X steps s1 per block, then s2 from block 100 on, then s3 from block 200 on; C 3.6° a
+    // block at 20 rpm (h = 0.03 s). The controller's velocities are central differences,
+    // so at the kink's block the velocity is (s1 + s2)/2h, and the cubics either side
+    // accelerate by 2(s2 − s1)/h² at the kink (pvt_rule.hpp: a(0) = (6Δ − 4va − 2vb)/h),
+    // twice what linear motion reads back, (s2 − s1)/h². The block after the kink
+    // overshoots: its velocity a u² + b u + va peaks at u = 2/3 at s2 + (s2 − s1)/6, per h.
+    // The second kink (s2 − s3 = 1.5e-3) and linear motion's stop after the last block
+    // (s3/h²) are smaller.
+    const double s1 = 1e-3, s2 = 3e-3, s3 = 1.5e-3, h = 0.03;
     std::vector<CutterLocation> cls(301);
     double x = 4;
     for (int k = 0; k <= 300; ++k) {
       CutterLocation& cl = cls[static_cast<std::size_t>(k)];
       cl.contact.theta = cl.c = k * 3.6 * std::numbers::pi / 180;
       cl.contact.r = cl.x = x;
-      x -= k < 100 ? s1 : s2;
+      x -= k < 100 ? s1 : k < 200 ? s2 : s3;
     }
     MotionOptions motion;
     motion.spindle_rpm = 20;
@@ -134,7 +136,8 @@ TEST_SUITE("machine") {
     };
     const DynamicsReport linear = peaks(Interpolation::kLinear);
     const DynamicsReport cubic = peaks(Interpolation::kCubic);
-    // The kink, not the start from rest (s1/h² = 1.1 mm/s²), sets X's figure.
+    // The kink, not the start from rest (s1/h² = 1.1 mm/s²) nor the stop (1.7), sets X's
+    // figure.
     CHECK(linear.peak_acceleration[0] == doctest::Approx((s2 - s1) / (h * h)).epsilon(1e-9));
     CHECK(cubic.peak_acceleration[0] == doctest::Approx(2 * (s2 - s1) / (h * h)).epsilon(1e-9));
     CHECK(linear.peak_velocity[0] == doctest::Approx(s2 / h).epsilon(1e-9));
@@ -151,6 +154,44 @@ TEST_SUITE("machine") {
     CHECK_NOTHROW(peaks(Interpolation::kLinear));
     CHECK_THROWS_WITH_AS(peaks(Interpolation::kCubic),
                          doctest::Contains("X acceleration exceeds the machine's limit at 20 rpm"),
+                         InputError);
+  }
+
+  TEST_CASE("linear motion stops after the last block: a short last block sets the rpm") {
+    // C turns 3.6° a block at 20 rpm (h = 0.03 s, 120°/s), the last block a third of one
+    // (h/3). The start from rest asks 120/h = 4000°/s², the blocks between none, and the
+    // stop 120/(h/3) = 12 000°/s²: against 6 000 allowed, the highest rpm is
+    // 20·√(m·6000/12000), set by the stop at the last block's place.
+    const double h = 0.03, step = 3.6 * std::numbers::pi / 180;
+    std::vector<CutterLocation> cls(101);
+    for (std::size_t k = 0; k < cls.size(); ++k) {
+      CutterLocation& cl = cls[k];
+      const double turned = k + 1 < cls.size() ? static_cast<double>(k) : k - 1 + 1.0 / 3;
+      cl.contact.theta = cl.c = turned * step;
+      cl.contact.r = cl.x = 1;
+    }
+    MachineDescription m = xzc();
+    m.axes[2].max_acceleration = 6000;
+    MotionOptions motion;
+    motion.spindle_rpm = 20;
+    motion.enforce_dynamics = false;
+    AxisCollector axes;
+    AxisMapper mapper(m, motion, axes);
+    mapper.write(cls);
+    // Before the end is known, the start from rest is the largest.
+    CHECK(mapper.report().peak_acceleration[2] == doctest::Approx(120 / h).epsilon(1e-9));
+    mapper.finish();
+    CHECK(axes.records.back().time == doctest::Approx(h / 3).epsilon(1e-9));
+    CHECK(mapper.report().peak_acceleration[2] == doctest::Approx(120 / (h / 3)).epsilon(1e-9));
+    CHECK(mapper.report().max_rpm ==
+          doctest::Approx(20 * std::sqrt(motion.margin * 0.5)).epsilon(1e-9));
+    CHECK(mapper.report().limiting.find("C acceleration at θ = 6.2") == 0);
+    // Enforced, the stop refuses 20 rpm.
+    motion.enforce_dynamics = true;
+    AxisMapper enforced(m, motion, axes);
+    enforced.write(cls);
+    CHECK_THROWS_WITH_AS(enforced.finish(),
+                         doctest::Contains("C acceleration exceeds the machine's limit at 20 rpm"),
                          InputError);
   }
 

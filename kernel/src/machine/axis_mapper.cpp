@@ -138,9 +138,11 @@ void AxisMapper::judge_motion(const BlockMotion& m, double theta, double r) {
 }
 
 void AxisMapper::finish() {
-  // Under PVT the program's last block, its end velocity one-sided.
+  // Under PVT the program's last block, its end velocity one-sided; under linear motion
+  // a spiral's stop after it.
   BlockMotion m;
-  if (dynamics_.finish(m)) judge_motion(m, last_place_.theta, last_place_.r);
+  if (dynamics_.finish(m) && (!m.stop || motion_.spindle_rpm > 0))
+    judge_motion(m, last_place_.theta, last_place_.r);
 }
 
 void AxisMapper::write(std::span<const CutterLocation> chunk) {

@@ -44,7 +44,16 @@ bool BlockDynamics::add(const std::array<double, 4>& q, double time, BlockMotion
 }
 
 bool BlockDynamics::finish(BlockMotion& out) {
-  if (!cubic_ || positions_ < 2) return false;
+  if (positions_ < 2) return false;
+  if (!cubic_) {
+    out.block = positions_ - 1;
+    out.stop = true;
+    for (int a = 0; a < 4; ++a) {
+      out.velocity[a] = 0;
+      out.acceleration[a] = -v_before_[a] * rate_before_;
+    }
+    return true;
+  }
   // The last block's end velocity, one-sided from the block before it.
   std::array<double, 4> v_end;
   for (int a = 0; a < 4; ++a) v_end[a] = pvt::velocity(q_before_[a], q_last_[a], t_last_);

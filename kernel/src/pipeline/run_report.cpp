@@ -138,8 +138,8 @@ void PassFigures::draw_block(const BlockMotion& m, double r) {
 }
 
 void PassFigures::finish(const PathSummary& s, const DynamicsReport& d, const ToolCheckReport& c) {
-  BlockMotion last;  // a PVT program's last block
-  if (block_dynamics_.finish(last)) draw_block(last, last_r_);
+  BlockMotion last;  // a PVT program's last block (the charts draw blocks, not the stop)
+  if (block_dynamics_.finish(last) && !last.stop) draw_block(last, last_r_);
   revolutions = s.theta_end / (2 * std::numbers::pi);
   chord_rms = points > 0 ? std::sqrt(chord_sq_ / static_cast<double>(points)) : 0.0;
   scallop_rms = points > 0 ? std::sqrt(scallop_sq_ / static_cast<double>(points)) : 0.0;

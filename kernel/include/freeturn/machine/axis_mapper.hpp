@@ -60,7 +60,8 @@ class AxisMapper final : public CutterSink {
   void write(std::span<const CutterLocation> chunk) override;
   // The path is done: under PVT its last block's cubic (which waits for the block after it,
   // whose place sets the velocity it ends with) is judged now, with the one-sided velocity
-  // of the program's end. Nothing to do for linear interpolation.
+  // of the program's end; under linear interpolation, a spiral's stop after its last block
+  // (a profile runs at a feed, which the controller ramps itself).
   void finish();
 
   const DynamicsReport& report() const { return report_; }

@@ -6,7 +6,8 @@
 //
 // Linear interpolation: axis a moves by d over a block of time t at v = d·(1/t), and its
 // acceleration into the block is the change of velocity over the shorter of the two
-// blocks' times, (v − v_before)·max(1/t, 1/t_before); the program starts at rest.
+// blocks' times, (v − v_before)·max(1/t, 1/t_before); the program starts at rest and
+// stops after its last block, over that block's time: −v_last/t_last.
 // PVT: the cubic Hermite through the block's ends, whose velocities are the central
 // differences over their neighbours (path/pvt_rule.hpp; one-sided at the program's ends):
 // the velocity of largest size on it, and the larger of its end accelerations (linear in
@@ -20,6 +21,9 @@ namespace freeturn {
 struct BlockMotion {
   long block = 0;  // 1 for the move from the first position to the second
   std::array<double, 4> velocity{}, acceleration{};
+  // Linear motion's stop after the last block `block`: velocity 0, the acceleration
+  // that brings each axis to rest.
+  bool stop = false;
 };
 
 class BlockDynamics {
@@ -29,7 +33,10 @@ class BlockDynamics {
   // True when a block's motion is known, into `out`: at once for linear motion, a block
   // later under PVT (its end velocity waits for the position after it).
   bool add(const std::array<double, 4>& q, double time, BlockMotion& out);
-  // The program's end: under PVT, its last block (true, into `out`).
+  // The program's end (true, into `out`, once a block has been added): under PVT its last
+  // block's cubic; under linear motion the stop after the last block, which a controller
+  // makes over that block: a spiral at one constant speed that ends in a short block stops
+  // its spindle hard there.
   bool finish(BlockMotion& out);
 
  private:
