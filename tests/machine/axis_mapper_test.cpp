@@ -185,7 +185,8 @@ TEST_SUITE("machine") {
     CHECK(mapper.report().peak_acceleration[2] == doctest::Approx(120 / (h / 3)).epsilon(1e-9));
     CHECK(mapper.report().max_rpm ==
           doctest::Approx(20 * std::sqrt(motion.margin * 0.5)).epsilon(1e-9));
-    CHECK(mapper.report().limiting.find("C acceleration at θ = 6.2") == 0);
+    CHECK(mapper.report().limiting.find(
+              "C acceleration (the stop after the last block) at θ = 6.2") == 0);
     // Enforced, the stop refuses 20 rpm.
     motion.enforce_dynamics = true;
     AxisMapper enforced(m, motion, axes);

@@ -92,7 +92,7 @@ void AxisMapper::check_block(const AxisRecord& r, const CutterLocation& cl) {
 }
 
 void AxisMapper::judge_block(const double speed[4], const double acceleration[4], double theta,
-                             double r) {
+                             double r, bool stop) {
   const bool spiral = motion_.spindle_rpm > 0;
   const double m = motion_.margin;
   double rpm_limit = std::numeric_limits<double>::infinity();
@@ -116,8 +116,11 @@ void AxisMapper::judge_block(const double speed[4], const double acceleration[4]
   const bool lowest = rpm_limit < report_.max_rpm;
   const bool refused = motion_.enforce_dynamics && rpm_limit < motion_.spindle_rpm;
   if (!lowest && !refused) return;
-  const std::string what =
-      std::string(axis_letter(limiting->axis)) + (by_acceleration ? " acceleration" : " velocity");
+  // A stop that sets the speed is worth naming: a short last block costs the whole program
+  // its speed at one constant rpm, which scheduled timing would not.
+  const std::string what = std::string(axis_letter(limiting->axis)) +
+                           (by_acceleration ? " acceleration" : " velocity") +
+                           (stop ? " (the stop after the last block)" : "");
   if (lowest) {
     report_.max_rpm = rpm_limit;
     report_.limiting = what + " at " + where(theta, r);
@@ -134,7 +137,7 @@ void AxisMapper::judge_motion(const BlockMotion& m, double theta, double r) {
     speed[i] = std::abs(m.velocity[static_cast<std::size_t>(i)]);
     acceleration[i] = std::abs(m.acceleration[static_cast<std::size_t>(i)]);
   }
-  judge_block(speed, acceleration, theta, r);
+  judge_block(speed, acceleration, theta, r, m.stop);
 }
 
 void AxisMapper::finish() {

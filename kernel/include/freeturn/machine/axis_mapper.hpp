@@ -74,7 +74,9 @@ class AxisMapper final : public CutterSink {
   // The peaks of one block's motion (per Axis: its largest speed and acceleration), into
   // the report and the highest rpm; with enforce_dynamics, an error where the requested
   // speed asks more of an axis than it allows. θ and r: the block's place on the path.
-  void judge_block(const double speed[4], const double acceleration[4], double theta, double r);
+  // `stop`: the motion is the stop after the last block, which the limit's text then names.
+  void judge_block(const double speed[4], const double acceleration[4], double theta, double r,
+                   bool stop = false);
   // judge_block for a block's motion (its sizes), the block at θ, r.
   void judge_motion(const BlockMotion& m, double theta, double r);
   const MachineDescription& machine_;

@@ -1,0 +1,68 @@
+#!/usr/bin/env bash
+# A spiral at one constant spindle speed stops after its last block: a tilted sphere on a
+# lathe whose C may accelerate 2 600 °/s², cut edge to centre and centre to edge. Its last
+# block is shorter than the others (the path's last step reaches its end), so coming to
+# rest over it asks more of C than starting from rest did. Read back from the NC alone
+# (tests/jobs/nc_dynamics.py: the last block ends at rest), every axis stays within the
+# machine; the report names the stop as what sets the speed. Before the stop was judged,
+# the edge-to-centre program asked C for 40 187 °/s².
+# usage: constant_speed_stop_test.sh <freeturn> <source dir>
+set -u
+freeturn=$1 src=$2
+tmp=$(mktemp -d)
+trap 'rm -rf "$tmp"' EXIT
+py=python3
+[[ -x /usr/bin/python3 ]] && py=/usr/bin/python3
+cat > "$tmp/slow-c-lathe.yaml" <<'YAML'
+name: slow-c-lathe
+plugin: moore
+axes:
+  - {name: X, sign: 1, min: -75, max: 75, decimals: 6, max_velocity: 0.25, max_acceleration: 5}
+  - {name: Z, sign: 1, min: -75, max: 75, decimals: 6, max_velocity: 5, max_acceleration: 400}
+  - {name: C, sign: 1, decimals: 5, max_velocity: 260, max_acceleration: 2600}
+c_axis: wrapped
+interpolation: linear
+max_block_rate: 1000
+moore:
+  header: "G71 G01 G18 G40 G63 G90 G94 G54\nT0101\nG53 Z-180.\nM80\nG09 C0.0\nG92 C0.0"
+  footer: "G53 Z-180.\nM79\nG52\nT0000\nM30"
+  spindle: M03
+  retract: 1.0
+  approach_feed: 12
+  child_blocks: 0
+YAML
+fail=0
+for direction in edge_to_centre centre_to_edge; do
+  cat > "$tmp/tilted.yaml" <<YAML
+name: tilted
+aperture: {outer_radius: 2.7}
+surface: {type: sphere, radius: -112.5, decenter: {x: 5.4}}
+tool: {nose_radius: 0.05, included_angle_deg: 90}
+strategy:
+  mode: spiral
+  spiral: space
+  base_surface: {fit: minimax}
+  pitch: 0.027
+  points: {chord: {tolerance: 0.000174, max_angle_deg: 3.07}}
+  direction: $direction
+cutting: {spindle_rpm: 20, timing: constant_rpm}
+machine: $tmp/slow-c-lathe.yaml
+outputs: {nc: true, report: true}
+YAML
+  rm -rf "$tmp/out"
+  "$freeturn" run "$tmp/tilted.yaml" -o "$tmp/out" --quiet || { echo "FAIL: $direction: the run failed"; fail=1; continue; }
+  report="$tmp/out/tilted.report.json"
+  cycle=$("$py" -c 'import json, sys; print(json.load(open(sys.argv[1]))["passes"][-1]["cycle_time_s"])' "$report")
+  if "$py" "$src/tests/jobs/nc_dynamics.py" "$tmp/out/tilted.slow-c-lathe.nc" "$tmp/slow-c-lathe.yaml" moore \
+       --cycle "$cycle" > "$tmp/dyn.txt"; then
+    echo "$direction: $(head -1 "$tmp/dyn.txt")"
+  else
+    echo "FAIL: $direction: the program exceeds its machine:"; cat "$tmp/dyn.txt"; fail=1
+  fi
+  limited=$("$py" -c 'import json, sys; print(json.load(open(sys.argv[1]))["passes"][-1]["constant_rpm"]["limited_by"])' "$report")
+  echo "  the speed is set by: $limited"
+  if [[ $direction == edge_to_centre && "$limited" != *"(the stop after the last block)"* ]]; then
+    echo "FAIL: $direction: the report does not name the stop"; fail=1
+  fi
+done
+exit $fail
