@@ -191,9 +191,11 @@ TEST_SUITE("machine") {
     motion.enforce_dynamics = true;
     AxisMapper enforced(m, motion, axes);
     enforced.write(cls);
-    CHECK_THROWS_WITH_AS(enforced.finish(),
-                         doctest::Contains("C acceleration exceeds the machine's limit at 20 rpm"),
-                         InputError);
+    CHECK_THROWS_WITH_AS(
+        enforced.finish(),
+        doctest::Contains("C acceleration (the stop after the last block) exceeds the "
+                          "machine's limit at 20 rpm"),
+        InputError);
   }
 
   TEST_CASE("travel limits and a B the machine does not have are errors with their place") {
