@@ -189,6 +189,18 @@ grep -q "^UNSAFE: 5 blocks ask a block rate beyond machine 'iso-lathe-xzc': 4000
 # nothing past the limits.
 [[ $(grep -c '^UNSAFE' "$tmp/passes.err") -le 3 ]] && ! grep -q 'passes.nc:[2-6]$' "$tmp/passes.err" ||
   { echo "FAIL: the first pass was judged past a limit:"; cat "$tmp/passes.err"; fail=1; }
+# A cut that ends fast: C turns 120 °/s through every block, the last a tenth as long
+# (0.3° in 2.5 ms), and the run stops after it: 120 / 0.0025 = 48 000 °/s² against the
+# ISO lathe's 36 000, though no block changes speed (before, such a stop was not judged).
+{
+  printf 'G93\n'
+  for k in 0 1 2 3; do printf 'G1 X2 Z0.56 C%d F2400\n' $((k * 3)); done
+  printf 'G1 X2 Z0.56 C9.3 F24000\nG94\nG0 Z2\nM2\n'
+} > "$tmp/stop.nc"
+(cd "$src/configs/jobs" && "$freeturn" simulate oap_segment.yaml -o "$tmp/stop" --quiet --program "$tmp/stop.nc") > /dev/null 2> "$tmp/stop.err"
+[[ $? == 1 ]] || { echo "FAIL: the hard stop did not make it UNSAFE"; fail=1; }
+grep -q "^UNSAFE: 1 block asks C acceleration beyond machine 'iso-lathe-xzc': 4.8e+04 deg/s2 against 3.6e+04 at .*stop.nc:6$" "$tmp/stop.err" ||
+  { echo "FAIL: the hard stop's verdict:"; cat "$tmp/stop.err"; fail=1; }
 # An inverse-time block with no time: F0, a negative F, or no F at all under G93. A controller
 # refuses such a block (before, the dynamics were only noted as not judged, in a sentence
 # that said the opposite: "states a time this reader knows").
