@@ -64,5 +64,8 @@ YAML
   if [[ $direction == edge_to_centre && "$limited" != *"(the stop after the last block)"* ]]; then
     echo "FAIL: $direction: the report does not name the stop"; fail=1
   fi
+  # The warning says what scheduled timing would keep: this machine writes a time a block.
+  "$py" -c 'import json, sys; w = [w["message"] for w in json.load(open(sys.argv[1]))["warnings"] if w["kind"] == "spindle_speed"]; print(w[0]); sys.exit("with cutting.timing: scheduled it would run at 20 rpm" not in w[0])' "$report" ||
+    { echo "FAIL: $direction: the spindle speed warning does not point to scheduled timing"; fail=1; }
 done
 exit $fail

@@ -598,6 +598,9 @@ RunResult execute_job(const Job& job, const PreparedJob& prepared, const std::st
   const bool scheduled = spiral && scheduling(job, machine);
   motion.enforce_dynamics = plan.cutting.enforce_dynamics && !scheduled && !probe;
   report.scheduled = scheduled;
+  report.could_schedule = spiral && !scheduled && plan.cutting.enforce_dynamics &&
+                          !machine.constant_block_time &&
+                          machine.interpolation != Interpolation::kCubic;
   report.requested_rpm = spiral ? plan.cutting.spindle_rpm : 0.0;
   report.spindle_rpm = motion.spindle_rpm;
   report.enforce_dynamics = plan.cutting.enforce_dynamics;

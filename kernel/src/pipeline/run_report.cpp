@@ -361,10 +361,15 @@ void judge(RunReport& r) {
       w.kind = "spindle_speed";
       w.severity = ReportWarning::Severity::kWarning;
       w.pass = f.name;
-      w.message = "the machine's limits allow at most " + significant_text(r.spindle_rpm, 4) +
-                  " rpm at one constant speed (set by " + f.dynamics.limiting +
-                  "), not the requested " + significant_text(r.requested_rpm, 4) +
-                  " rpm: the program runs at " + significant_text(r.spindle_rpm, 4) + " rpm";
+      w.message =
+          "the machine's limits allow at most " + significant_text(r.spindle_rpm, 4) +
+          " rpm at one constant speed (set by " + f.dynamics.limiting + "), not the requested " +
+          significant_text(r.requested_rpm, 4) + " rpm: the program runs at " +
+          significant_text(r.spindle_rpm, 4) + " rpm" +
+          (r.could_schedule ? std::string(" (with cutting.timing: scheduled it would run at ") +
+                                  significant_text(r.requested_rpm, 4) +
+                                  " rpm, slowing only the blocks that need it)"
+                            : std::string());
       w.value = r.spindle_rpm;
       w.limit = r.requested_rpm;
       w.unit = "rpm";

@@ -178,6 +178,9 @@ struct RunReport {
   std::vector<ReportWarning> warnings;
   std::vector<PassFigures> passes;
   bool scheduled = false;       // spiral block times scheduled to the machine's limits
+  // The job asked for one constant speed where the machine could take scheduled times
+  // (linear motion, a time per block): the report then says what scheduling would keep.
+  bool could_schedule = false;
   bool enforce_dynamics = true;
   // The machine's dynamic limits per Axis (mm/s, °/s; infinite: none stated) and which
   // axes it has.
