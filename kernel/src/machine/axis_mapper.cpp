@@ -95,6 +95,8 @@ void AxisMapper::judge_block(const double speed[4], const double acceleration[4]
                              double r, bool stop) {
   const bool spiral = motion_.spindle_rpm > 0;
   const double m = motion_.margin;
+  // The speed the limits scale with: a spiral's rpm, a profile's feed.
+  const double base = spiral ? motion_.spindle_rpm : motion_.feed;
   double rpm_limit = std::numeric_limits<double>::infinity();
   const AxisSpec* limiting = nullptr;
   bool by_acceleration = false;
@@ -103,16 +105,29 @@ void AxisMapper::judge_block(const double speed[4], const double acceleration[4]
     report_.peak_velocity[i] = std::max(report_.peak_velocity[i], speed[i]);
     report_.peak_acceleration[i] = std::max(report_.peak_acceleration[i], acceleration[i]);
     if (speed[i] > 0 && std::isfinite(s.max_velocity)) {
-      const double candidate = motion_.spindle_rpm * m * s.max_velocity / speed[i];
+      const double candidate = base * m * s.max_velocity / speed[i];
       if (candidate < rpm_limit) rpm_limit = candidate, limiting = &s, by_acceleration = false;
     }
     if (acceleration[i] > 0 && std::isfinite(s.max_acceleration)) {
-      const double candidate =
-          motion_.spindle_rpm * std::sqrt(m * s.max_acceleration / acceleration[i]);
+      const double candidate = base * std::sqrt(m * s.max_acceleration / acceleration[i]);
       if (candidate < rpm_limit) rpm_limit = candidate, limiting = &s, by_acceleration = true;
     }
   }
-  if (!limiting || !spiral) return;
+  if (!limiting) return;
+  if (!spiral) {
+    // A profile on a PVT controller runs the cubics at the times its feed sets: velocity
+    // scales with the feed and acceleration with its square, as with a spiral's rpm. (On a
+    // linear controller a feed move is ramped by the controller itself.)
+    if (!dynamics_.cubic() || !motion_.enforce_dynamics || rpm_limit >= motion_.feed) return;
+    throw InputError(where(theta, r),
+                     std::string(axis_letter(limiting->axis)) +
+                         (by_acceleration ? " acceleration" : " velocity") +
+                         " on the controller's PVT cubics exceeds the machine's limit at "
+                         "cutting.feed " +
+                         number(motion_.feed) + " mm/min: give a feed of at most " +
+                         number(rpm_limit) + " mm/min",
+                     "cutting.feed");
+  }
   const bool lowest = rpm_limit < report_.max_rpm;
   const bool refused = motion_.enforce_dynamics && rpm_limit < motion_.spindle_rpm;
   if (!lowest && !refused) return;
