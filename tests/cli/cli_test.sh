@@ -116,6 +116,11 @@ contains "PVT profile names the feed that holds" "$tmp/err" "X acceleration on t
 sed 's/feed: 1400 /feed: 257.5 /' "$tmp/ring_fast.yaml" > "$tmp/ring_held.yaml"
 (cd "$src/configs/jobs" && "$freeturn" run "$tmp/ring_held.yaml" -o "$tmp/ring_held" --quiet) 2> "$tmp/err"
 expect "PVT profile at the feed that holds" 0 $?
+# With the limits turned off it is written, and UNSAFE with the feed that would hold.
+sed 's/feed: 1400 /feed: 1400\n  enforce_dynamics: false/' "$tmp/ring_fast.yaml" > "$tmp/ring_unsafe.yaml"
+(cd "$src/configs/jobs" && "$freeturn" run "$tmp/ring_unsafe.yaml" -o "$tmp/ring_unsafe" --quiet) 2> "$tmp/err"
+expect "PVT profile over the limits, turned off" 1 $?
+contains "PVT profile off: UNSAFE with the feed" "$tmp/err" "at 1400 mm/min the program exceeds the machine's limits (enforce_dynamics: false): the highest feasible feed is 257.568 mm/min, set by X acceleration on the controller's PVT cubics"
 # The CL data is written round-trip exact: each contact's θ is atan2(y, x) of its own point
 # to 1e-12 mm along the arc (nine fixed decimals were 2.5 nm off at r = 5 mm).
 python3 - "$tmp/fast/oap_segment.cl.csv" <<'PY' || { echo "FAIL: CL data not exact"; fail=1; }

@@ -118,15 +118,19 @@ void AxisMapper::judge_block(const double speed[4], const double acceleration[4]
     // A profile on a PVT controller runs the cubics at the times its feed sets: velocity
     // scales with the feed and acceleration with its square, as with a spiral's rpm. (On a
     // linear controller a feed move is ramped by the controller itself.)
-    if (!dynamics_.cubic() || !motion_.enforce_dynamics || rpm_limit >= motion_.feed) return;
-    throw InputError(where(theta, r),
-                     std::string(axis_letter(limiting->axis)) +
-                         (by_acceleration ? " acceleration" : " velocity") +
-                         " on the controller's PVT cubics exceeds the machine's limit at "
-                         "cutting.feed " +
-                         number(motion_.feed) + " mm/min: give a feed of at most " +
-                         number(rpm_limit) + " mm/min",
-                     "cutting.feed");
+    if (!dynamics_.cubic() || rpm_limit >= report_.max_feed) return;
+    const std::string what = std::string(axis_letter(limiting->axis)) +
+                             (by_acceleration ? " acceleration" : " velocity") +
+                             " on the controller's PVT cubics";
+    report_.max_feed = rpm_limit;
+    report_.feed_limiting = what + " at " + where(theta, r);
+    if (motion_.enforce_dynamics && rpm_limit < motion_.feed)
+      throw InputError(where(theta, r),
+                       what + " exceeds the machine's limit at cutting.feed " +
+                           number(motion_.feed) + " mm/min: give a feed of at most " +
+                           number(rpm_limit) + " mm/min",
+                       "cutting.feed");
+    return;
   }
   const bool lowest = rpm_limit < report_.max_rpm;
   const bool refused = motion_.enforce_dynamics && rpm_limit < motion_.spindle_rpm;

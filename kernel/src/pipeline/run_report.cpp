@@ -375,6 +375,23 @@ void judge(RunReport& r) {
       w.unit = "rpm";
       r.warnings.push_back(std::move(w));
     }
+    if (r.spindle_rpm == 0 && r.parameters.feed > 0 &&
+        f.dynamics.max_feed < r.parameters.feed * (1 - 1e-12)) {
+      // A PVT profile written with enforce_dynamics: false.
+      ReportWarning w;
+      w.kind = "dynamics";
+      w.severity = ReportWarning::Severity::kUnsafe;
+      w.pass = f.name;
+      w.message = "at " + significant_text(r.parameters.feed, 6) +
+                  " mm/min the program exceeds the machine's limits (enforce_dynamics: false): "
+                  "the highest feasible feed is " +
+                  significant_text(f.dynamics.max_feed, 6) + " mm/min, set by " +
+                  f.dynamics.feed_limiting;
+      w.value = r.parameters.feed;
+      w.limit = f.dynamics.max_feed;
+      w.unit = "mm/min";
+      r.warnings.push_back(std::move(w));
+    }
     if (f.scheduled && f.slowed_blocks > 0) {
       ReportWarning w;
       w.kind = "slowed_blocks";

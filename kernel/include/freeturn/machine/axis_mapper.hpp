@@ -17,6 +17,7 @@
 // cubic's acceleration is up to twice the linear figure, and three times where they
 // reverse.
 
+#include <limits>
 #include <string>
 #include <vector>
 
@@ -46,6 +47,10 @@ struct DynamicsReport {
   double turns = 0;       // spindle revolutions of the path: its cycle at max_rpm is 60·turns/max_rpm
   long blocks = 0;
   std::string limiting;  // what sets max_rpm ("X velocity at θ = …")
+  // A profile on a PVT controller: the highest feed its cubics allow (mm/min; infinite
+  // elsewhere), and what sets it.
+  double max_feed = std::numeric_limits<double>::infinity();
+  std::string feed_limiting;
 };
 
 class AxisMapper final : public CutterSink {
