@@ -95,9 +95,10 @@ void AxisMapper::judge_block(const double speed[4], const double acceleration[4]
                              double r, bool stop) {
   const bool spiral = motion_.spindle_rpm > 0;
   const double m = motion_.margin;
-  // The speed the limits scale with: a spiral's rpm, a profile's feed.
+  // The speed the limits scale with (velocity with it, acceleration with its square): a
+  // spiral's rpm, a profile's feed.
   const double base = spiral ? motion_.spindle_rpm : motion_.feed;
-  double rpm_limit = std::numeric_limits<double>::infinity();
+  double speed_limit = std::numeric_limits<double>::infinity();
   const AxisSpec* limiting = nullptr;
   bool by_acceleration = false;
   for (const AxisSpec& s : machine_.axes) {
@@ -106,48 +107,41 @@ void AxisMapper::judge_block(const double speed[4], const double acceleration[4]
     report_.peak_acceleration[i] = std::max(report_.peak_acceleration[i], acceleration[i]);
     if (speed[i] > 0 && std::isfinite(s.max_velocity)) {
       const double candidate = base * m * s.max_velocity / speed[i];
-      if (candidate < rpm_limit) rpm_limit = candidate, limiting = &s, by_acceleration = false;
+      if (candidate < speed_limit) speed_limit = candidate, limiting = &s, by_acceleration = false;
     }
     if (acceleration[i] > 0 && std::isfinite(s.max_acceleration)) {
       const double candidate = base * std::sqrt(m * s.max_acceleration / acceleration[i]);
-      if (candidate < rpm_limit) rpm_limit = candidate, limiting = &s, by_acceleration = true;
+      if (candidate < speed_limit) speed_limit = candidate, limiting = &s, by_acceleration = true;
     }
   }
-  if (!limiting) return;
-  if (!spiral) {
-    // A profile on a PVT controller runs the cubics at the times its feed sets: velocity
-    // scales with the feed and acceleration with its square, as with a spiral's rpm. (On a
-    // linear controller a feed move is ramped by the controller itself.)
-    if (!dynamics_.cubic() || rpm_limit >= report_.max_feed) return;
-    const std::string what = std::string(axis_letter(limiting->axis)) +
-                             (by_acceleration ? " acceleration" : " velocity") +
-                             " on the controller's PVT cubics";
-    report_.max_feed = rpm_limit;
-    report_.feed_limiting = what + " at " + where(theta, r);
-    if (motion_.enforce_dynamics && rpm_limit < motion_.feed)
-      throw InputError(where(theta, r),
-                       what + " exceeds the machine's limit at cutting.feed " +
-                           number(motion_.feed) + " mm/min: give a feed of at most " +
-                           number(rpm_limit) + " mm/min",
-                       "cutting.feed");
-    return;
-  }
-  const bool lowest = rpm_limit < report_.max_rpm;
-  const bool refused = motion_.enforce_dynamics && rpm_limit < motion_.spindle_rpm;
+  // A profile is judged on a PVT controller only, which runs the cubics at the times its
+  // feed sets; a linear controller ramps a feed move itself.
+  if (!limiting || (!spiral && machine_.interpolation != Interpolation::kCubic)) return;
+  double& highest = spiral ? report_.max_rpm : report_.max_feed;
+  std::string& set_by = spiral ? report_.limiting : report_.feed_limiting;
+  const bool lowest = speed_limit < highest;
+  const bool refused = motion_.enforce_dynamics && speed_limit < base;
   if (!lowest && !refused) return;
   // A stop that sets the speed is worth naming: a short last block costs the whole program
   // its speed at one constant rpm, which scheduled timing would not.
   const std::string what = std::string(axis_letter(limiting->axis)) +
                            (by_acceleration ? " acceleration" : " velocity") +
-                           (stop ? " (the stop after the last block)" : "");
+                           (!spiral ? " on the controller's PVT cubics"
+                            : stop  ? " (the stop after the last block)"
+                                    : "");
   if (lowest) {
-    report_.max_rpm = rpm_limit;
-    report_.limiting = what + " at " + where(theta, r);
+    highest = speed_limit;
+    set_by = what + " at " + where(theta, r);
   }
-  if (refused)
-    throw CheckFailure(where(theta, r),
-                       what + " exceeds the machine's limit at " + number(motion_.spindle_rpm) +
-                           " rpm; this block allows at most " + number(rpm_limit) + " rpm");
+  if (!refused) return;
+  if (!spiral)
+    throw InputError(where(theta, r),
+                     what + " exceeds the machine's limit at cutting.feed " + number(base) +
+                         " mm/min: give a feed of at most " + number(speed_limit) + " mm/min",
+                     "cutting.feed");
+  throw CheckFailure(where(theta, r), what + " exceeds the machine's limit at " + number(base) +
+                                          " rpm; this block allows at most " + number(speed_limit) +
+                                          " rpm");
 }
 
 void AxisMapper::judge_motion(const BlockMotion& m, double theta, double r) {

@@ -238,10 +238,16 @@ BaseFigures base_figures(const BasePlanOptions& options, const BasePlan& plan) {
   return b;
 }
 
+// The machine's program carries a time per block, which a schedule may set: linear motion
+// (PVT cubics would change with the times) and a dialect that writes a time a block.
+bool takes_block_times(const MachineDescription& machine) {
+  return !machine.constant_block_time && machine.interpolation != Interpolation::kCubic;
+}
+
 bool scheduling(const Job& job, const MachineDescription& machine) {
   const Cutting& c = job.plan->cutting;
   return c.enforce_dynamics && c.timing == Cutting::Timing::kScheduled &&
-         !machine.constant_block_time && machine.interpolation != Interpolation::kCubic;
+         takes_block_times(machine);
 }
 
 // The highest the programmed point rises over the job's aperture (kernel Z, mm): the base
@@ -598,9 +604,8 @@ RunResult execute_job(const Job& job, const PreparedJob& prepared, const std::st
   const bool scheduled = spiral && scheduling(job, machine);
   motion.enforce_dynamics = plan.cutting.enforce_dynamics && !scheduled && !probe;
   report.scheduled = scheduled;
-  report.could_schedule = spiral && !scheduled && plan.cutting.enforce_dynamics &&
-                          !machine.constant_block_time &&
-                          machine.interpolation != Interpolation::kCubic;
+  report.could_schedule =
+      spiral && !scheduled && plan.cutting.enforce_dynamics && takes_block_times(machine);
   report.requested_rpm = spiral ? plan.cutting.spindle_rpm : 0.0;
   report.spindle_rpm = motion.spindle_rpm;
   report.enforce_dynamics = plan.cutting.enforce_dynamics;

@@ -342,21 +342,27 @@ void judge(RunReport& r) {
       w.unit = "nm";
       r.warnings.push_back(std::move(w));
     }
-    if (!f.scheduled && r.spindle_rpm > 0 && f.dynamics.max_rpm < r.spindle_rpm * (1 - 1e-12)) {
+    // Written with enforce_dynamics: false at a speed (a spiral's rpm, a PVT profile's feed)
+    // over the highest the blocks allow.
+    const auto over_the_limits = [&](double at, double highest, const std::string& unit,
+                                     const std::string& what, const std::string& set_by) {
       ReportWarning w;
       w.kind = "dynamics";
       w.severity = ReportWarning::Severity::kUnsafe;
       w.pass = f.name;
-      w.message = "at " + significant_text(r.spindle_rpm, 6) +
-                  " rpm the program exceeds the machine's limits (enforce_dynamics: false): the "
-                  "highest feasible constant speed is " +
-                  significant_text(f.dynamics.max_rpm, 6) + " rpm, set by " + f.dynamics.limiting;
-      w.value = r.spindle_rpm;
-      w.limit = f.dynamics.max_rpm;
-      w.unit = "rpm";
+      w.message = "at " + significant_text(at, 6) + " " + unit +
+                  " the program exceeds the machine's limits (enforce_dynamics: false): the "
+                  "highest feasible " +
+                  what + " is " + significant_text(highest, 6) + " " + unit + ", set by " + set_by;
+      w.value = at;
+      w.limit = highest;
+      w.unit = unit;
       r.warnings.push_back(std::move(w));
-    } else if (!f.scheduled && r.spindle_rpm > 0 &&
-               r.spindle_rpm < r.requested_rpm * (1 - 1e-9)) {
+    };
+    if (!f.scheduled && r.spindle_rpm > 0 && f.dynamics.max_rpm < r.spindle_rpm * (1 - 1e-12)) {
+      over_the_limits(r.spindle_rpm, f.dynamics.max_rpm, "rpm", "constant speed",
+                      f.dynamics.limiting);
+    } else if (!f.scheduled && r.spindle_rpm > 0 && r.spindle_rpm < r.requested_rpm * (1 - 1e-9)) {
       ReportWarning w;
       w.kind = "spindle_speed";
       w.severity = ReportWarning::Severity::kWarning;
@@ -376,22 +382,9 @@ void judge(RunReport& r) {
       r.warnings.push_back(std::move(w));
     }
     if (r.spindle_rpm == 0 && r.parameters.feed > 0 &&
-        f.dynamics.max_feed < r.parameters.feed * (1 - 1e-12)) {
-      // A PVT profile written with enforce_dynamics: false.
-      ReportWarning w;
-      w.kind = "dynamics";
-      w.severity = ReportWarning::Severity::kUnsafe;
-      w.pass = f.name;
-      w.message = "at " + significant_text(r.parameters.feed, 6) +
-                  " mm/min the program exceeds the machine's limits (enforce_dynamics: false): "
-                  "the highest feasible feed is " +
-                  significant_text(f.dynamics.max_feed, 6) + " mm/min, set by " +
-                  f.dynamics.feed_limiting;
-      w.value = r.parameters.feed;
-      w.limit = f.dynamics.max_feed;
-      w.unit = "mm/min";
-      r.warnings.push_back(std::move(w));
-    }
+        f.dynamics.max_feed < r.parameters.feed * (1 - 1e-12))
+      over_the_limits(r.parameters.feed, f.dynamics.max_feed, "mm/min", "feed",
+                      f.dynamics.feed_limiting);
     if (f.scheduled && f.slowed_blocks > 0) {
       ReportWarning w;
       w.kind = "slowed_blocks";

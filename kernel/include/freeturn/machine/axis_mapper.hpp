@@ -77,8 +77,9 @@ class AxisMapper final : public CutterSink {
  private:
   void check_block(const AxisRecord& r, const CutterLocation& cl);
   // The peaks of one block's motion (per Axis: its largest speed and acceleration), into
-  // the report and the highest rpm; with enforce_dynamics, an error where the requested
-  // speed asks more of an axis than it allows. θ and r: the block's place on the path.
+  // the report and the highest rpm (a PVT profile: feed); with enforce_dynamics, an error
+  // where the requested speed asks more of an axis than it allows. θ and r: the block's
+  // place on the path.
   // `stop`: the motion is the stop after the last block, which the limit's text then names.
   void judge_block(const double speed[4], const double acceleration[4], double theta, double r,
                    bool stop = false);

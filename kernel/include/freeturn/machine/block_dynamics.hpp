@@ -38,7 +38,6 @@ class BlockDynamics {
   // makes over that block: a spiral at one constant speed that ends in a short block stops
   // its spindle hard there.
   bool finish(BlockMotion& out);
-  bool cubic() const { return cubic_; }
 
  private:
   // The cubic of `block` (from q_before_ to q_last_, time t_last_), ending at v_end.
