@@ -123,11 +123,12 @@ def test_errors_carry_their_place(tmp_path):
     assert not (tmp_path / "t").exists()
     # A check set to error stops a run: CheckFailure, an InputError.
     cup = tmp_path / "cup.yaml"
-    cup.write_text("name: cup\naperture: {outer_radius: 0.1}\nsurface: {type: sphere, radius: 0.3}\n"
-                   "tool: {nose_radius: 0.5}\nstrategy: {mode: spiral, spiral: planar, pitch: 0.01,\n"
+    cup.write_text("name: cup\naperture: {outer_radius: 0.2}\n"
+                   "surface: {type: sphere, radius: 2.0, decenter: {x: 0.5}}\n"
+                   "tool: {nose_radius: 0.1}\nstrategy: {mode: spiral, spiral: planar, pitch: 0.01,\n"
                    "  points: {chord: {tolerance: 0.001, max_angle_deg: 5}}}\n"
                    "cutting: {spindle_rpm: 20}\nmachine: iso-lathe-xzc\n")
-    with pytest.raises(freeturn.CheckFailure, match="nose_radius"):
+    with pytest.raises(freeturn.CheckFailure, match="clearance_angle_deg"):
         freeturn.check_job(str(cup))
 
 

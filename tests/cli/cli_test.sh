@@ -154,56 +154,81 @@ YAML
 contains "ring spiral: prediction bounds the cut" "$tmp/stdout" "an upper bound"
 contains "ring spiral passes" "$tmp/ring_spiral/ring_spiral.report.json" '"status": "PASS"'
 
-# A downgraded check still marks the program UNSAFE: a sinusoidal ring whose troughs
-# (concave radius 1/(Aω²) = 0.507 mm) are tighter than a 0.6 mm nose, with the gouge
-# checks set to warning, is written, but run exits 1 and both commands name the worst place.
+# A sinusoidal ring whose troughs (concave radius 1/(Aω²) = 0.507 mm) are tighter than a
+# 0.6 mm nose: no placement of the nose touches their bottoms, so it rests on both sides of
+# each (docs/tool.md, "Troughs tighter than the nose"). The program leaves the bottoms and
+# the report says how much; read back from the NC alone, the edge stays above the design.
+# Until December 2026 it was written gouging the troughs (tests/jobs/nc_profile_gouge.py
+# read it 4.5 µm deep), UNSAFE only by the gouge checks.
 sed -e 's/amplitude: 0.005 /amplitude: 0.05 /' -e 's/period: 2.5 /period: 1.0 /' \
-    -e 's/nose_radius: 0.5/nose_radius: 0.6\n  checks: {gouge: warning, global_gouge: warning}/' \
-    "$src/configs/jobs/sinusoidal_ring.yaml" > "$tmp/gouge.yaml"
-"$freeturn" run "$tmp/gouge.yaml" -o "$tmp/gouge" > /dev/null 2> "$tmp/err"; expect "run with a downgraded gouge" 1 $?
-contains "run says UNSAFE at the gouge" "$tmp/err" "UNSAFE: finish: gouge: "
-contains "run names where" "$tmp/err" "at θ = "
-[[ -f "$tmp/gouge/sinusoidal_ring.precitech-nanoform-250.nc" ]] || { echo "FAIL: a warning-only job wrote no program"; fail=1; }
+    -e 's/nose_radius: 0.5/nose_radius: 0.6/' \
+    "$src/configs/jobs/sinusoidal_ring.yaml" > "$tmp/held.yaml"
+"$freeturn" run "$tmp/held.yaml" -o "$tmp/held" > /dev/null 2> "$tmp/err"; expect "a ring whose troughs are tighter than the nose" 0 $?
+contains "the material left is named" "$tmp/err" "hold the nose at a crease or a trough it cannot reach into: up to "
+contains "the report says PASS" "$tmp/held/sinusoidal_ring.report.json" '"status": "PASS"'
+contains "the uncut residual is a structured warning" "$tmp/held/sinusoidal_ring.report.json" '"kind": "uncut_residual"'
+if [[ -x /usr/bin/python3 ]] && /usr/bin/python3 -c "import numpy" 2> /dev/null; then
+  deepest=$(/usr/bin/python3 "$src/tests/jobs/nc_profile_gouge.py" \
+    "$tmp/held/sinusoidal_ring.precitech-nanoform-250.nc" sinusoidal_ring:0.05:1.0 0.6 0 60 5.0)
+  awk -v d="$deepest" 'BEGIN { exit !(d < 10) }' || { echo "FAIL: the held ring's edge goes $deepest nm below the design"; fail=1; }
+fi
 # Its 0.6 mm nose is held still on the cone point at the centre: a PVT block there that
 # repeats the last one's place would have no time (a profile's block time is its X-Z chord).
-repeated="$(grep '^X' "$tmp/gouge/sinusoidal_ring.precitech-nanoform-250.nc" | uniq -d)"
+repeated="$(grep '^X' "$tmp/held/sinusoidal_ring.precitech-nanoform-250.nc" | uniq -d)"
 [[ -z "$repeated" ]] || { echo "FAIL: the PVT program repeats a block in place: $repeated"; fail=1; }
-contains "the report says UNSAFE" "$tmp/gouge/sinusoidal_ring.report.json" '"status": "UNSAFE"'
-contains "the gouge is a structured warning" "$tmp/gouge/sinusoidal_ring.report.json" '"kind": "local_gouge"'
-"$freeturn" check "$tmp/gouge.yaml" > "$tmp/stdout"; expect "check with a downgraded gouge" 1 $?
-contains "check says UNSAFE" "$tmp/stdout" "UNSAFE: finish: gouge: "
-if grep -q "^PASS" "$tmp/stdout"; then echo "FAIL: check printed PASS for a gouging program"; fail=1; fi
-# Switched off, the same checks still run and still mark it UNSAFE: `off` is read as
-# `warning`. With `off` skipping them, this program was written under a PASS (exit 0),
-# and tests/jobs/nc_profile_gouge.py reads it 4.5 µm into the troughs.
+
+# A downgraded check still marks the program UNSAFE: a sphere decentred 0.5 mm, whose
+# flank about the axis faces the cut at atan(0.5/√3.75) = 14.5°, past the tool's 10°
+# clearance, with the clearance check set to warning, is written, but run exits 1 and both
+# commands name the worst place.
+cat > "$tmp/steep.yaml" <<YAML
+name: steep
+aperture: {outer_radius: 0.2}
+surface: {type: sphere, radius: 2.0, decenter: {x: 0.5}}
+tool:
+  nose_radius: 0.1
+  checks: {clearance: warning}
+strategy: {mode: spiral, spiral: planar, pitch: 0.01, points: {chord: {tolerance: 0.001, max_angle_deg: 5}}}
+cutting: {spindle_rpm: 20}
+machine: iso-lathe-xzc
+YAML
+"$freeturn" run "$tmp/steep.yaml" -o "$tmp/steep" > /dev/null 2> "$tmp/err"; expect "run with a downgraded check" 1 $?
+contains "run says UNSAFE at the clearance" "$tmp/err" "UNSAFE: finish: clearance: "
+contains "run names where" "$tmp/err" "at θ = "
+[[ -f "$tmp/steep/steep.iso-lathe-xzc.nc" ]] || { echo "FAIL: a warning-only job wrote no program"; fail=1; }
+contains "the report says UNSAFE" "$tmp/steep/steep.report.json" '"status": "UNSAFE"'
+contains "the finding is a structured warning" "$tmp/steep/steep.report.json" '"kind": "clearance"'
+"$freeturn" check "$tmp/steep.yaml" > "$tmp/stdout"; expect "check with a downgraded check" 1 $?
+contains "check says UNSAFE" "$tmp/stdout" "UNSAFE: finish: clearance: "
+if grep -q "^PASS" "$tmp/stdout"; then echo "FAIL: check printed PASS for an unsafe program"; fail=1; fi
+# Switched off, the same check still runs and still marks it UNSAFE: `off` is read as
+# `warning`.
+sed 's/checks: {clearance: warning}/checks: {clearance: off}/' "$tmp/steep.yaml" > "$tmp/steep_off.yaml"
+"$freeturn" run "$tmp/steep_off.yaml" -o "$tmp/steep_off" > /dev/null 2> "$tmp/err"; expect "run with the clearance check off" 1 $?
+contains "run with the check off says UNSAFE at the clearance" "$tmp/err" "UNSAFE: finish: clearance: "
+contains "its report says UNSAFE" "$tmp/steep_off/steep.report.json" '"status": "UNSAFE"'
+# A 1 mm nose in those troughs spans the cone point and the troughs either side of it:
+# near the axis no step meets the tolerance. In PVT mode (this machine's) the planner once
+# took slivers of no length there without end; now it stops as linear motion does: exit 2,
+# the place named, nothing written.
 sed -e 's/amplitude: 0.005 /amplitude: 0.05 /' -e 's/period: 2.5 /period: 1.0 /' \
-    -e 's/nose_radius: 0.5/nose_radius: 0.6\n  checks: {gouge: off, global_gouge: off}/' \
-    "$src/configs/jobs/sinusoidal_ring.yaml" > "$tmp/gouge_off.yaml"
-"$freeturn" run "$tmp/gouge_off.yaml" -o "$tmp/gouge_off" > /dev/null 2> "$tmp/err"; expect "run with the gouge checks off" 1 $?
-contains "run with the checks off says UNSAFE at the gouge" "$tmp/err" "UNSAFE: finish: gouge: "
-contains "its report says UNSAFE" "$tmp/gouge_off/sinusoidal_ring.report.json" '"status": "UNSAFE"'
-# A 1 mm nose in those troughs: past r = 1.04 mm no step meets the tolerance. In PVT mode
-# (this machine's) the planner once took slivers of no length there without end; now it
-# stops as linear motion does: exit 2, the place named, nothing written.
-sed -e 's/amplitude: 0.005 /amplitude: 0.05 /' -e 's/period: 2.5 /period: 1.0 /' \
-    -e 's/nose_radius: 0.5/nose_radius: 1.0\n  checks: {gouge: warning, global_gouge: warning}/' \
+    -e 's/nose_radius: 0.5/nose_radius: 1.0/' \
     "$src/configs/jobs/sinusoidal_ring.yaml" > "$tmp/crawl.yaml"
 timeout 120 "$freeturn" run "$tmp/crawl.yaml" -o "$tmp/crawl" > /dev/null 2> "$tmp/err"; expect "PVT run where no step meets the tolerance" 2 $?
 contains "it names the tolerance" "$tmp/err" "cannot meet the chord tolerance 0.1 µm"
-contains "and where" "$tmp/err" "r = 1.04"
+contains "and where" "$tmp/err" "r = "
 # And why: the troughs curve to 1/(A ω²) = 0.507 mm, tighter than the 1 mm nose.
 contains "and why: the section's concave radius against the nose's" "$tmp/err" \
   "the design's section bends to a concave radius of 0.50"
 contains "and what to use instead" "$tmp/err" "use a nose radius under 0.5"
 [[ -z "$(ls -A "$tmp/crawl" 2> /dev/null)" ]] || { echo "FAIL: a run stopped by bad input left files:"; ls "$tmp/crawl"; fail=1; }
-# With the checks as errors (the default) the same job stops at the first gouge: exit 1
+# With the checks as errors (the default) the steep job stops at the first finding: exit 1
 # (a check failed, not bad input), the place named, nothing written.
-sed -e 's/amplitude: 0.005 /amplitude: 0.05 /' -e 's/period: 2.5 /period: 1.0 /' \
-    -e 's/nose_radius: 0.5/nose_radius: 0.6/' "$src/configs/jobs/sinusoidal_ring.yaml" > "$tmp/gouge_error.yaml"
-"$freeturn" run "$tmp/gouge_error.yaml" -o "$tmp/gouge_error" > /dev/null 2> "$tmp/err"; expect "run stopped by a gouge" 1 $?
-contains "run names the gouge and where" "$tmp/err" "gouge check: "
+sed '/checks: {clearance: warning}/d' "$tmp/steep.yaml" > "$tmp/steep_error.yaml"
+"$freeturn" run "$tmp/steep_error.yaml" -o "$tmp/steep_error" > /dev/null 2> "$tmp/err"; expect "run stopped by a check" 1 $?
+contains "run names the check and where" "$tmp/err" "clearance check: "
 contains "run names where" "$tmp/err" "r = "
-[[ -z "$(ls -A "$tmp/gouge_error" 2> /dev/null)" ]] || { echo "FAIL: a run stopped by a check left files:"; ls "$tmp/gouge_error"; fail=1; }
+[[ -z "$(ls -A "$tmp/steep_error" 2> /dev/null)" ]] || { echo "FAIL: a run stopped by a check left files:"; ls "$tmp/steep_error"; fail=1; }
 "$freeturn" check "$src/configs/jobs/oap_segment.yaml" > "$tmp/stdout"; expect "check ok" 0 $?
 contains "check pass" "$tmp/stdout" "PASS: oap_segment on iso-lathe-xzc"
 "$freeturn" check "$tmp/bad.yaml" > /dev/null 2>&1; expect "check bad job" 2 $?

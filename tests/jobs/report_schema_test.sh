@@ -1,8 +1,9 @@
 #!/usr/bin/env bash
 # report.json validates against docs/report.schema.json (tests/report/validate_report.py)
-# where the example jobs do not reach: a simulated run, an UNSAFE run (a gouge check
-# downgraded to a warning), a constant-rpm run slowed by the machine, a profile with
-# roughing passes, a compensated job. And a job whose comment is Latin-1 ("für") is refused
+# where the example jobs do not reach: a simulated run, an UNSAFE run (the clearance
+# check downgraded to a warning), a ring whose troughs are tighter than the nose, a
+# constant-rpm run slowed by the machine, a profile with roughing passes, a compensated
+# job. And a job whose comment is Latin-1 ("für") is refused
 # at its byte.
 # The example jobs' own reports are validated by examples_test.sh. Skipped (exit 77)
 # without python3-jsonschema.
@@ -14,11 +15,24 @@ trap 'rm -rf "$tmp"' EXIT
 jobs="$src/configs/jobs"
 fail=0
 "$freeturn" simulate "$jobs/oap_segment.yaml" -o "$tmp/sim" --quiet > /dev/null || { echo "FAIL: simulate"; fail=1; }
+# A sphere decentred 0.5 mm: about the axis its flank faces the cut at 14.5°, past the
+# tool's 10° clearance, downgraded to a warning.
+cat > "$tmp/unsafe.yaml" <<'YAML'
+name: cup
+aperture: {outer_radius: 0.2}
+surface: {type: sphere, radius: 2.0, decenter: {x: 0.5}}
+tool: {nose_radius: 0.1, checks: {clearance: warning}}
+strategy: {mode: spiral, spiral: planar, pitch: 0.01, points: {chord: {tolerance: 0.001, max_angle_deg: 5}}}
+cutting: {spindle_rpm: 20}
+machine: iso-lathe-xzc
+YAML
+"$freeturn" run "$tmp/unsafe.yaml" -o "$tmp/unsafe" --quiet 2> /dev/null
+[[ $? == 1 ]] || { echo "FAIL: the unsafe job did not exit 1"; fail=1; }
+# The ring's troughs bend to 1/(A ω²) = 0.5066 mm, tighter than a 0.6 mm nose: the nose
+# rests on both sides of each, and the report says how much it leaves.
 sed -e 's/amplitude: 0.005 /amplitude: 0.05 /' -e 's/period: 2.5 /period: 1.0 /' \
-    -e 's/nose_radius: 0.5/nose_radius: 0.6\n  checks: {gouge: warning, global_gouge: warning}/' \
-    "$jobs/sinusoidal_ring.yaml" > "$tmp/gouge.yaml"
-"$freeturn" run "$tmp/gouge.yaml" -o "$tmp/gouge" --quiet 2> /dev/null
-[[ $? == 1 ]] || { echo "FAIL: the gouging job did not exit 1"; fail=1; }
+    -e 's/nose_radius: 0.5/nose_radius: 0.6/' "$jobs/sinusoidal_ring.yaml" > "$tmp/held.yaml"
+"$freeturn" run "$tmp/held.yaml" -o "$tmp/held" --quiet || { echo "FAIL: the ring held in its troughs"; fail=1; }
 sed 's/spindle_rpm: 20/spindle_rpm: 20000\n  timing: constant_rpm/' "$jobs/oap_segment.yaml" > "$tmp/constant.yaml"
 (cd "$jobs" && "$freeturn" run "$tmp/constant.yaml" -o "$tmp/constant" --quiet) || { echo "FAIL: constant rpm"; fail=1; }
 (cd "$jobs" && "$freeturn" run sinusoidal_ring.yaml -o "$tmp/profile" --quiet) || { echo "FAIL: profile"; fail=1; }
@@ -47,22 +61,37 @@ YAML
 "$freeturn" run "$tmp/plate.yaml" -o "$tmp/plate" --quiet || { echo "FAIL: the compensated job"; fail=1; }
 grep -q 'id="compensation"' "$tmp/plate/plate.report.html" || { echo "FAIL: the page has no compensation table"; fail=1; }
 python3 "$src/tests/report/validate_report.py" "$src/docs/report.schema.json" \
-  "$tmp/sim/oap_segment.report.json" "$tmp/gouge/sinusoidal_ring.report.json" \
+  "$tmp/sim/oap_segment.report.json" "$tmp/unsafe/cup.report.json" "$tmp/held/sinusoidal_ring.report.json" \
   "$tmp/constant/oap_segment.report.json" "$tmp/profile/sinusoidal_ring.report.json" \
   "$tmp/plate/plate.report.json"
 rc=$?
 [[ $rc == 77 ]] && exit 77
 [[ $rc == 0 ]] || fail=1
-# What each must say, read back: the gouge as an unsafe local_gouge record with its place;
-# the slowed constant-rpm program as a spindle_speed warning, value < limit.
-python3 - "$tmp/gouge/sinusoidal_ring.report.json" "$tmp/constant/oap_segment.report.json" <<'PY' || fail=1
-import json, sys
-gouge, constant = (json.load(open(p, encoding="utf-8")) for p in sys.argv[1:3])
-w = [w for w in gouge["warnings"] if w["kind"] == "local_gouge"]
-assert gouge["verdict"]["status"] == "UNSAFE", "gouge not UNSAFE"
+# What each must say, read back: the clearance as an unsafe record with its place; the
+# held ring's uncut residual, against the nose placed by brute force; the slowed
+# constant-rpm program as a spindle_speed warning, value < limit.
+python3 - "$tmp/unsafe/cup.report.json" "$tmp/constant/oap_segment.report.json" "$tmp/held/sinusoidal_ring.report.json" <<'PY' || fail=1
+import json, math, sys
+unsafe, constant, held = (json.load(open(p, encoding="utf-8")) for p in sys.argv[1:4])
+w = [w for w in unsafe["warnings"] if w["kind"] == "clearance"]
+assert unsafe["verdict"]["status"] == "UNSAFE", "clearance not UNSAFE"
 assert w and w[0]["severity"] == "unsafe" and w[0]["r_mm"] is not None and w[0]["count"] > 0, w
-# The trough's concave radius 1/(A ω²), ω = 2π/1.0, A = 0.05: 0.5066 mm, against the 0.6 mm nose.
-assert abs(w[0]["value"] - 1 / (0.05 * (2 * 3.141592653589793) ** 2)) < 0.01 and w[0]["limit"] == 0.6, w
+# The flank about the axis: atan(0.5/sqrt(4 - 0.25)) = 14.48 degrees, and more off it.
+assert w[0]["value"] >= math.degrees(math.atan(0.5 / math.sqrt(3.75))) - 1e-9 and w[0]["limit"] == 10, w
+assert held["verdict"]["status"] == "PASS", held["verdict"]
+u = [w for w in held["warnings"] if w["kind"] == "uncut_residual" and w["pass"] == "finish"]
+assert u and u[0]["unit"] == "nm", held["warnings"]
+# The nose (0.6 mm, placed 0.05 um higher) centred over the axis's fold and each trough
+# bottom r_k = 0.75 + k: its centre as high as the section demands, max over rho of
+# g(rho) + sqrt(R'^2 - (rho - r_k)^2), sampled every 0.3 um; the material left under it.
+A, w_, R, Rp = 0.05, 2 * math.pi, 0.6, 0.6 + 0.5e-4
+g = lambda r: A * math.sin(w_ * abs(r))
+def left(x):
+    n = 4000
+    zc = max(g(x + Rp * (2 * i / n - 1)) + math.sqrt(max(Rp * Rp - (Rp * (2 * i / n - 1)) ** 2, 0)) for i in range(n + 1))
+    return (zc - R - g(x)) * 1e6
+expected = max(left(x) for x in [0.0, 0.75, 1.75, 2.75, 3.75, 4.75])
+assert abs(u[0]["value"] - expected) < 1e-3 * expected, (u[0]["value"], expected)
 s = [w for w in constant["warnings"] if w["kind"] == "spindle_speed"]
 assert s and s[0]["value"] < s[0]["limit"] == 20000 and s[0]["unit"] == "rpm", s
 assert constant["timing"]["spindle_rpm"] == s[0]["value"]

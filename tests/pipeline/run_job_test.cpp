@@ -108,10 +108,12 @@ TEST_SUITE("pipeline") {
   TEST_CASE("check_job: a PASS, an UNSAFE program with its reasons, a check that stops it") {
     const PluginPaths paths;
     test::TempDir dir;
-    // A 0.5 mm nose in a 0.3 mm concave sphere's section cannot follow it.
+    // A sphere of radius 2 mm decentred 0.5 mm: about the axis its flank faces the cut at
+    // atan(0.5/√(4 − 0.25)) = 14.48° and more, past the tool's 10° clearance.
     const std::string tight =
-        "name: cup\naperture: {outer_radius: 0.1}\nsurface: {type: sphere, radius: 0.3}\n"
-        "tool:\n  nose_radius: 0.5\nCHECKS"
+        "name: cup\naperture: {outer_radius: 0.2}\n"
+        "surface: {type: sphere, radius: 2.0, decenter: {x: 0.5}}\n"
+        "tool:\n  nose_radius: 0.1\nCHECKS"
         "strategy:\n  mode: spiral\n  spiral: planar\n  pitch: 0.01\n"
         "  points: {chord: {tolerance: 0.001, max_angle_deg: 5}}\n"
         "cutting: {spindle_rpm: 20}\nmachine: iso-lathe-xzc\n";
@@ -124,14 +126,15 @@ TEST_SUITE("pipeline") {
     CHECK_THROWS_AS(check_job(job_with("stop.yaml", "")), CheckFailure);
     Recorder observer;
     const RunReport r =
-        check_job(job_with("warn.yaml", "  checks: {gouge: warning, global_gouge: warning}\n"), {},
-                  &observer);
+        check_job(job_with("warn.yaml", "  checks: {clearance: warning}\n"), {}, &observer);
     REQUIRE_FALSE(r.safe());
-    CHECK(r.unsafe_reasons().front().find("gouge") != std::string::npos);
+    CHECK(r.unsafe_reasons().front().find("clearance") != std::string::npos);
     // The same finding as a record: its kind, where, by how much, against what.
     const ReportWarning& w = r.warnings.front();
     CHECK(w.severity == ReportWarning::Severity::kUnsafe);
-    CHECK((w.kind == "local_gouge" || w.kind == "global_gouge"));
+    CHECK(w.kind == "clearance");
+    CHECK(w.value >= 14.47);
+    CHECK(w.limit == doctest::Approx(10.0));
     CHECK(w.pass == "finish");
     CHECK(w.count > 0);
     CHECK(w.r_mm >= 0);

@@ -200,7 +200,14 @@ void search(const Section& section, double x_c, double z_c, double R, double sta
     if (!(ceiling && m > 0)) settle_by_secant(section, x_c, z_c, R, lo, hi, r, points, best);
     return;
   }
-  if (!(m > 0) || settled()) return;
+  if (!(m > 0)) {
+    // No concavity bound (a section whose troughs bend more tightly than the nose, or a
+    // design that gives none): its Newton steps alone had ended a held nose's search for
+    // its far touch 140 nm short, on the ring of docs/tool.md's tight troughs.
+    settle_by_secant(section, x_c, z_c, R, lo, hi, r, points, best);
+    return;
+  }
+  if (settled()) return;
   for (int it = 0; it < 40; ++it) {
     double g, slope, bend, h, s, h_slope;
     if (!section.at(r, g, slope, bend)) return;

@@ -28,6 +28,7 @@
 #include "freeturn/machine/block_schedule.hpp"
 #include "freeturn/path/profile.hpp"
 #include "freeturn/path/spiral.hpp"
+#include "freeturn/path/tight_troughs.hpp"
 #include "freeturn/pipeline/contact_tape.hpp"
 #include "freeturn/post/post_program.hpp"
 #include "freeturn/surface/raised_surface.hpp"
@@ -589,7 +590,7 @@ RunResult execute_job(const Job& job, const PreparedJob& prepared, const std::st
       if (observer) observer->warning(warning_line(w));
     }
   }
-  const Surface& design = spiral ? base.design_to_cut(*job.surface) : *job.surface;
+  const Surface& design_itself = spiral ? base.design_to_cut(*job.surface) : *job.surface;
 
   CompensationOptions compensation = plan.tool;
   compensation.pivot_distance = machine.has(Axis::kB) ? machine.pivot_distance : 0.0;
@@ -613,7 +614,11 @@ RunResult execute_job(const Job& job, const PreparedJob& prepared, const std::st
   // The tool's motion as every pass plans it, with what a wavy edge may reach past the
   // round nose on this design over this aperture (path/cutter_points.hpp).
   ToolMotion tool = tool_motion(compensation);
-  measure_edge_reach(tool, design, job.aperture.inner_radius, job.aperture.outer_radius);
+  measure_edge_reach(tool, design_itself, job.aperture.inner_radius, job.aperture.outer_radius);
+  const TightTroughs troughs(
+      design_itself, tool.nose_radius + stand_off_for(plan.strategy.points, tool, design_itself),
+      job.aperture.outer_radius);
+  const Surface& design = troughs.any() ? troughs : design_itself;
   // Estimated once, and raised by the runs that find it short (execute_with_stand_off).
   if (planned.equal_rule_stand_off < 0)
     planned.equal_rule_stand_off = equal_rule_stand_off(job, prepared, design, base, tool);

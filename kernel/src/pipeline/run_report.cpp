@@ -203,11 +203,12 @@ void PassFigures::finish(const PathSummary& s, const DynamicsReport& d, const To
     w.kind = "uncut_residual";
     w.severity = ReportWarning::Severity::kWarning;
     w.pass = name;
-    w.message = std::to_string(held_points) +
-                " cutter locations hold the nose at a crease it cannot reach into: up to " +
-                fixed_text(uncut_max * 1e6, 1) + " nm of material is left there, the most at " +
-                place_text(uncut_theta, uncut_r) +
-                " (the design is unreachable there; the program does not gouge)";
+    w.message =
+        std::to_string(held_points) +
+        " cutter locations hold the nose at a crease or a trough it cannot reach into: up to " +
+        fixed_text(uncut_max * 1e6, 1) + " nm of material is left there, the most at " +
+        place_text(uncut_theta, uncut_r) +
+        " (the design is unreachable there; the program does not gouge)";
     w.count = held_points;
     w.theta_deg = part_degrees(uncut_theta);
     w.r_mm = uncut_r;

@@ -1,0 +1,104 @@
+// Troughs tighter than the nose (path/tight_troughs.hpp): the stretches listed as creases
+// against the section's curvature in closed form, and the nose held across a trough
+// against its placement by brute force, no point of it below the design.
+#include "freeturn/path/tight_troughs.hpp"
+
+#include <doctest/doctest.h>
+
+#include <array>
+#include <cmath>
+#include <numbers>
+
+#include "freeturn/path/section_envelope.hpp"
+#include "freeturn/surface/sinusoidal.hpp"
+#include "nose_brute_force.hpp"
+
+namespace freeturn {
+namespace {
+
+// The ring z = A sin(ωr), A = 0.05 mm, period 0.8 mm: its troughs (r = 0.6 + 0.8k) bend to
+// 1/(Aω²) = 0.3242 mm, tighter than a 0.5 mm nose.
+constexpr double kA = 0.05, kPeriod = 0.8, kR = 0.5, kStandOff = 5e-5;
+const double kOmega = 2 * std::numbers::pi / kPeriod;
+
+// The section's curvature in closed form, g''/(1 + g'²)^{3/2}, > 0 concave.
+double curvature(double r) {
+  const double slope = kA * kOmega * std::cos(kOmega * r);
+  const double bend = -kA * kOmega * kOmega * std::sin(kOmega * r);
+  return bend / std::pow(1 + slope * slope, 1.5);
+}
+
+TEST_SUITE("path") {
+  TEST_CASE("tight troughs: each tight stretch bracketed, its bottom between") {
+    const SinusoidalRing ring(kA, kOmega, 0.0);
+    const double placed = kR + kStandOff;
+    const TightTroughs view(ring, placed, 3.0);
+    REQUIRE(view.any());
+    // The trough at 2.2 mm: the stretch where κ·R' > 1, its ends by bisection on the
+    // closed form.
+    const auto tight = [&](double r) { return curvature(r) * placed > 1; };
+    const auto edge = [&](double in, double out) {
+      for (int it = 0; it < 60; ++it) {
+        const double mid = 0.5 * (in + out);
+        (tight(mid) ? in : out) = mid;
+      }
+      return in;
+    };
+    const double lo = edge(2.2, 2.0), hi = edge(2.2, 2.4);
+    std::array<double, 32> creases;
+    const int n = view.section_creases(RadialLine(0.0), 2.0, 2.4, creases);
+    REQUIRE(n == 3);
+    const double step = placed / 16;
+    CHECK(creases[0] < lo);
+    CHECK(creases[0] > lo - step);
+    CHECK(creases[2] > hi);
+    CHECK(creases[2] < hi + step);
+    CHECK(creases[1] == doctest::Approx(2.2).epsilon(1e-4));  // the bottom, sin(ωr) = −1
+    // The same creases from a query that holds only part of the stretch.
+    std::array<double, 32> part;
+    const int m = view.section_creases(RadialLine(0.0), creases[1] - 1e-9, 2.4, part);
+    REQUIRE(m == 2);
+    CHECK(part[0] == creases[1]);
+    CHECK(part[1] == creases[2]);
+    // Nothing on a ring whose troughs the nose follows (A = 0.005: 3.24 mm).
+    const SinusoidalRing gentle(0.005, kOmega, 0.0);
+    CHECK_FALSE(TightTroughs(gentle, placed, 3.0).any());
+  }
+
+  TEST_CASE("tight troughs: the nose rests on both sides, as high as brute force places it") {
+    const SinusoidalRing ring(kA, kOmega, 0.0);
+    const double placed = kR + kStandOff;
+    const TightTroughs view(ring, placed, 3.0);
+    // Over the trough at 2.2 the centre stands on its axis (the section is symmetric about
+    // it) at the least height that clears the section: max over ρ of g(ρ) + √(R'² − (ρ −
+    // 2.2)²), by brute force; the material left is that less R less g(2.2) = −A.
+    const double centre_z = test::brute_overlap(ring, 2.2, 0.0, placed);
+    const double uncut = centre_z - kR + kA;
+    int held = 0;
+    for (double rho = 2.03; rho <= 2.37; rho += 0.02) {
+      double z, zx, zy;
+      ring.sag_gradient(rho, 0, z, zx, zy);
+      const NoseTouch t = nose_touch(view, RadialLine(0.0), kR, rho, z, zx, kStandOff);
+      REQUIRE(t.held);
+      ++held;
+      CHECK(t.centre_x == doctest::Approx(2.2).epsilon(1e-9));
+      CHECK(std::abs(t.centre_z - centre_z) < 1e-9);
+      CHECK(std::abs(t.uncut - uncut) < 1e-9);
+      // The placed nose touches the section and overhangs it nowhere (R' about the centre).
+      CHECK(std::abs(test::brute_overlap(ring, t.centre_x, t.centre_z, placed)) < 1e-9);
+      // Its touch lies on the contact's side of the bottom, on a stretch it can follow.
+      CHECK((t.rho < 2.2) == (rho < 2.2));
+      CHECK(curvature(t.rho) * placed < 1);
+    }
+    CHECK(held == 18);
+    // Without the view the nose at the bottom's contact sinks into both sides.
+    double z, zx, zy;
+    ring.sag_gradient(2.2, 0, z, zx, zy);
+    const NoseTouch free = nose_touch(ring, RadialLine(0.0), kR, 2.2, z, zx, kStandOff);
+    CHECK_FALSE(free.held);
+    CHECK(test::brute_overlap(ring, free.centre_x, free.centre_z, placed) > 1e-3);
+  }
+}
+
+}  // namespace
+}  // namespace freeturn
