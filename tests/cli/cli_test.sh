@@ -176,6 +176,25 @@ fi
 # repeats the last one's place would have no time (a profile's block time is its X-Z chord).
 repeated="$(grep '^X' "$tmp/held/sinusoidal_ring.precitech-nanoform-250.nc" | uniq -d)"
 [[ -z "$repeated" ]] || { echo "FAIL: the PVT program repeats a block in place: $repeated"; fail=1; }
+# The same troughs (period 0.8 mm: 1/(Aω²) = 0.324 mm) cut by a spiral under a 0.5 mm nose
+# on the Moore: held on both sides of each trough at every angle, read back from the NC
+# by the edge's arc in the rake plane.
+cat > "$tmp/held_spiral.yaml" <<YAML
+name: held_spiral
+aperture: {outer_radius: 1.5}
+surface: {type: sinusoidal_ring, amplitude: 0.05, period: 0.8}
+tool: {nose_radius: 0.5, included_angle_deg: 120}
+strategy: {mode: spiral, spiral: planar, pitch: 0.02, points: {chord: {tolerance: 0.0002, max_angle_deg: 4}}}
+cutting: {spindle_rpm: 20}
+machine: moore-nanotech-250upl
+YAML
+"$freeturn" run "$tmp/held_spiral.yaml" -o "$tmp/held_spiral" > /dev/null 2> "$tmp/err"; expect "a spiral over troughs tighter than the nose" 0 $?
+contains "the spiral's report says PASS" "$tmp/held_spiral/held_spiral.report.json" '"status": "PASS"'
+if [[ -x /usr/bin/python3 ]] && /usr/bin/python3 -c "import numpy" 2> /dev/null; then
+  deepest=$(/usr/bin/python3 "$src/tests/jobs/nc_rake_gouge.py" \
+    "$tmp/held_spiral/held_spiral.moore-nanotech-250upl.nc" sinusoidal_ring:0.05:0.8 0.5 0 60 0 1.5)
+  awk -v d="$deepest" 'BEGIN { exit !(d < 10) }' || { echo "FAIL: the held spiral's edge goes $deepest nm below the design"; fail=1; }
+fi
 
 # A downgraded check still marks the program UNSAFE: a sphere decentred 0.5 mm, whose
 # flank about the axis faces the cut at atan(0.5/√3.75) = 14.5°, past the tool's 10°
@@ -207,20 +226,33 @@ sed 's/checks: {clearance: warning}/checks: {clearance: off}/' "$tmp/steep.yaml"
 "$freeturn" run "$tmp/steep_off.yaml" -o "$tmp/steep_off" > /dev/null 2> "$tmp/err"; expect "run with the clearance check off" 1 $?
 contains "run with the check off says UNSAFE at the clearance" "$tmp/err" "UNSAFE: finish: clearance: "
 contains "its report says UNSAFE" "$tmp/steep_off/steep.report.json" '"status": "UNSAFE"'
-# A 1 mm nose in those troughs spans the cone point and the troughs either side of it:
-# near the axis no step meets the tolerance. In PVT mode (this machine's) the planner once
-# took slivers of no length there without end; now it stops as linear motion does: exit 2,
-# the place named, nothing written.
+# A 1 mm nose in those troughs spans the cone point and the troughs either side of it: held
+# across them all by the section's overhang (section_envelope.cpp, hold_by_overhang), and
+# read back above the design. (It stopped at the chord tolerance until December 2026.)
 sed -e 's/amplitude: 0.005 /amplitude: 0.05 /' -e 's/period: 2.5 /period: 1.0 /' \
     -e 's/nose_radius: 0.5/nose_radius: 1.0/' \
+    "$src/configs/jobs/sinusoidal_ring.yaml" > "$tmp/wide.yaml"
+timeout 120 "$freeturn" run "$tmp/wide.yaml" -o "$tmp/wide" > /dev/null 2> "$tmp/err"; expect "a nose wider than the troughs" 0 $?
+if [[ -x /usr/bin/python3 ]] && /usr/bin/python3 -c "import numpy" 2> /dev/null; then
+  deepest=$(/usr/bin/python3 "$src/tests/jobs/nc_profile_gouge.py" \
+    "$tmp/wide/sinusoidal_ring.precitech-nanoform-250.nc" sinusoidal_ring:0.05:1.0 1.0 0 60 5.0)
+  awk -v d="$deepest" 'BEGIN { exit !(d < 10) }' || { echo "FAIL: the wide nose's edge goes $deepest nm below the design"; fail=1; }
+fi
+# An 0.8 mm nose over troughs 0.3 mm apart (concave radius 1/(Aω²) = 0.228 mm), five
+# periods under it: no step meets the tolerance. In PVT mode (this machine's) the planner
+# once took slivers of no length there without end; now it stops as linear motion does:
+# exit 2, the place named, nothing written.
+sed -e 's/amplitude: 0.005 /amplitude: 0.01 /' -e 's/period: 2.5 /period: 0.3 /' \
+    -e 's/nose_radius: 0.5/nose_radius: 0.8/' \
     "$src/configs/jobs/sinusoidal_ring.yaml" > "$tmp/crawl.yaml"
 timeout 120 "$freeturn" run "$tmp/crawl.yaml" -o "$tmp/crawl" > /dev/null 2> "$tmp/err"; expect "PVT run where no step meets the tolerance" 2 $?
 contains "it names the tolerance" "$tmp/err" "cannot meet the chord tolerance 0.1 µm"
 contains "and where" "$tmp/err" "r = "
-# And why: the troughs curve to 1/(A ω²) = 0.507 mm, tighter than the 1 mm nose.
+# And why: the section's concave radius (the troughs' own 0.228 mm, or a sample's near it)
+# against the 0.8 mm nose, and a radius to use instead.
 contains "and why: the section's concave radius against the nose's" "$tmp/err" \
-  "the design's section bends to a concave radius of 0.50"
-contains "and what to use instead" "$tmp/err" "use a nose radius under 0.5"
+  "the design's section bends to a concave radius of 0.2"
+contains "and what to use instead" "$tmp/err" "use a nose radius under 0.2"
 [[ -z "$(ls -A "$tmp/crawl" 2> /dev/null)" ]] || { echo "FAIL: a run stopped by bad input left files:"; ls "$tmp/crawl"; fail=1; }
 # With the checks as errors (the default) the steep job stops at the first finding: exit 1
 # (a check failed, not bad input), the place named, nothing written.

@@ -9,7 +9,8 @@ sharing no code with freeturn.
 
 usage: nc_rake_gouge.py PROGRAM.nc DESIGN R H HALF_ANGLE_DEG R_MIN R_MAX [WAVINESS]
 DESIGN: decentred_sphere:RADIUS:DX, compound_eye:BASE:LENS:DIAMETER:PITCH:EXTENT (rings),
-        or microlens_array:LENS:DIAMETER:PITCH:EXTENT[:hexagonal] (square unless hexagonal)
+        microlens_array:LENS:DIAMETER:PITCH:EXTENT[:hexagonal] (square unless hexagonal),
+        sinusoidal_ring:AMPLITUDE:PERIOD, or sinusoidal_grid:AMPLITUDE:LX:LY
 WAVINESS: the edge's radius error, DEG:MM,DEG:MM,... (linear between, the ends held): the
 edge's point at phi lies R + delta(phi) from the centre.
 Prints the deepest point (nm, > 0 below the design).
@@ -106,12 +107,23 @@ def microlens_array(lens, diameter, pitch, extent, lattice="square"):
     return z
 
 
+def sinusoidal_ring(amplitude, period):
+    """z = A sin(2 pi r / period), r the distance from the axis (docs/surfaces.md)."""
+    return lambda x, y: amplitude * np.sin(2 * np.pi / period * np.hypot(x, y))
+
+
+def sinusoidal_grid(amplitude, wavelength_x, wavelength_y):
+    """z = A sin(2 pi x / lx) sin(2 pi y / ly) (docs/surfaces.md)."""
+    return lambda x, y: amplitude * np.sin(2 * np.pi * x / wavelength_x) * np.sin(2 * np.pi * y / wavelength_y)
+
+
 def main():
     path, design, R, h, half, r_min, r_max = sys.argv[1:8]
     R, h, half, r_min, r_max = map(float, (R, h, half, r_min, r_max))
     kind, *p = design.split(":")
     designs = {"decentred_sphere": decentred_sphere, "compound_eye": compound_eye,
-               "microlens_array": microlens_array}
+               "microlens_array": microlens_array, "sinusoidal_ring": sinusoidal_ring,
+               "sinusoidal_grid": sinusoidal_grid}
     numbers = [float(v) for v in p if v not in ("square", "hexagonal")]
     z_of = designs[kind](*numbers, *[v for v in p if v in ("square", "hexagonal")])
     b = np.array(read(path, [], {"X": None, "Z": None, "C": 0.0}))

@@ -98,6 +98,52 @@ TEST_SUITE("path") {
     CHECK_FALSE(free.held);
     CHECK(test::brute_overlap(ring, free.centre_x, free.centre_z, placed) > 1e-3);
   }
+
+  TEST_CASE("tight troughs: wide tight stretches and a nose wider than the period, touching") {
+    // Every contact's nose, held or not, touches the section and overhangs it nowhere: the
+    // largest height of the section over its lower arc (R') is 0, by brute force. Before
+    // the whole section's overhang placed it (section_envelope.cpp, hold_by_overhang),
+    // contacts inside a wide tight stretch were held on its own pieces, 92 µm into the
+    // trough.
+    struct Case {
+      double amplitude, period, nose;
+    };
+    for (const Case c : {Case{0.1, 1.0, 0.8}, Case{0.01, 0.3, 0.5}}) {
+      CAPTURE(c.period);
+      const double w = 2 * std::numbers::pi / c.period;
+      const SinusoidalRing ring(c.amplitude, w, 0.0);
+      const double placed = c.nose + kStandOff;
+      const TightTroughs view(ring, placed, 3.0);
+      REQUIRE(view.any());
+      int held = 0, count = 0;
+      for (double rho = 1.0; rho <= 2.0; rho += 0.0125) {
+        CAPTURE(rho);
+        double z, zx, zy;
+        ring.sag_gradient(rho, 0, z, zx, zy);
+        const NoseTouch t = nose_touch(view, RadialLine(0.0), c.nose, rho, z, zx, kStandOff);
+        CHECK(std::abs(test::brute_overlap(ring, t.centre_x, t.centre_z, placed)) < 1e-9);
+        ++count;
+        if (t.held) ++held;
+      }
+      // Held somewhere in every period (the troughs are tighter than the nose).
+      CHECK(held > count / 4);
+    }
+    // The wide stretch's trough at 0.75 + 1: the nose centred over its bottom by symmetry, as
+    // high as the section demands, the same for every contact under it.
+    const SinusoidalRing ring(0.1, 2 * std::numbers::pi, 0.0);
+    const double placed = 0.8 + kStandOff;
+    const TightTroughs view(ring, placed, 3.0);
+    const double centre_z = test::brute_overlap(ring, 1.75, 0.0, placed);
+    for (double rho = 1.6; rho <= 1.9; rho += 0.01) {
+      double z, zx, zy;
+      ring.sag_gradient(rho, 0, z, zx, zy);
+      const NoseTouch t = nose_touch(view, RadialLine(0.0), 0.8, rho, z, zx, kStandOff);
+      REQUIRE(t.held);
+      CHECK(t.centre_x == doctest::Approx(1.75).epsilon(1e-9));
+      CHECK(std::abs(t.centre_z - centre_z) < 1e-9);
+      CHECK(std::abs(t.uncut - (centre_z - 0.8 + 0.1)) < 1e-9);
+    }
+  }
 }
 
 }  // namespace

@@ -827,9 +827,78 @@ bool roll_over_ridges(const Surface& design, const Section& section, const Secti
   return true;
 }
 
+// The hold found from the nose's overhang of the whole section, for a section with no
+// concavity bound where the creases' own holds leave the nose overhanging (a trough
+// tighter than the nose whose tight stretch is wide, or a nose wider than the troughs'
+// period, path/tight_troughs.hpp). The contact's own offset overhangs the section
+// somewhere (nose_overlap); walking the contact away from the deepest overhang, along its
+// own side, the first offset that overhangs nothing (by `tolerance`) is the trimmed
+// envelope's crossing: the nose there touches the section at the contact and at the far
+// point it last overhung. Found by doubling steps, then bisection to rounding, so that
+// every contact of one held region gives the same centre. t (unheld) where no such offset
+// lies within 2R.
+NoseTouch hold_by_overhang(const Surface& design, const Section& section, const RadialLine& line,
+                           NoseTouch t, double rho_p, double R, double nose_radius,
+                           double tolerance) {
+  double g = 0, slope = 0, far = 0;
+  const auto overhang = [&](double a, double& centre_x, double& centre_z) {
+    if (!section.at(a, g, slope)) return std::numeric_limits<double>::infinity();
+    const double l = std::sqrt(1 + slope * slope);
+    centre_x = a - R * slope / l;
+    centre_z = g + R / l;
+    const NoseOverlap o = nose_overlap(design, line, centre_x, centre_z, R, a);
+    far = o.rho;
+    return o.height;
+  };
+  double cx, cz;
+  const double first = overhang(rho_p, cx, cz);
+  if (!(first > tolerance) || !std::isfinite(first)) return t;
+  const double away = far > rho_p ? -1.0 : 1.0;
+  double inside = rho_p, outside = rho_p, step = 1e-3 * R;
+  for (;; step *= 2) {
+    if (step > 2 * R) return t;
+    outside = rho_p + away * step;
+    if (!(overhang(outside, cx, cz) > tolerance)) break;
+    inside = outside;
+  }
+  // Bisection to rounding on the whole section's overlap, so that every contact of one
+  // held region ends on the same centre.
+  for (int it = 0; it < 200 && std::abs(outside - inside) > 1e-14 * (1 + std::abs(inside)); ++it) {
+    const double mid = 0.5 * (inside + outside);
+    if (mid == inside || mid == outside) break;
+    (overhang(mid, cx, cz) > tolerance ? inside : outside) = mid;
+  }
+  overhang(inside, cx, cz);
+  const double far_touch = far;
+  const double clear = overhang(outside, cx, cz);
+  if (!(clear <= tolerance)) return t;
+  NoseTouch held = t;
+  held.rho = outside;
+  held.z = g;
+  held.slope = slope;
+  held.centre_x = cx;
+  held.centre_z = cz;
+  held.held = true;
+  held.far_rho = far_touch;
+  // The material left between the two touches, at the creases between them (the bottoms
+  // of the troughs the view lists, and any real crease), as the crease's hold measures it.
+  SectionCreases creases;
+  creases.find(design, line, std::min(outside, far_touch), std::max(outside, far_touch));
+  held.uncut = 0;
+  held.crease_rho = creases.count > 0 ? creases.rho[0] : 0.5 * (outside + far_touch);
+  for (int k = 0; k < creases.count; ++k) {
+    double g_crease, s_crease;
+    if (!section.at(creases.rho[k], g_crease, s_crease)) continue;
+    const double d = creases.rho[k] - cx;
+    held.uncut = std::max(
+        held.uncut, cz - std::sqrt(std::max(nose_radius * nose_radius - d * d, 0.0)) - g_crease);
+  }
+  return held;
+}
+
 // The contact's own placement (nose_touch without the ridges): its offset t, or the nose
 // held at a concave crease where that would overhang one.
-NoseTouch offset_or_hold(const Surface& design, const Section& section,
+NoseTouch offset_or_hold(const Surface& design, const Section& section, const RadialLine& line,
                          const SectionCreases& creases, NoseTouch t, double rho_p, double R,
                          double nose_radius, double tolerance) {
   const double reach = 0.999 * R;
@@ -875,7 +944,17 @@ NoseTouch offset_or_hold(const Surface& design, const Section& section,
   if (held_at < 0) return t;
   const NoseTouch held = hold_at_crease(section, creases, t, rho_p, R, nose_radius, m, tolerance,
                                         held_at, far, worst.rho);
-  if (!held.held) return held;
+  // Without a concavity bound the pieces between creases may bend more than the nose (a
+  // trough tighter than it, listed as creases by path/tight_troughs.hpp): a hold solved
+  // on a crease's flanks can still overhang the section, or none may be found, and the
+  // whole section's overhang places the nose instead (hold_by_overhang).
+  const bool unbounded = !(m > 0);
+  const auto by_overhang = [&](const NoseTouch& otherwise) {
+    const NoseTouch h =
+        hold_by_overhang(design, section, line, t, rho_p, R, nose_radius, tolerance);
+    return h.held ? h : otherwise;
+  };
+  if (!held.held) return unbounded ? by_overhang(held) : held;
   // The hold at the crease overhung most may still overhang another flank: the nose held
   // at a lenslet's far rim, across a flat to the next lenslet, sank into the flat (3.8 µm
   // on a microlens array whose gaps are narrower than the nose). The envelope is the hold
@@ -911,6 +990,7 @@ NoseTouch offset_or_hold(const Surface& design, const Section& section,
   // A nose that overhung one flank alone is held clear of the rest (the trough on its own
   // side is checked in hold_at_crease); checking every hold cost 7 % of the compound eye's
   // chord cut, whose holds never needed another crease.
+  if (unbounded) return overhangs(held) ? by_overhang(held) : held;
   if (count < 2 || !overhangs(held)) return held;
   std::sort(overhung.begin(), overhung.begin() + count,
             [](const Candidate& a, const Candidate& b) { return a.height > b.height; });
@@ -949,7 +1029,7 @@ NoseTouch place_nose(const Surface& design, const RadialLine& line, double nose_
   creases.find(design, line, std::min(rho_p, t.centre_x) - 2 * R,
                std::max(rho_p, t.centre_x) + 2 * R);
   const auto own_placement = [&](const NoseTouch& offset, double contact) {
-    return hold ? offset_or_hold(design, section, creases, offset, contact, R, nose_radius,
+    return hold ? offset_or_hold(design, section, line, creases, offset, contact, R, nose_radius,
                                  tolerance)
                 : offset;
   };

@@ -3,8 +3,12 @@
 #include <algorithm>
 #include <array>
 #include <cmath>
+#include <cstdint>
 #include <limits>
+#include <memory>
 #include <numbers>
+
+#include "freeturn/surface/section_curvature.hpp"
 
 namespace freeturn {
 namespace {
@@ -12,17 +16,6 @@ namespace {
 // Samples a tight stretch is looked for at, per placed radius: a stretch narrower than
 // this may be missed, and the chord search then refuses the trough as before (path.md).
 constexpr int kSamplesPerRadius = 16;
-
-// The curvature of the design's section along the line through (x0, y0) in the direction
-// `line`, at ρ along it (1/mm, > 0 concave as seen from the tool); NaN where undefined.
-double line_curvature(const Surface& s, double x0, double y0, const RadialLine& line, double rho) {
-  const HeightDerivatives h = s.height_derivatives(x0 + rho * line.cos, y0 + rho * line.sin);
-  const double slope = h.zx * line.cos + h.zy * line.sin;
-  const double bend =
-      (h.zxx * line.cos + 2 * h.zxy * line.sin) * line.cos + h.zyy * line.sin * line.sin;
-  const double stretch = 1 + slope * slope;
-  return bend / (stretch * std::sqrt(stretch));
-}
 
 }  // namespace
 
@@ -32,13 +25,31 @@ TightTroughs::TightTroughs(const Surface& design, double placed_radius, double o
       step_(placed_radius / kSamplesPerRadius),
       limit_(outer_radius + 2 * placed_radius) {
   if (!(R_ > 0) || !(outer_radius > 0)) return;
-  // The polar grid: radial steps as fine as the sections' own sampling, 256 lines.
+  // The polar grid: radial steps those of the sections' own samples, 256 lines. Where most
+  // tight stretches on it are one sample wide, the design bends faster than the samples
+  // resolve (a 10 µm period under a 0.5 mm nose): their creases would fall anywhere, and
+  // the view is not used; the planner then stops at the chord tolerance, naming the
+  // radius. (A section crossing a trough near its tight stretch's edge is one sample wide
+  // too, on a freeform: a few such are the design's, not the samples'.)
   const int circles = std::clamp(static_cast<int>(std::ceil(limit_ / step_)), 2, 4096);
-  for (int j = 0; j < 256 && !any_; ++j) {
+  long runs = 0, narrow = 0;
+  for (int j = 0; j < 256; ++j) {
     const RadialLine line(2 * std::numbers::pi * j / 256);
-    for (int i = 0; i <= circles && !any_; ++i)
-      any_ = line_curvature(s_, 0, 0, line, limit_ * i / circles) * R_ > 1;
+    int run = 0;
+    for (int i = 0; i <= circles + 1; ++i) {
+      const bool tight =
+          i <= circles && line_section_curvature(s_, 0, 0, line, limit_ * i / circles) * R_ > 1;
+      if (tight) {
+        ++run;
+        continue;
+      }
+      if (run > 0) ++runs;
+      // One sample wide inside the grid (a stretch cut by its ends may be wider).
+      if (run == 1 && i > 1 && i <= circles) ++narrow;
+      run = 0;
+    }
   }
+  any_ = runs > 0 && 2 * narrow <= runs;
 }
 
 int TightTroughs::section_creases(const RadialLine& line, double lo, double hi,
@@ -46,24 +57,44 @@ int TightTroughs::section_creases(const RadialLine& line, double lo, double hi,
   return line_creases(0, 0, line, lo, hi, out);
 }
 
-int TightTroughs::line_creases(double x0, double y0, const RadialLine& line, double lo, double hi,
-                               std::span<double> out) const {
-  std::array<double, 64> found;
-  int count = 0;
-  if (s_.has_creases()) {
-    count = s_.line_creases(x0, y0, line, lo, hi, std::span<double>(found.data(), 32));
-    if (count < 0) return -1;
-  }
+namespace detail {
+
+// The troughs' creases along one line over its samples [first, last] (whole steps of ρ),
+// each tight stretch that reaches into them followed to its ends.
+struct LineTroughs {
+  std::uint64_t view = 0;
+  double x0 = 0, y0 = 0, cos = 2, sin = 2;
+  long first = 1, last = 0;
+  int count = 0;  // −1: more than rho holds
+  std::array<double, 192> rho;
+};
+
+}  // namespace detail
+
+namespace {
+
+// A thread's last line: the searches about one nose ask one line many times (a hold found
+// by the section's overhang, dozens), and its samples are taken once. On the heap, made
+// once a thread: the static TLS block a library loaded at run time (the Python module) may
+// take is a few kilobytes, and this is one and a half.
+thread_local std::unique_ptr<detail::LineTroughs> last_line;
+
+}  // namespace
+
+void TightTroughs::sample(double x0, double y0, const RadialLine& line, long first, long last,
+                          detail::LineTroughs& out) const {
   const auto tight = [&](double rho) {
-    return std::abs(rho) <= limit_ && line_curvature(s_, x0, y0, line, rho) * R_ > 1;
+    return std::abs(rho) <= limit_ && line_section_curvature(s_, x0, y0, line, rho) * R_ > 1;
   };
-  // Samples at whole steps of ρ, so that every query of a line finds the same creases; a
-  // stretch that runs past the query is followed to its end.
-  long first = static_cast<long>(std::floor(lo / step_));
-  long last = static_cast<long>(std::ceil(hi / step_));
+  // A stretch that runs past the samples asked for is followed to its end, so that every
+  // query of a line finds the same creases.
   const long most = static_cast<long>(std::ceil(2 * limit_ / step_));
   while (first > last - most && tight(first * step_)) --first;
   while (last < first + most && tight(last * step_)) ++last;
+  out.view = id_.value;
+  out.x0 = x0, out.y0 = y0, out.cos = line.cos, out.sin = line.sin;
+  out.first = first, out.last = last;
+  out.count = 0;
   long run_start = 0;
   double peak = 0, peak_rho = 0;
   bool in_run = false;
@@ -80,7 +111,7 @@ int TightTroughs::line_creases(double x0, double y0, const RadialLine& line, dou
     const double rho = k * step_;
     double kappa = 0;
     const bool here = k <= last && std::abs(rho) <= limit_ &&
-                      (kappa = line_curvature(s_, x0, y0, line, rho)) * R_ > 1;
+                      (kappa = line_section_curvature(s_, x0, y0, line, rho)) * R_ > 1;
     if (here) {
       const double slope = slope_at(rho);
       if (!in_run) {
@@ -102,10 +133,48 @@ int TightTroughs::line_creases(double x0, double y0, const RadialLine& line, dou
       // pieces beyond them are the nose's to follow; between them its bottom, or else its
       // tightest sample.
       const double middle = std::isnan(bottom) ? peak_rho : bottom;
-      for (const double crease : {(run_start - 1) * step_, middle, k * step_})
-        if (crease >= lo && crease <= hi && count < static_cast<int>(found.size()))
-          found[static_cast<std::size_t>(count++)] = crease;
+      for (const double crease : {(run_start - 1) * step_, middle, k * step_}) {
+        if (out.count + 1 > static_cast<int>(out.rho.size())) {
+          out.count = -1;
+          return;
+        }
+        out.rho[static_cast<std::size_t>(out.count++)] = crease;
+      }
     }
+  }
+}
+
+int TightTroughs::line_creases(double x0, double y0, const RadialLine& line, double lo, double hi,
+                               std::span<double> out) const {
+  std::array<double, 256> found;
+  int count = 0;
+  if (s_.has_creases()) {
+    count = s_.line_creases(x0, y0, line, lo, hi, std::span<double>(found.data(), 32));
+    if (count < 0) return -1;
+  }
+  const long first = static_cast<long>(std::floor(lo / step_));
+  const long last = static_cast<long>(std::ceil(hi / step_));
+  if (!last_line) last_line = std::make_unique<detail::LineTroughs>();
+  detail::LineTroughs& line_troughs = *last_line;
+  const bool known = line_troughs.view == id_.value && line_troughs.count >= 0 &&
+                     line_troughs.x0 == x0 && line_troughs.y0 == y0 &&
+                     line_troughs.cos == line.cos && line_troughs.sin == line.sin &&
+                     line_troughs.first <= first && last <= line_troughs.last;
+  detail::LineTroughs narrow;
+  const detail::LineTroughs* troughs = &line_troughs;
+  if (!known) {
+    // Two nose widths either side, for the next queries about the same nose.
+    const long margin = 2 * kSamplesPerRadius;
+    sample(x0, y0, line, first - margin, last + margin, line_troughs);
+    if (line_troughs.count < 0) {
+      sample(x0, y0, line, first, last, narrow);
+      troughs = &narrow;
+    }
+  }
+  const int listed = std::max(troughs->count, 0);
+  for (int i = 0; i < listed && count < static_cast<int>(found.size()); ++i) {
+    const double crease = troughs->rho[static_cast<std::size_t>(i)];
+    if (crease >= lo && crease <= hi) found[static_cast<std::size_t>(count++)] = crease;
   }
   std::sort(found.begin(), found.begin() + count);
   int written = 0;

@@ -8,13 +8,27 @@
 
 namespace freeturn {
 
-double radial_section_curvature(const Surface& design, const RadialLine& line, double rho) {
-  const HeightDerivatives h = design.height_derivatives(rho * line.cos, rho * line.sin);
+namespace {
+
+// The curvature at (x, y) of the design's section along the direction of `line`.
+double section_curvature_at(const Surface& design, double x, double y, const RadialLine& line) {
+  const HeightDerivatives h = design.height_derivatives(x, y);
   const double slope = h.zx * line.cos + h.zy * line.sin;
   const double bend =
       (h.zxx * line.cos + 2 * h.zxy * line.sin) * line.cos + h.zyy * line.sin * line.sin;
   const double stretch = 1 + slope * slope;
   return bend / (stretch * std::sqrt(stretch));
+}
+
+}  // namespace
+
+double radial_section_curvature(const Surface& design, const RadialLine& line, double rho) {
+  return section_curvature_at(design, rho * line.cos, rho * line.sin, line);
+}
+
+double line_section_curvature(const Surface& design, double x0, double y0, const RadialLine& line,
+                              double rho) {
+  return section_curvature_at(design, x0 + rho * line.cos, y0 + rho * line.sin, line);
 }
 
 double largest_section_curvature(const Surface& design, double inner_radius, double outer_radius,

@@ -14,9 +14,14 @@
 
 #include <vector>
 
+#include "freeturn/core/instance_id.hpp"
 #include "freeturn/surface/surface.hpp"
 
 namespace freeturn {
+
+namespace detail {
+struct LineTroughs;  // one line's troughs, as a thread keeps them (tight_troughs.cpp)
+}
 
 class TightTroughs final : public Surface {
  public:
@@ -48,9 +53,15 @@ class TightTroughs final : public Surface {
   bool crease_circles(std::vector<CreaseCircle>&) const override { return false; }
 
  private:
+  // The creases of the tight stretches along the line through (x0, y0) that reach into its
+  // samples [first, last] (whole steps of ρ), into a LineTroughs (tight_troughs.cpp).
+  void sample(double x0, double y0, const RadialLine& line, long first, long last,
+              detail::LineTroughs& out) const;
+
   const Surface& s_;
   double R_, step_, limit_;
   bool any_ = false;
+  InstanceId id_;  // keys each thread's cache of its last line
 };
 
 }  // namespace freeturn

@@ -10,6 +10,10 @@ namespace freeturn {
 // concave as seen from the tool (+z). NaN where the design is undefined.
 double radial_section_curvature(const Surface& design, const RadialLine& line, double rho);
 
+// The same along the line through (x0, y0) in the direction of `line`, at ρ along it.
+double line_section_curvature(const Surface& design, double x0, double y0, const RadialLine& line,
+                              double rho);
+
 // The largest radial_section_curvature over the annulus inner_radius ≤ ρ ≤ outer_radius,
 // sampled on a polar grid of `radial` circles (ρ evenly from inner to outer, both in) and
 // `angular` lines each, plus the largest change between two neighbouring samples: what a
