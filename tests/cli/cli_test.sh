@@ -196,6 +196,15 @@ if [[ -x /usr/bin/python3 ]] && /usr/bin/python3 -c "import numpy" 2> /dev/null;
   awk -v d="$deepest" 'BEGIN { exit !(d < 10) }' || { echo "FAIL: the held spiral's edge goes $deepest nm below the design"; fail=1; }
 fi
 
+# With B following the normal no nose is held: the same troughs stop the job, and the
+# message points to a fixed B, which cuts them as above.
+sed -e 's/points: {chord: {tolerance: 0.0002, max_angle_deg: 4}}}/points: {chord: {tolerance: 0.0002, max_angle_deg: 4}}, b_axis: follow}/' \
+    -e 's/machine: moore-nanotech-250upl/machine: moore-nanotech-350fg-b/' \
+    "$tmp/held_spiral.yaml" > "$tmp/held_b.yaml"
+"$freeturn" run "$tmp/held_b.yaml" -o "$tmp/held_b" > /dev/null 2> "$tmp/err"; expect "troughs tighter than the nose with B following" 2 $?
+contains "the message points to a fixed B" "$tmp/err" "or cut it with b_axis: fixed, which rests the nose on both sides"
+[[ -z "$(ls -A "$tmp/held_b" 2> /dev/null)" ]] || { echo "FAIL: a run stopped by bad input left files:"; ls "$tmp/held_b"; fail=1; }
+
 # A downgraded check still marks the program UNSAFE: a sphere decentred 0.5 mm, whose
 # flank about the axis faces the cut at atan(0.5/√3.75) = 14.5°, past the tool's 10°
 # clearance, with the clearance check set to warning, is written, but run exits 1 and both

@@ -94,6 +94,12 @@ class NoseSection {
   // its offset overhangs the far flank. "" where neither explains it.
   std::string why_not_smooth(const RadialLine& c, double contact_r) const {
     std::string why = nose_larger_than_section(c, contact_r);
+    // A fixed B rests the nose on both sides of a trough tighter than itself
+    // (path/tight_troughs.hpp); a following one holds it nowhere.
+    if (!why.empty() && b_follows_ && why.back() == ')')
+      why.insert(why.size() - 1,
+                 "; or cut it with b_axis: fixed, which rests the nose on both sides of such a "
+                 "trough and leaves its bottom");
     if (why.empty() && b_follows_ && R_ > 0 && design_.has_creases())
       why = "with B following the normal the nose is held at no crease, and near r = " +
             fixed_text(std::abs(contact_r), 4) +
