@@ -441,6 +441,17 @@ namespace {
 // The nose for the contact (rho_p, t) held at crease `held_at`, overhanging its flank on
 // `far` (±1) at overhang_rho: its centre where the own flank's offset meets the far
 // flank's (nose_touch, below). t itself where that is not resolved.
+// The material a nose of radius nose_radius about (centre_x, centre_z) leaves above the
+// section at a crease under it (mm, vertical): the depth of a held nose's residual there.
+// 0 where the design is undefined.
+double left_at_crease(const Section& section, double crease, double centre_x, double centre_z,
+                      double nose_radius) {
+  double g, slope;
+  if (!section.at(crease, g, slope)) return 0.0;
+  const double d = crease - centre_x;
+  return centre_z - std::sqrt(std::max(nose_radius * nose_radius - d * d, 0.0)) - g;
+}
+
 NoseTouch hold_at_crease(const Section& section, const SectionCreases& creases, NoseTouch t,
                          double rho_p, double R, double nose_radius, double m, double tolerance,
                          int held_at, int far, double overhang_rho) {
@@ -520,12 +531,8 @@ NoseTouch hold_at_crease(const Section& section, const SectionCreases& creases, 
       // search took the touch's change for an error of 276 nm at any step).
       if (lowest) t.crease_rho = creases.rho[k];
       lowest = false;
-      double g_crease, s_crease;
-      section.at(creases.rho[k], g_crease, s_crease);
-      const double d = creases.rho[k] - centre_x;
-      t.uncut =
-          std::max(t.uncut, centre_z - std::sqrt(std::max(nose_radius * nose_radius - d * d, 0.0)) -
-                                g_crease);
+      t.uncut = std::max(t.uncut,
+                         left_at_crease(section, creases.rho[k], centre_x, centre_z, nose_radius));
     }
     return t;
   };
@@ -854,22 +861,28 @@ NoseTouch hold_by_overhang(const Surface& design, const Section& section, const 
   const double first = overhang(rho_p, cx, cz);
   if (!(first > tolerance) || !std::isfinite(first)) return t;
   const double away = far > rho_p ? -1.0 : 1.0;
+  // The far point the last offset that overhangs does: the held nose's other touch.
+  double far_touch = far;
   double inside = rho_p, outside = rho_p, step = 1e-3 * R;
   for (;; step *= 2) {
     if (step > 2 * R) return t;
     outside = rho_p + away * step;
     if (!(overhang(outside, cx, cz) > tolerance)) break;
     inside = outside;
+    far_touch = far;
   }
   // Bisection to rounding on the whole section's overlap, so that every contact of one
   // held region ends on the same centre.
   for (int it = 0; it < 200 && std::abs(outside - inside) > 1e-14 * (1 + std::abs(inside)); ++it) {
     const double mid = 0.5 * (inside + outside);
     if (mid == inside || mid == outside) break;
-    (overhang(mid, cx, cz) > tolerance ? inside : outside) = mid;
+    if (overhang(mid, cx, cz) > tolerance) {
+      inside = mid;
+      far_touch = far;
+    } else {
+      outside = mid;
+    }
   }
-  overhang(inside, cx, cz);
-  const double far_touch = far;
   const double clear = overhang(outside, cx, cz);
   if (!(clear <= tolerance)) return t;
   NoseTouch held = t;
@@ -886,13 +899,8 @@ NoseTouch hold_by_overhang(const Surface& design, const Section& section, const 
   creases.find(design, line, std::min(outside, far_touch), std::max(outside, far_touch));
   held.uncut = 0;
   held.crease_rho = creases.count > 0 ? creases.rho[0] : 0.5 * (outside + far_touch);
-  for (int k = 0; k < creases.count; ++k) {
-    double g_crease, s_crease;
-    if (!section.at(creases.rho[k], g_crease, s_crease)) continue;
-    const double d = creases.rho[k] - cx;
-    held.uncut = std::max(
-        held.uncut, cz - std::sqrt(std::max(nose_radius * nose_radius - d * d, 0.0)) - g_crease);
-  }
+  for (int k = 0; k < creases.count; ++k)
+    held.uncut = std::max(held.uncut, left_at_crease(section, creases.rho[k], cx, cz, nose_radius));
   return held;
 }
 
