@@ -362,6 +362,25 @@ sed -e "s|fit: {zernike: 21}|fit: {zernike: 21, bspline: {control_points: 12, sm
 refused "a B-spline smoothing that swamps the measurement" "$tmp/heavy.yaml" "$tmp/heavy.yaml:24:63:" \
   "compensation.fit.bspline.smoothing is 1e+30, more than 1e8 times"
 
+# Refusals found while planning or posting, far from the file, name the job's key that
+# leads to them. A compound eye whose lenslets (radius 1 mm, 0.9 mm wide) tilt the normal
+# 27.5° from its base's (sin α = 0.45/1 on the rim, less the base's tilt) is past the 10°
+# limit of quasi-revolution: reported at the limit's key.
+sed -e 's/lens_radius: -5.0 .*/lens_radius: -1.0/' "$src/configs/jobs/compound_eye.yaml" > "$tmp/steep_eye.yaml"
+refused "lenslets past quasi-revolution" "$tmp/steep_eye.yaml" "$tmp/steep_eye.yaml:22:58:" \
+  "strategy.base_surface.max_normal_deviation_deg:" "not of quasi-revolution for its base: α reaches 27.4"
+# A chord-rule spiral on the Precitech, whose dialect writes no time a block: over a sphere
+# decentred 3 mm the steps vary (equal angles, or steps all at max_angle_deg, would not),
+# which the post refuses at the job's machine key, in `check` as in `run` (check posts the
+# program into no file; it had passed).
+sed -e "s|^machine: .*|machine: precitech-nanoform-250|" -e 's/max_angle_deg: 5/max_angle_deg: 30/' \
+    -e 's/^  radius: 50.0/  radius: 50.0\n  decenter: {x: 3}/' "$base" > "$tmp/precitech_chord.yaml"
+refused "varying block times on a dialect without them" "$tmp/precitech_chord.yaml" "$tmp/precitech_chord.yaml:19:10:" \
+  "machine: post-processor 'precitech'" "block times vary" "use equal-angle points"
+# A job that can only be sampled has no line to blame: its first.
+printf 'name: plate\naperture: {outer_radius: 2}\nsurface: {type: sphere, radius: 50}\n' > "$tmp/sample_only.yaml"
+refused "a job with nothing to run" "$tmp/sample_only.yaml" "$tmp/sample_only.yaml:1:1:" "no tool, strategy, cutting and machine sections"
+
 # SIGTERM and SIGINT mid-run remove the temporaries, as an error does. (Job control on:
 # without it a background job ignores SIGINT, and freeturn leaves an ignored signal so.)
 set -m

@@ -64,7 +64,9 @@ BasePlan plan_base_surface(const Surface& design, double inner, double outer,
         "°, above the limit " + degrees(o.angle_limit) + "°";
     const std::string where =
         "(x, y) = (" + fixed_text(q.where.x(), 6) + ", " + fixed_text(q.where.y(), 6) + ") mm";
-    if (o.refuse_above_limit) throw InputError(where, message);
+    // The limit is the setting to look at first (raise it, or cut a traditional spiral).
+    if (o.refuse_above_limit)
+      throw InputError(where, message, "strategy.base_surface.max_normal_deviation_deg");
     plan.warnings.push_back(where + ": " + message);
   }
   return plan;

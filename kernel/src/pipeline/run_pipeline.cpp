@@ -387,7 +387,7 @@ void refuse_coarse_axis_words(const Job& job, const MachineDescription& machine)
 
 PreparedJob prepare_job(const Job& job, std::uintmax_t max_yaml_bytes) {
   if (!job.plan)
-    throw InputError(job.file,
+    throw InputError(SourceLocation{job.file, 1, 1},
                      "the job has no tool, strategy, cutting and machine sections to run");
   std::string machine_ref = job.plan->machine;
   if (machine_ref.find('/') != std::string::npos &&
@@ -631,8 +631,8 @@ RunResult execute_job(const Job& job, const PreparedJob& prepared, const std::st
   std::vector<double> stock = plan.cutting.roughing_depths;
   // The clearance base the post approaches and retracts beyond: above every block of
   // every pass (a roughing pass's design is raised by its stock).
-  const double ceiling =
-      write && plan.outputs.nc ? kernel_ceiling(job, compensation, design, points, tool) : 0.0;
+  const bool posting = plan.outputs.nc && (write || !probe);
+  const double ceiling = posting ? kernel_ceiling(job, compensation, design, points, tool) : 0.0;
   long long points_so_far = 0;
   stock.push_back(0.0);  // the finishing pass
   std::vector<std::unique_ptr<PostProgram>> programs;
@@ -654,14 +654,17 @@ RunResult execute_job(const Job& job, const PreparedJob& prepared, const std::st
     AxisDiscard discard;
     AxisSink* post = &discard;
     std::unique_ptr<BlockScheduler> scheduler;
-    if (write && plan.outputs.nc) {
+    // `check` posts the program too, into no file: what the dialect or the guard would
+    // refuse in `run` (block times a dialect cannot write, a program past max_file_mb) is
+    // refused there as well. The constant-speed probe does not: its speed is not final.
+    if (posting) {
       programs.push_back(std::make_unique<PostProgram>(
           *plugin, machine,
           ProgramSettings{job.name + suffix, motion.spindle_rpm, motion.feed, -1,
                           static_cast<long long>(plan.limits.max_file_mb * 1048576.0),
                           machine_z(machine, ceiling + stock[pass]),
                           static_cast<int>(machine.spec(Axis::kZ).sign)},
-          out(job.name + "." + machine.name + suffix + ".nc")));
+          write ? out(job.name + "." + machine.name + suffix + ".nc") : std::string()));
       post = programs.back().get();
     }
     if (write && finishing) files->begin_finishing_pass(job, out_dir, outputs);
@@ -723,7 +726,11 @@ RunResult execute_job(const Job& job, const PreparedJob& prepared, const std::st
     }
   }
   judge(report);
-  if (!write) return {report, {}};
+  if (!write) {
+    OutputSet dropped;  // the programs' ends still cross the plugin and the guard
+    for (auto& p : programs) p->finish(dropped);
+    return {report, {}};
+  }
   // Everything succeeded: the files made from the whole run, then every file put in place.
   for (auto& p : programs) p->finish(outputs);
   files->finish(job, report, design, out_dir, outputs);

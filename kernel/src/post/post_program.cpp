@@ -15,10 +15,12 @@ PostProgram::PostProgram(const PostPlugin& plugin, const MachineDescription& mac
       settings_(settings),
       guard_(machine_),
       watch_(plugin.post().name) {
+  dropped_ = path.empty();
+  main_name_ = dropped_ ? settings_.name + ".nc" : path;
   folder_ = std::filesystem::path(path).parent_path().string();
-  files_.push_back(std::make_unique<AtomicFile>(path));
+  files_.push_back(dropped_ ? nullptr : std::make_unique<AtomicFile>(path));
   current_ = files_.front().get();
-  guard_.select_file(0, std::filesystem::path(path).filename().string());
+  guard_.select_file(0, std::filesystem::path(main_name_).filename().string());
   info_.program_name = settings_.name.c_str();
   info_.machine_name = machine_.name.c_str();
   info_.dialect_settings = machine_.dialect_settings.c_str();
@@ -101,7 +103,8 @@ void PostProgram::check_output(const char* stage) {
       throw InputError(machine_.place_of_setting_in(what),
                        who + " " + what + " (its " + (s == "begin" ? "header" : "footer") +
                            " comes from the dialect settings here)");
-    throw InputError(who, what);
+    // Otherwise the job's machine is the place to look: it chose this post-processor.
+    throw InputError(who, what, "machine");
   }
 }
 
@@ -113,7 +116,9 @@ void PostProgram::fail(const char* stage) const {
   // file states the setting it names.
   if (std::string(stage) == "create")
     throw InputError(machine_.place_of_setting_in(what), who + " refuses its settings: " + what);
-  throw InputError(who, std::string(stage) + ": " + what);
+  // A refusal of the blocks (block times a dialect cannot write, say) follows from the job
+  // meeting this machine: reported at the job's machine key.
+  throw InputError(who, std::string(stage) + ": " + what, "machine");
 }
 
 void PostProgram::write(std::span<const AxisRecord> chunk) {
@@ -123,15 +128,17 @@ void PostProgram::write(std::span<const AxisRecord> chunk) {
         guard_.check_record(chunk[k], blocks_written_ + static_cast<long long>(k) + 1);
     if (!refused.empty())
       throw InputError("NC guard (machine '" + machine_.name + "')",
-                       refused + "; no NC file was written");
+                       refused + "; no NC file was written", "machine");
     // The plugin approaches and retracts beyond top_z: a block past it would be cut into
     // by those moves.
     if ((chunk[k].z - settings_.top_z) * settings_.z_away > 0)
       throw InputError("NC guard (machine '" + machine_.name + "')",
                        "block " + std::to_string(blocks_written_ + static_cast<long long>(k) + 1) +
                            ": Z " + significant_text(chunk[k].z, 9) +
-                           " rises past the clearance base " + significant_text(settings_.top_z, 9) +
-                           " the approach and retract are planned from; no NC file was written");
+                           " rises past the clearance base " +
+                           significant_text(settings_.top_z, 9) +
+                           " the approach and retract are planned from; no NC file was written",
+                       "machine");
     blocks_[k] = {chunk[k].x, chunk[k].z, chunk[k].c, chunk[k].b, chunk[k].time};
   }
   blocks_written_ += static_cast<long long>(chunk.size());
@@ -154,10 +161,12 @@ void PostProgram::finish(OutputSet& outputs) {
   check_output("end");
   if (status != 0) fail("end");
   for (std::size_t k = 0; k < files_.size(); ++k)
-    outputs.adopt(std::move(files_[k]),
-                  k == 0 ? OutputSet::Role::kProgram : OutputSet::Role::kData);
+    if (files_[k])
+      outputs.adopt(std::move(files_[k]),
+                    k == 0 ? OutputSet::Role::kProgram : OutputSet::Role::kData);
   files_.clear();
   current_ = nullptr;
+  open_ = false;
 }
 
 std::vector<std::string> PostProgram::finish() {
@@ -169,21 +178,22 @@ std::vector<std::string> PostProgram::finish() {
 int PostProgram::write_bytes(void* context, const char* data, size_t size) {
   auto* self = static_cast<PostProgram*>(context);
   try {
-    // current_ is null once the files are handed over: a plugin writing from destroy().
-    if (!self->current_ || !self->refused_.empty() || !self->guard_.ok()) return 1;
+    // Closed once the files are handed over: a plugin writing from destroy().
+    if (!self->open_ || !self->refused_.empty() || !self->guard_.ok()) return 1;
     const std::string_view bytes(data, size);
     self->guard_.feed(bytes);
     if (!self->guard_.ok()) return 1;
     self->program_bytes_ += static_cast<long long>(size);
     if (self->settings_.max_file_bytes >= 0 && self->program_bytes_ > self->settings_.max_file_bytes) {
       self->refused_ =
-          "the program (" + self->files_.front()->path() + " and its " +
+          "the program (" + self->main_name_ + " and its " +
           std::to_string(self->files_.size() - 1) +
           " child files) would be larger than limits.max_file_mb = " +
-          significant_text(static_cast<double>(self->settings_.max_file_bytes) / (1 << 20), 6) + " MB";
+          significant_text(static_cast<double>(self->settings_.max_file_bytes) / (1 << 20), 6) +
+          " MB";
       return 1;
     }
-    self->current_->write(bytes);
+    if (self->current_) self->current_->write(bytes);
     return 0;
   } catch (const std::exception&) {
     return 1;
@@ -193,11 +203,13 @@ int PostProgram::write_bytes(void* context, const char* data, size_t size) {
 int PostProgram::open_file(void* context, const char* name) {
   auto* self = static_cast<PostProgram*>(context);
   const std::filesystem::path file(name);
-  if (self->files_.empty()) return 1;  // handed over: the program has ended
+  if (!self->open_) return 1;  // handed over: the program has ended
   if (file.empty() || file.has_parent_path() || file.is_absolute()) return 1;
   try {
     self->files_.push_back(
-        std::make_unique<AtomicFile>((std::filesystem::path(self->folder_) / file).string()));
+        self->dropped_
+            ? nullptr
+            : std::make_unique<AtomicFile>((std::filesystem::path(self->folder_) / file).string()));
     self->current_ = self->files_.back().get();
     self->guard_.select_file(self->files_.size() - 1, file.string());
     return 0;
@@ -208,7 +220,7 @@ int PostProgram::open_file(void* context, const char* name) {
 
 int PostProgram::select_main(void* context) {
   auto* self = static_cast<PostProgram*>(context);
-  if (self->files_.empty()) return 1;
+  if (!self->open_) return 1;
   self->current_ = self->files_.front().get();
   self->guard_.select_file(0, "");
   return 0;

@@ -37,7 +37,9 @@ struct ProgramSettings {
 
 class PostProgram final : public AxisSink {
  public:
-  // Throws InputError with the plugin's message when it refuses the program.
+  // Throws InputError with the plugin's message when it refuses the program. An empty
+  // `path` writes no file: the text still crosses the guard and the size limit, and is
+  // dropped (`freeturn check` refuses what `run` would, without writing).
   PostProgram(const PostPlugin& plugin, const MachineDescription& machine,
               const ProgramSettings& settings, const std::string& path);
   ~PostProgram() override;
@@ -65,8 +67,11 @@ class PostProgram final : public AxisSink {
   ft_writer writer_{};
   void* handle_ = nullptr;
   std::string folder_;
-  std::vector<std::unique_ptr<AtomicFile>> files_;  // [0] is the main program
+  std::vector<std::unique_ptr<AtomicFile>> files_;  // [0] is the main program; null when dropped
   AtomicFile* current_ = nullptr;
+  bool dropped_ = false;  // no file is written (an empty path)
+  bool open_ = true;      // false once finish() handed the files over
+  std::string main_name_;
   std::vector<ft_block> blocks_;
   char error_[512] = {0};
   NcGuard guard_;
