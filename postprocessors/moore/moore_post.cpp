@@ -28,11 +28,15 @@ class MoorePost {
     double time_decimals = 6;
     // Approach and retract run `retract` beyond the host's clearance base (top_z: no block
     // rises past it), so no move on the way in or out touches the part. G93's F is the
-    // block time: with no decimals every short block would read F0.
+    // block time: with no decimals every short block would read F0. The host schedules
+    // block times in whole microseconds, within the axes' limits as written (docs/
+    // machines.md, "Scheduling"): fewer than 6 decimals would round them to other times,
+    // and the axes' accelerations with them (3 decimals took the demo's C to 2.9 times its
+    // limit, read back from the program).
     if (!s.number_in("retract", 1.0, 0.01, 500, retract_, message) ||
         !s.number_in("approach_feed", 200.0, 0.001, 10000, approach_feed_, message) ||
         !s.whole_number_in("child_blocks", 0.0, 0, 1e8, child_blocks_, message) ||
-        !s.whole_number_in("time_decimals", 6.0, 1, 9, time_decimals, message))
+        !s.whole_number_in("time_decimals", 6.0, 6, 9, time_decimals, message))
       throw PostError(message);
     // A child file per handful of points would be thousands of files for one part.
     if (child_blocks_ != 0 && child_blocks_ < 100)

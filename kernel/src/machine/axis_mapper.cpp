@@ -42,6 +42,8 @@ AxisMapper::AxisMapper(const MachineDescription& machine, const MotionOptions& m
       out_(out),
       dynamics_(machine.interpolation == Interpolation::kCubic) {
   report_.max_rpm = motion.spindle_rpm > 0 ? std::numeric_limits<double>::infinity() : 0.0;
+  for (const AxisSpec& a : machine.axes)
+    word_scale_[static_cast<int>(a.axis)] = word_scale(a.decimals);
   if (machine.has(Axis::kC) && !(motion.spindle_rpm > 0))
     throw InputError("cutting.spindle_rpm", "machine '" + machine.name +
                                                 "' programs the C axis: give the spindle speed (> 0 rpm)");
@@ -212,10 +214,14 @@ void AxisMapper::write(std::span<const CutterLocation> chunk) {
       report_.cycle_time += r.time;
       report_.turns += (cl.contact.theta - previous_theta_) / (2 * std::numbers::pi);
     }
-    // Dynamics per axis from the unwrapped values, as a program is read back: at once for
-    // linear motion, a block later for a PVT cubic (its end velocity waits for this block).
+    // Dynamics per axis from the unwrapped values as the words carry them, as a program is
+    // read back: at once for linear motion, a block later for a PVT cubic (its end
+    // velocity waits for this block).
     BlockMotion m;
-    if (dynamics_.add({r.x, r.z, c, r.b}, has_previous_ ? r.time : 0.0, m)) {
+    const double* scale = word_scale_;
+    if (dynamics_.add({as_written(r.x, scale[0]), as_written(r.z, scale[1]),
+                       as_written(c, scale[2]), as_written(r.b, scale[3])},
+                      has_previous_ ? r.time : 0.0, m)) {
       const Place& at = m.block == index ? place : last_place_;
       judge_motion(m, at.theta, at.r);
     }

@@ -58,6 +58,16 @@ double whole_microseconds_up(double seconds) {
   return std::ceil(1e6 * seconds - 1e-6) * 1e-6;
 }
 
+// The time send() writes for a block planned at speed s (1/s): whole microseconds, up.
+double written_time(double s) {
+  return std::ceil(1e6 / s - 1e-6) * 1e-6;
+}
+
+// The speed a block planned at s runs at as written (0 stays 0: rest).
+double written_speed(double s) {
+  return s > 0 ? 1 / written_time(s) : 0.0;
+}
+
 std::string place_of(const AxisRecord& r) {
   return "the block to X " + fixed_text(r.x, 6) + " Z " + fixed_text(r.z, 6) + " C " +
          fixed_text(r.c, 5);
@@ -74,13 +84,19 @@ BlockScheduler::BlockScheduler(const MachineDescription& machine, AxisSink& out,
     present_[a] = true;
     velocity_limit_[a] = options_.margin * s.max_velocity;
     acceleration_limit_[a] = options_.margin * s.max_acceleration;
+    word_scale_[a] = word_scale(s.decimals);
   }
   options_.window = std::max<std::size_t>(options_.window, 16);
   pending_.reserve(options_.window);
   buffer_.reserve(options_.window);
 }
 
+// Checked at the speeds as written (whole microseconds), on the displacements as written:
+// what a reader of the program alone finds. The margin is left for the post's own
+// rounding of the times (a few parts in 1e9) and for ties in the words' rounding.
 bool BlockScheduler::pair_ok(const double* d1, double s1, const double* d2, double s2) const {
+  s1 = written_speed(s1);
+  s2 = written_speed(s2);
   const double faster = std::max(s1, s2);
   for (int a = 0; a < 4; ++a) {
     if (!present_[a] || !std::isfinite(acceleration_limit_[a])) continue;
@@ -91,9 +107,16 @@ bool BlockScheduler::pair_ok(const double* d1, double s1, const double* d2, doub
 
 void BlockScheduler::write(std::span<const AxisRecord> chunk) {
   for (const AxisRecord& r : chunk) {
+    // The positions as the program's words carry them (as_written). Planned on the
+    // unrounded path, an axis whose limit is small beside its words' rounding over a
+    // block's time (Z at 0.001 mm/s², 6 decimals, blocks of 0.2 s) read back 1 % over it.
+    double written[4];
+    const double q[4] = {r.x, r.z, r.c, r.b};
+    for (int a = 0; a < 4; ++a) written[a] = present_[a] ? as_written(q[a], word_scale_[a]) : 0.0;
     if (!started_) {
       // The program's first position: reached by the approach, no duration.
       started_ = true;
+      for (int a = 0; a < 4; ++a) last_written_[a] = written[a];
       last_in_ = r;
       buffer_.clear();
       buffer_.push_back(r);
@@ -103,11 +126,9 @@ void BlockScheduler::write(std::span<const AxisRecord> chunk) {
     }
     Block b;
     b.record = r;
-    b.d[static_cast<int>(Axis::kX)] = r.x - last_in_.x;
-    b.d[static_cast<int>(Axis::kZ)] = r.z - last_in_.z;
-    b.d[static_cast<int>(Axis::kC)] =
-        machine_.c_wrapped ? std::remainder(r.c - last_in_.c, 360.0) : r.c - last_in_.c;
-    b.d[static_cast<int>(Axis::kB)] = r.b - last_in_.b;
+    for (int a = 0; a < 4; ++a) b.d[a] = written[a] - last_written_[a];
+    const int c = static_cast<int>(Axis::kC);
+    if (machine_.c_wrapped) b.d[c] = std::remainder(b.d[c], 360.0);
     b.nominal = r.time;
     double upper = r.time > 0 ? 1 / r.time : kInfinity;
     for (int a = 0; a < 4; ++a)
@@ -120,6 +141,7 @@ void BlockScheduler::write(std::span<const AxisRecord> chunk) {
     b.upper = upper;
     pending_.push_back(b);
     last_in_ = r;
+    for (int a = 0; a < 4; ++a) last_written_[a] = written[a];
     if (pending_.size() >= options_.window) {
       plan(false);
       send(options_.window / 2);
@@ -194,7 +216,7 @@ void BlockScheduler::send(std::size_t count) {
     // Whole microseconds, as the posts write a block's time (6 decimals): the program's
     // cycle is then the sum of the written times. Rounding up only slows the block, by at
     // most 1 µs, which the margin covers.
-    const double t = std::ceil(1e6 / b.speed - 1e-6) * 1e-6;
+    const double t = written_time(b.speed);
     buffer_.push_back(b.record);
     buffer_.back().time = t;
     const double shorter = report_.blocks > 0 ? std::min(t, sent_time_) : t;

@@ -1,5 +1,6 @@
 #include "freeturn/machine/machine.hpp"
 
+#include <cmath>
 #include <stdexcept>
 
 namespace freeturn {
@@ -15,6 +16,10 @@ SourceLocation MachineDescription::place_of_setting_in(const std::string& messag
     if (message.find("'" + s.key + "'") != std::string::npos)
       return unknown ? s.key_place : s.value_place;
   return dialect_place.file.empty() ? file_place : dialect_place;
+}
+
+double word_scale(int decimals) {
+  return std::pow(10.0, decimals);
 }
 
 bool MachineDescription::has(Axis axis) const {

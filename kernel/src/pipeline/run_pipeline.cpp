@@ -99,7 +99,8 @@ class PassStage final : public CutterSink, public AxisSink {
 };
 
 // The blocks on their way to the post, as the program writes them (after the scheduler when
-// there is one): the report's velocity and acceleration charts are made of these.
+// there is one, each axis at its decimals): the report's velocity and acceleration charts
+// are made of these.
 class BlockTap final : public AxisSink {
  public:
   BlockTap(AxisSink& next, PassFigures& figures, const MachineDescription& machine)
@@ -107,9 +108,17 @@ class BlockTap final : public AxisSink {
         figures_(figures),
         x_(machine.spec(Axis::kX)),
         c_wrapped_(machine.c_wrapped),
-        cubic_(machine.interpolation == Interpolation::kCubic) {}
+        cubic_(machine.interpolation == Interpolation::kCubic) {
+    for (const AxisSpec& a : machine.axes)
+      scale_[static_cast<int>(a.axis)] = word_scale(a.decimals);
+  }
   void write(std::span<const AxisRecord> records) override {
-    for (const AxisRecord& r : records) figures_.add_block(r, x_, c_wrapped_, cubic_);
+    for (AxisRecord r : records) {
+      r.x = as_written(r.x, scale_[0]);
+      r.z = as_written(r.z, scale_[1]);
+      r.c = as_written(r.c, scale_[2]);
+      figures_.add_block(r, x_, c_wrapped_, cubic_);
+    }
     next_.write(records);
   }
 
@@ -119,6 +128,7 @@ class BlockTap final : public AxisSink {
   AxisSpec x_;
   bool c_wrapped_;
   bool cubic_;
+  double scale_[4] = {1, 1, 1, 1};
 };
 
 // Where the blocks go when nothing is written (check, and the constant-rpm probe): nowhere,

@@ -58,7 +58,7 @@ class BlockScheduler final : public AxisSink {
  private:
   struct Block {
     AxisRecord record;
-    double d[4] = {0, 0, 0, 0};  // displacement per Axis from the previous record
+    double d[4] = {0, 0, 0, 0};  // displacement per Axis from the previous record, as written
     double nominal = 0;          // s
     double upper = 0;            // the highest speed (1/s) velocity, rate and nominal allow
     double speed = 0;            // 1/s, planned
@@ -77,6 +77,8 @@ class BlockScheduler final : public AxisSink {
   ScheduleOptions options_;
   double velocity_limit_[4], acceleration_limit_[4];  // m × the machine's; infinity if none
   bool present_[4] = {false, false, false, false};
+  double word_scale_[4] = {1, 1, 1, 1};    // 10^decimals: a word's positions per machine unit
+  double last_written_[4] = {0, 0, 0, 0};  // the previous record as its words carry it
   std::vector<Block> pending_;
   std::vector<AxisRecord> buffer_;
   bool started_ = false;

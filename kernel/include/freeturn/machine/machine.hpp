@@ -5,6 +5,7 @@
 // takes blocks. Parsed from the machine YAML by the job module; the dialect's own
 // settings are passed through to the post-processor untouched.
 
+#include <cmath>
 #include <limits>
 #include <string>
 #include <utility>
@@ -32,6 +33,16 @@ struct AxisSpec {
   double max_velocity = std::numeric_limits<double>::infinity();      // mm/s or °/s
   double max_acceleration = std::numeric_limits<double>::infinity();  // mm/s² or °/s²
 };
+
+// 10^decimals: a word's units per machine unit.
+double word_scale(int decimals);
+
+// A position as the program's word carries it: rounded to nearest at the axis' decimals,
+// as the posts write it (plugins/include/freeturn/post_format.hpp). The axes' velocities
+// and accelerations a reader of the program finds are those of these positions.
+inline double as_written(double value, double scale) {
+  return std::nearbyint(value * scale) / scale;
+}
 
 struct MachineDescription {
   std::string name;
