@@ -97,6 +97,18 @@ void ToolChecker::found(ToolCheck check, double value, double limit, const Cutte
                              value_text(check, options_.b_max) + "]",
                          below ? "machine.b_axis.min_deg" : "machine.b_axis.max_deg");
     }
+    if (check == ToolCheck::kCentre)
+      // The limit is 0 (an edge off the spindle line reaches no radius under its height):
+      // the message says what to change instead.
+      throw CheckFailure(
+          where_text(here),
+          "centre check: the edge, " + value_text(check, value) +
+              " off the spindle line, cannot reach r = " + fixed_text(cl.contact.r, 6) +
+              " mm: set aperture.inner_radius to at least " +
+              significant_text(std::abs(compensation_.tool.centre_height), 6) +
+              " mm, or correct the centre height (tool.checks.centre: warning "
+              "writes the program leaving material about the axis, UNSAFE)",
+          kCause[i]);
     throw CheckFailure(where_text(here),
                      std::string(tool_check_name(check)) + " check: " + value_text(check, value) +
                          (curvature ? " is below the nose radius " +
