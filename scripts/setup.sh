@@ -82,7 +82,8 @@ build="$root/build/$flavour"
 # FREETURN_PGO). Once per build folder an instrumented build plans a finishing pass
 # (configs/training), then the library is built again from what it recorded. The profile
 # changes no value, only the code's layout (docs/path.md, "Build"). FREETURN_PGO=off skips
-# it; removing build/release/pgo trains again.
+# it; removing build/release/pgo trains again. Sources edited since the training still
+# build (kernel/CMakeLists.txt: -fprofile-correction), with their old profile where it fits.
 if [[ "$flavour" == release && "${FREETURN_PGO:-on}" != off ]]; then
   profile="$build/pgo"
   if [[ ! -f "$profile/trained" ]]; then
