@@ -160,15 +160,20 @@ int TightTroughs::line_creases(double x0, double y0, const RadialLine& line, dou
   const long last = static_cast<long>(std::ceil(hi / step_));
   if (!last_line) last_line = std::make_unique<detail::LineTroughs>();
   detail::LineTroughs& line_troughs = *last_line;
-  const bool known = line_troughs.view == id_.value && line_troughs.count >= 0 &&
-                     line_troughs.x0 == x0 && line_troughs.y0 == y0 &&
-                     line_troughs.cos == line.cos && line_troughs.sin == line.sin &&
-                     line_troughs.first <= first && last <= line_troughs.last;
+  const bool same_line = line_troughs.view == id_.value && line_troughs.x0 == x0 &&
+                         line_troughs.y0 == y0 && line_troughs.cos == line.cos &&
+                         line_troughs.sin == line.sin;
+  const bool known = same_line && line_troughs.count >= 0 && line_troughs.first <= first &&
+                     last <= line_troughs.last;
   detail::LineTroughs narrow;
   const detail::LineTroughs* troughs = &line_troughs;
   if (!known) {
-    // Two nose widths either side, for the next queries about the same nose.
-    const long margin = 2 * kSamplesPerRadius;
+    // A line asked again (the searches about one nose): two nose widths either side, for
+    // its next queries. A line asked once (each path state of an equal-angle plan has its
+    // own) is sampled where asked: the margins had been two thirds of an equal-angle
+    // plan's samples. The creases in [lo, hi] are the same either way: every stretch is
+    // followed to its ends.
+    const long margin = same_line ? 2 * kSamplesPerRadius : 0;
     sample(x0, y0, line, first - margin, last + margin, line_troughs);
     if (line_troughs.count < 0) {
       sample(x0, y0, line, first, last, narrow);
