@@ -366,6 +366,20 @@ sed -e "s|fit: {zernike: 21}|fit: {zernike: 21, bspline: {control_points: 12, sm
 refused "a B-spline smoothing that swamps the measurement" "$tmp/heavy.yaml" "$tmp/heavy.yaml:24:63:" \
   "compensation.fit.bspline.smoothing is 1e+30, more than 1e8 times"
 
+# A measurement wrong as a whole has no line of its own: reported at the job's `measured`
+# key, naming the file. Three points cannot register and fit 21 Zernike terms; a
+# directory or a device is no data file (/dev/zero had been read as one endless line).
+sed -e "s|\.\./data/compound_eye_measured.xyz|$tmp/three.xyz|" -e 's/format: zygo_xyz .*/format: xyz/' \
+    -e '/^  origin:/d' "$src/configs/jobs/compound_eye_compensated.yaml" > "$tmp/three.yaml"
+printf '0 0 0\n1 0 0\n0 1 0\n' > "$tmp/three.xyz"
+refused "a measurement of three points" "$tmp/three.yaml" "$tmp/three.yaml:19:13:" \
+  "compensation.measured '$tmp/three.xyz': 3 valid points fall inside the aperture"
+sed "s|$tmp/three.xyz|/dev/zero|" "$tmp/three.yaml" > "$tmp/zero.yaml"
+refused "a device as the measurement" "$tmp/zero.yaml" "$tmp/zero.yaml:19:13:" "'/dev/zero': is not a regular file"
+mkdir -p "$tmp/folder.xyz"
+sed "s|$tmp/three.xyz|$tmp/folder.xyz|" "$tmp/three.yaml" > "$tmp/folder.yaml"
+refused "a directory as the measurement" "$tmp/folder.yaml" "$tmp/folder.yaml:19:13:" "is not a regular file"
+
 # Refusals found while planning or posting, far from the file, name the job's key that
 # leads to them. A compound eye whose lenslets (radius 1 mm, 0.9 mm wide) tilt the normal
 # 27.5° from its base's (sin α = 0.45/1 on the rim, less the base's tilt) is past the 10°

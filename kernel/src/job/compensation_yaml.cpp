@@ -104,7 +104,20 @@ MeasuredPart read_part(const YAML::Node& node, const std::string& job_file, cons
   o.inner_radius = aperture.inner_radius;
   o.outer_radius = aperture.outer_radius;
   map.finish();
-  Measurement m = read_measurement(path, read);
+  // What is wrong with the measurement as a whole (no valid point, too few inside the
+  // aperture, points on a line) has no line of its own in the data: it is reported at the
+  // job's `measured` key, naming the file. A bad line of the data keeps its own place.
+  const SourceLocation measured_at = map.place("measured");
+  const auto at_measured_key = [&](const InputError& e) {
+    return InputError(measured_at, "compensation.measured '" + part.file + "': " + e.problem());
+  };
+  Measurement m;
+  try {
+    m = read_measurement(path, read);
+  } catch (const InputError& e) {
+    if (e.where() != path) throw;
+    throw at_measured_key(e);
+  }
   for (Eigen::Vector3d& p : m.points) p -= Eigen::Vector3d(origin_x, origin_y, 0);
   part.invalid = m.invalid;
   part.points = static_cast<long>(m.points.size());
@@ -113,6 +126,7 @@ MeasuredPart read_part(const YAML::Node& node, const std::string& job_file, cons
   try {
     part.registration = register_measurement(design, m, o, path);
   } catch (const InputError& e) {
+    if (e.where() == path) throw at_measured_key(e);
     if (e.where() != "smoothing" || !smoothing_at) throw;
     throw InputError(*smoothing_at, "compensation.fit.bspline.smoothing " + e.problem() +
                                         " (the B-spline fit of the error)");
