@@ -335,7 +335,13 @@ TEST_SUITE("job") {
       const char* message;
     };
     const Case cases[] = {
-        {"{type: height_grid, file: ../missing.csv}", "missing.csv: cannot open the point file"},
+        {"{type: height_grid, file: ../missing.csv}",
+         "missing.csv: no such file: give a point file"},
+        // A directory read as empty, a device as a line without end (/dev/zero had hung).
+        {"{type: height_grid, file: /dev/zero}",
+         "/dev/zero: is not a regular file (a directory, device or pipe)"},
+        {"{type: point_cloud, file: /tmp, control_points: [6, 6]}", "/tmp: is not a regular file"},
+        {"{type: nurbs, iges: /dev/zero}", "/dev/zero: is not a regular file"},
         {"{type: height_grid, file: ../cloud.xyz}",
          "do not form a regular grid: they have 625 distinct x and 625 distinct y values"},
         {"{type: height_grid, file: ../grid.csv, fit: spline}",

@@ -12,6 +12,7 @@
 #include <vector>
 
 #include "freeturn/core/error.hpp"
+#include "freeturn/io/input_file.hpp"
 
 namespace freeturn {
 namespace {
@@ -26,6 +27,7 @@ struct Sections {
 };
 
 Sections read_sections(const std::string& path) {
+  require_regular_file(path, "an IGES file");
   std::ifstream in(path, std::ios::binary);
   if (!in) throw InputError(SourceLocation{path, 0, 0}, "cannot open the IGES file");
   Sections s;

@@ -1,13 +1,13 @@
 #include "freeturn/io/measurement_file.hpp"
 
 #include <cmath>
-#include <filesystem>
 #include <fstream>
 #include <string>
 #include <string_view>
 
 #include "freeturn/core/error.hpp"
 #include "freeturn/core/number_text.hpp"
+#include "freeturn/io/input_file.hpp"
 
 namespace freeturn {
 namespace {
@@ -56,16 +56,7 @@ double field_number(const std::string& path, int line, std::string_view field, c
 
 // Lines of a text file, '\r' removed.
 std::vector<std::string> read_lines(const std::string& path) {
-  // A directory reads as empty and a device (/dev/zero) as a line without end: neither is
-  // a measurement.
-  std::error_code ec;
-  const std::filesystem::file_status status = std::filesystem::status(path, ec);
-  if (ec || !std::filesystem::exists(status))
-    throw InputError(SourceLocation{path, 0, 0}, "no such measurement file");
-  if (!std::filesystem::is_regular_file(status))
-    throw InputError(SourceLocation{path, 0, 0},
-                     "is not a regular file (a directory, device or pipe): give the measurement's "
-                     "data file");
+  require_regular_file(path, "the measurement's data file");
   std::ifstream in(path, std::ios::binary);
   if (!in) throw InputError(SourceLocation{path, 0, 0}, "cannot open the measurement file");
   std::vector<std::string> lines;

@@ -15,6 +15,7 @@
 
 #include "freeturn/core/error.hpp"
 #include "freeturn/core/number_text.hpp"
+#include "freeturn/io/input_file.hpp"
 #include "freeturn/io/nc_line.hpp"
 
 namespace freeturn {
@@ -200,13 +201,7 @@ std::vector<NcBlock> parse_nc(const std::string& text, const std::string& file) 
 }
 
 std::string read_nc_text(const std::string& path) {
-  std::error_code ec;
-  const std::filesystem::file_status status = std::filesystem::status(path, ec);
-  if (ec || !std::filesystem::exists(status))
-    throw InputError(SourceLocation{path, 0, 0}, "no such NC program");
-  if (!std::filesystem::is_regular_file(status))
-    throw InputError(SourceLocation{path, 0, 0},
-                     "is not a regular file (a directory, device or pipe): give an NC program");
+  require_regular_file(path, "an NC program");
   std::ifstream in(path, std::ios::binary);
   if (!in) throw InputError(SourceLocation{path, 0, 0}, "cannot open the NC program");
   std::ostringstream text;

@@ -7,6 +7,7 @@
 
 #include "freeturn/core/error.hpp"
 #include "freeturn/core/number_text.hpp"
+#include "freeturn/io/input_file.hpp"
 
 namespace freeturn {
 namespace {
@@ -25,6 +26,7 @@ std::string_view next_field(std::string_view& rest) {
 
 
 std::vector<Eigen::Vector3d> read_xyz_points(const std::string& path) {
+  require_regular_file(path, "a point file (x y z a line)");
   std::ifstream in(path);
   if (!in) throw InputError(SourceLocation{path, 0, 0}, "cannot open the point file");
   std::vector<Eigen::Vector3d> points;
