@@ -197,6 +197,16 @@ machine_variant() {  # NAME SED-SCRIPT [MACHINE-FILE, the ISO lathe's by default
 # rule gives it (decimals: 0 had written X2 for X1.97998, and passed).
 m=$(machine_variant coarse_z 's/\({name: Z, sign: 1, min: [^,]*, max: [^,]*, decimals: \)6/\13/')
 refused "Z words too coarse for the tolerance" "$m.yaml" "$m.machine.yaml:6:53:" "machine axis Z decimals 3" "round the nose's position by up to 500.7 nm"
+# Z at 5 decimals rounds a block by 5 nm, more than the 5 nm equal angles allow where their
+# blocks sit on the design (with X's and C's 0.7 nm: 5.67 nm); the chord rule's stand-off
+# would take 10 nm, and the refusal says so (it said only "write more decimals", which a
+# controller's resolution may not allow). With the base job's chords the same file runs.
+m=$(machine_variant coarse_z5 's/\({name: Z, sign: 1, min: [^,]*, max: [^,]*, decimals: \)6/\15/')
+sed -i 's/chord: {tolerance: 0.001, max_angle_deg: 5}/equal_angle: {per_rev: 90}/' "$m.yaml"
+refused "Z words too coarse for equal angles" "$m.yaml" "$m.machine.yaml:6:53:" "machine axis Z decimals 5" \
+  "or place the points by the chord rule (strategy.points.chord)" "up to 10 nm"
+sed -i 's/equal_angle: {per_rev: 90}/chord: {tolerance: 0.001, max_angle_deg: 5}/' "$m.yaml"
+"$freeturn" check "$m.yaml" > /dev/null 2>&1 || { echo "FAIL: Z at 5 decimals with the chord rule: check failed"; "$freeturn" check "$m.yaml"; fail=1; }
 m=$(machine_variant retract 's/^  retract: .*/  retract: -1.46/')
 refused "a negative retract" "$m.yaml" "$m.machine.yaml:12:12:" "'retract' is -1.46, outside"
 m=$(machine_variant feed 's/^  approach_feed: .*/  approach_feed: 1e300/')

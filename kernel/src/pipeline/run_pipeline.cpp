@@ -382,17 +382,25 @@ void refuse_coarse_axis_words(const Job& job, const MachineDescription& machine)
       : stand_off > 0 ? "the depth the verdict lets the motion dip below the design"
                       : "half the " + significant_text(kChordDipAllowed * 1e6, 3) +
                             " nm the verdict lets a chord dip where blocks sit on the design";
-  throw InputError(machine.decimals_places[static_cast<int>(coarsest->axis)],
-                   std::string("machine axis ") + axis_letter(coarsest->axis) + " decimals " +
-                       std::to_string(coarsest->decimals) +
-                       ": the program's words round the nose's position by up to " +
-                       significant_text(moved * 1e6, 4) + " nm (X, Z" +
-                       (machine.has(Axis::kC)
-                            ? ", C at r = " + significant_text(job.aperture.outer_radius, 6) + " mm"
-                            : std::string()) +
-                       (machine.has(Axis::kB) ? ", B about its pivot" : std::string()) +
-                       "), more than " + significant_text(allowed * 1e6, 4) + " nm, " + why +
-                       ": the program as written could cut below the design; write more decimals");
+  throw InputError(
+      machine.decimals_places[static_cast<int>(coarsest->axis)],
+      std::string("machine axis ") + axis_letter(coarsest->axis) + " decimals " +
+          std::to_string(coarsest->decimals) +
+          ": the program's words round the nose's position by up to " +
+          significant_text(moved * 1e6, 4) + " nm (X, Z" +
+          (machine.has(Axis::kC)
+               ? ", C at r = " + significant_text(job.aperture.outer_radius, 6) + " mm"
+               : std::string()) +
+          (machine.has(Axis::kB) ? ", B about its pivot" : std::string()) + "), more than " +
+          significant_text(allowed * 1e6, 4) + " nm, " + why +
+          ": the program as written could cut below the design; write more decimals" +
+          (plan.strategy.points.rule != CutterPointRule::kChordError && moved <= kChordDipAllowed
+               ? ", or place the points by the chord rule (strategy.points.chord), "
+                 "whose blocks stand off the design by half its tolerance: the "
+                 "rounding may then take up to " +
+                     significant_text(kChordDipAllowed * 1e6, 3) +
+                     " nm (a tolerance of 40 nm or more)"
+               : std::string()));
 }
 
 PreparedJob prepare_job(const Job& job, std::uintmax_t max_yaml_bytes) {
