@@ -109,7 +109,7 @@ void BlockScheduler::write(std::span<const AxisRecord> chunk) {
   for (const AxisRecord& r : chunk) {
     // The positions as the program's words carry them (as_written). Planned on the
     // unrounded path, an axis whose limit is small beside its words' rounding over a
-    // block's time (Z at 0.001 mm/s², 6 decimals, blocks of 0.2 s) read back 1 % over it.
+    // block's time (Z at 0.001 mm/s², 6 decimals, blocks of 0.2 s) read back 2 % over it.
     double written[4];
     const double q[4] = {r.x, r.z, r.c, r.b};
     for (int a = 0; a < 4; ++a) written[a] = present_[a] ? as_written(q[a], word_scale_[a]) : 0.0;
@@ -117,7 +117,6 @@ void BlockScheduler::write(std::span<const AxisRecord> chunk) {
       // The program's first position: reached by the approach, no duration.
       started_ = true;
       for (int a = 0; a < 4; ++a) last_written_[a] = written[a];
-      last_in_ = r;
       buffer_.clear();
       buffer_.push_back(r);
       buffer_.back().time = 0;
@@ -140,7 +139,6 @@ void BlockScheduler::write(std::span<const AxisRecord> chunk) {
       throw InputError(place_of(r), "the block has no time the machine's limits allow");
     b.upper = upper;
     pending_.push_back(b);
-    last_in_ = r;
     for (int a = 0; a < 4; ++a) last_written_[a] = written[a];
     if (pending_.size() >= options_.window) {
       plan(false);

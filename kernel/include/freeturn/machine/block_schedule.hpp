@@ -82,7 +82,6 @@ class BlockScheduler final : public AxisSink {
   std::vector<Block> pending_;
   std::vector<AxisRecord> buffer_;
   bool started_ = false;
-  AxisRecord last_in_;  // the last record received (for displacements)
   // The last block sent: the start of the next window's forward pass.
   double sent_d_[4] = {0, 0, 0, 0};
   double sent_speed_ = 0;
