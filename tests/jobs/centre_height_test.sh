@@ -136,14 +136,20 @@ cutting: {feed: 2.0}
 machine: precitech-nanoform-250
 outputs: {nc: true, report: false}
 YAML
-if "$freeturn" run "$tmp/profile.yaml" -o "$tmp/profile" --quiet; then
-  deepest=$("$py" "$src/tests/jobs/nc_profile_gouge.py" "$tmp/profile/profile.precitech-nanoform-250.nc" \
-    sphere:3.0 0.2 0.01 50 2.0) || fail=1
-  echo "profile: the edge's deepest below the design: $deepest nm"
-  "$py" -c "import sys; sys.exit(0 if float('$deepest') <= 0 else 1)" || { echo "FAIL: profile cuts into the design"; fail=1; }
-else
-  echo "FAIL: profile: the run failed"; fail=1
-fi
+# profile_above NAME WHAT: runs $tmp/NAME.yaml and reads its program back: the edge must
+# stay above the sphere.
+profile_above() {
+  local name="$1" what="$2"
+  if "$freeturn" run "$tmp/$name.yaml" -o "$tmp/$name" --quiet; then
+    deepest=$("$py" "$src/tests/jobs/nc_profile_gouge.py" "$tmp/$name/profile.precitech-nanoform-250.nc" \
+      sphere:3.0 0.2 0.01 50 2.0) || fail=1
+    echo "$what: the edge's deepest below the design: $deepest nm"
+    "$py" -c "import sys; sys.exit(0 if float('$deepest') <= 0 else 1)" || { echo "FAIL: $what cuts into the design"; fail=1; }
+  else
+    echo "FAIL: $what: the run failed"; fail=1
+  fi
+}
+profile_above profile "profile"
 # The same profile to the axis fails the centre check (exit 1, nothing written), and the
 # message names the inner radius that holds: |h| = 0.01 mm, where the edge's point on the
 # nose's axis reaches √(0² + h²) = h. That radius runs, and reads back above the design.
@@ -157,12 +163,5 @@ elif ! grep -qF "centre check: the edge, 10.0000 µm off the spindle line, canno
   echo "FAIL: profile to the axis: the message does not name the inner radius that holds:"; cat "$tmp/axis.err"; fail=1
 fi
 sed 's/inner_radius: 0.05/inner_radius: 0.01/' "$tmp/profile.yaml" > "$tmp/profile_h.yaml"
-if "$freeturn" run "$tmp/profile_h.yaml" -o "$tmp/profile_h" --quiet; then
-  deepest=$("$py" "$src/tests/jobs/nc_profile_gouge.py" "$tmp/profile_h/profile.precitech-nanoform-250.nc" \
-    sphere:3.0 0.2 0.01 50 2.0) || fail=1
-  echo "profile from r = h: the edge's deepest below the design: $deepest nm"
-  "$py" -c "import sys; sys.exit(0 if float('$deepest') <= 0 else 1)" || { echo "FAIL: profile from r = h cuts into the design"; fail=1; }
-else
-  echo "FAIL: profile from r = h, the radius the message names: the run failed"; fail=1
-fi
+profile_above profile_h "profile from r = h, the radius the message names"
 exit $fail

@@ -40,10 +40,9 @@ AxisMapper::AxisMapper(const MachineDescription& machine, const MotionOptions& m
     : machine_(machine),
       motion_(motion),
       out_(out),
-      dynamics_(machine.interpolation == Interpolation::kCubic) {
+      dynamics_(machine.interpolation == Interpolation::kCubic),
+      word_scale_(machine.word_scales()) {
   report_.max_rpm = motion.spindle_rpm > 0 ? std::numeric_limits<double>::infinity() : 0.0;
-  for (const AxisSpec& a : machine.axes)
-    word_scale_[static_cast<int>(a.axis)] = word_scale(a.decimals);
   if (machine.has(Axis::kC) && !(motion.spindle_rpm > 0))
     throw InputError("cutting.spindle_rpm", "machine '" + machine.name +
                                                 "' programs the C axis: give the spindle speed (> 0 rpm)");
@@ -218,7 +217,7 @@ void AxisMapper::write(std::span<const CutterLocation> chunk) {
     // read back: at once for linear motion, a block later for a PVT cubic (its end
     // velocity waits for this block).
     BlockMotion m;
-    const double* scale = word_scale_;
+    const std::array<double, 4>& scale = word_scale_;
     if (dynamics_.add({as_written(r.x, scale[0]), as_written(r.z, scale[1]),
                        as_written(c, scale[2]), as_written(r.b, scale[3])},
                       has_previous_ ? r.time : 0.0, m)) {

@@ -77,14 +77,13 @@ std::string place_of(const AxisRecord& r) {
 
 BlockScheduler::BlockScheduler(const MachineDescription& machine, AxisSink& out,
                                ScheduleOptions options)
-    : machine_(machine), out_(out), options_(options) {
+    : machine_(machine), out_(out), options_(options), word_scale_(machine.word_scales()) {
   for (int a = 0; a < 4; ++a) velocity_limit_[a] = acceleration_limit_[a] = kInfinity;
   for (const AxisSpec& s : machine.axes) {
     const int a = static_cast<int>(s.axis);
     present_[a] = true;
     velocity_limit_[a] = options_.margin * s.max_velocity;
     acceleration_limit_[a] = options_.margin * s.max_acceleration;
-    word_scale_[a] = word_scale(s.decimals);
   }
   options_.window = std::max<std::size_t>(options_.window, 16);
   pending_.reserve(options_.window);

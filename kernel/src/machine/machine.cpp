@@ -18,8 +18,11 @@ SourceLocation MachineDescription::place_of_setting_in(const std::string& messag
   return dialect_place.file.empty() ? file_place : dialect_place;
 }
 
-double word_scale(int decimals) {
-  return std::pow(10.0, decimals);
+std::array<double, 4> MachineDescription::word_scales() const {
+  std::array<double, 4> scales = {1, 1, 1, 1};
+  for (const AxisSpec& a : axes)
+    scales[static_cast<std::size_t>(a.axis)] = std::pow(10.0, a.decimals);
+  return scales;
 }
 
 bool MachineDescription::has(Axis axis) const {

@@ -108,10 +108,8 @@ class BlockTap final : public AxisSink {
         figures_(figures),
         x_(machine.spec(Axis::kX)),
         c_wrapped_(machine.c_wrapped),
-        cubic_(machine.interpolation == Interpolation::kCubic) {
-    for (const AxisSpec& a : machine.axes)
-      scale_[static_cast<int>(a.axis)] = word_scale(a.decimals);
-  }
+        cubic_(machine.interpolation == Interpolation::kCubic),
+        scale_(machine.word_scales()) {}
   void write(std::span<const AxisRecord> records) override {
     for (AxisRecord r : records) {
       r.x = as_written(r.x, scale_[0]);
@@ -128,7 +126,7 @@ class BlockTap final : public AxisSink {
   AxisSpec x_;
   bool c_wrapped_;
   bool cubic_;
-  double scale_[4] = {1, 1, 1, 1};
+  std::array<double, 4> scale_;
 };
 
 // Where the blocks go when nothing is written (check, and the constant-rpm probe): nowhere,

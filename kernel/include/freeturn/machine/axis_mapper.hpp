@@ -97,7 +97,7 @@ class AxisMapper final : public CutterSink {
   // The axes' motion block by block; where each block lies on the path (θ, r), for the
   // last one placed (a PVT block's motion is known once the block after it is).
   BlockDynamics dynamics_;
-  double word_scale_[4] = {1, 1, 1, 1};  // per Axis: the motion judged is the words' (as_written)
+  std::array<double, 4> word_scale_;  // per Axis: the motion judged is the words' (as_written)
   long positions_ = 0;
   struct Place {
     double theta = 0, r = 0;

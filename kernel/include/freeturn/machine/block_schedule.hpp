@@ -77,7 +77,7 @@ class BlockScheduler final : public AxisSink {
   ScheduleOptions options_;
   double velocity_limit_[4], acceleration_limit_[4];  // m × the machine's; infinity if none
   bool present_[4] = {false, false, false, false};
-  double word_scale_[4] = {1, 1, 1, 1};    // 10^decimals: a word's positions per machine unit
+  std::array<double, 4> word_scale_;       // per Axis (MachineDescription::word_scales)
   double last_written_[4] = {0, 0, 0, 0};  // the previous record as its words carry it
   std::vector<Block> pending_;
   std::vector<AxisRecord> buffer_;

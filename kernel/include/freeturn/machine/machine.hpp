@@ -5,6 +5,7 @@
 // takes blocks. Parsed from the machine YAML by the job module; the dialect's own
 // settings are passed through to the post-processor untouched.
 
+#include <array>
 #include <cmath>
 #include <limits>
 #include <string>
@@ -33,9 +34,6 @@ struct AxisSpec {
   double max_velocity = std::numeric_limits<double>::infinity();      // mm/s or °/s
   double max_acceleration = std::numeric_limits<double>::infinity();  // mm/s² or °/s²
 };
-
-// 10^decimals: a word's units per machine unit.
-double word_scale(int decimals);
 
 // A position as the program's word carries it: rounded to nearest at the axis' decimals,
 // as the posts write it (plugins/include/freeturn/post_format.hpp). The axes' velocities
@@ -85,6 +83,9 @@ struct MachineDescription {
   // else the file.
   SourceLocation place_of_setting_in(const std::string& message) const;
 
+  // Per Axis, 10^decimals: a word's units per machine unit (1 for an axis it does not have),
+  // for as_written.
+  std::array<double, 4> word_scales() const;
   bool has(Axis axis) const;
   const AxisSpec& spec(Axis axis) const;  // throws std::out_of_range when absent
 };
