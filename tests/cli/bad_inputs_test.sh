@@ -389,6 +389,12 @@ refused "a device as the measurement" "$tmp/zero.yaml" "$tmp/zero.yaml:19:13:" "
 mkdir -p "$tmp/folder.xyz"
 sed "s|$tmp/three.xyz|$tmp/folder.xyz|" "$tmp/three.yaml" > "$tmp/folder.yaml"
 refused "a directory as the measurement" "$tmp/folder.yaml" "$tmp/folder.yaml:19:13:" "is not a regular file"
+# A line of the measurement that is no point is refused at the measurement file's line and
+# column, the first field that is not a number: "0 1e-3 z0" has it at column 8.
+printf '0 0 0\n1 0 0\n0 1e-3 z0\n' > "$tmp/field.xyz"
+sed "s|$tmp/three.xyz|$tmp/field.xyz|" "$tmp/three.yaml" > "$tmp/field.yaml"
+refused "a measurement point that is not a number" "$tmp/field.yaml" "$tmp/field.xyz:3:8:" \
+  "'z0' is not a finite number"
 
 # Refusals found while planning or posting, far from the file, name the job's key that
 # leads to them. A compound eye whose lenslets (radius 1 mm, 0.9 mm wide) tilt the normal

@@ -80,36 +80,58 @@ TEST_SUITE("io") {
                          InputError);
   }
 
-  TEST_CASE("IGES: malformed files name the line") {
+  TEST_CASE("IGES: malformed files name the line and column") {
     freeturn::test::TempDir dir;
     std::string text = freeturn::test::read_file(kData + "bicubic_patch.igs");
-    // Shorten the first parameter record: a record must have its section in column 73.
+    // Shorten the first parameter record: a record must have its section in column 73 (the
+    // error is where the line ends, after its 7 characters).
     const std::size_t p1 = text.find("128,3,3");
     std::string broken = text;
     broken.replace(p1, 80, "128,3,3");
     CHECK_THROWS_WITH_AS(read_iges_surface(dir.write("short.igs", broken)),
-                         doctest::Contains("short.igs:6: IGES records are 80 columns"), InputError);
+                         doctest::Contains("short.igs:6:8: IGES records are 80 columns"),
+                         InputError);
     // A knot that is not a number.
     broken = text;
-    broken.replace(p1 + 22, 3, "0.x");  // the first knot, after K1 … PROP5
-    CHECK_THROWS_WITH_AS(read_iges_surface(dir.write("knot.igs", broken)),
-                         doctest::Contains("knot.igs:6: entity 128 (directory line 1): knot S(0) "
-                                           "must be a number, not '0.x'"),
-                         InputError);
+    broken.replace(p1 + 22, 3, "0.x");  // the first knot, in column 23 after K1 … PROP5
+    CHECK_THROWS_WITH_AS(
+        read_iges_surface(dir.write("knot.igs", broken)),
+        doctest::Contains("knot.igs:6:23: entity 128 (directory line 1): knot S(0) "
+                          "must be a number, not '0.x'"),
+        InputError);
+    // A weight on the second parameter record: its tenth field, "0.5" in column 37.
+    broken = text;
+    const std::size_t p2 = text.find("0.0,0.0,1.0,1.0,1.0,1.0,1.0,1.0,1.0,0.5");
+    REQUIRE(p2 != std::string::npos);
+    broken.replace(p2 + 36, 3, "0.y");
+    CHECK_THROWS_WITH_AS(
+        read_iges_surface(dir.write("weight.igs", broken)),
+        doctest::Contains("weight.igs:7:37: entity 128 (directory line 1): weight 3 "
+                          "must be a number, not '0.y'"),
+        InputError);
+    // A transformation pointer (the directory entry's seventh field, columns 49-56) at no
+    // entity 124.
+    broken = text;
+    const std::size_t d1 = text.find("     128       1");
+    broken.replace(d1 + 55, 1, "3");
+    CHECK_THROWS_WITH_AS(
+        read_iges_surface(dir.write("pointer.igs", broken)),
+        doctest::Contains("pointer.igs:4:49: transformation pointer 3 does not name"), InputError);
     CHECK_THROWS_AS(read_iges_surface(dir.file("missing.igs")), InputError);
   }
 
   TEST_CASE("IGES: a units flag that disagrees with the units name is refused at the global section") {
     freeturn::test::TempDir dir;
     const std::string text = freeturn::test::read_file(kData + "two_patches_inch.igs");
-    // Flag 1 (inches) with the name "INCH" reads; the name "2HMM" in its place (same
+    // Flag 1 (inches) with the name "INCH" reads (the name is the third global record's
+    // field from column 13); the name "2HMM" in its place (same
     // width as "4HINCH" less two, padded) does not: which one was meant cannot be told.
     std::string mm_name = text;
     const std::size_t at = mm_name.find("4HINCH");
     REQUIRE(at != std::string::npos);
     mm_name.replace(at, 6, "2HMM  ");
     CHECK_THROWS_WITH_AS(read_iges_surface(dir.write("units.igs", mm_name), 3),
-                         doctest::Contains("units.igs:2: the global section's units flag 1 (IN) "
+                         doctest::Contains("units.igs:3:13: the global section's units flag 1 (IN) "
                                            "disagrees with its units name 'MM'"),
                          InputError);
     // The lower-case name of the same unit is the same unit.

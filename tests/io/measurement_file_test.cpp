@@ -61,7 +61,8 @@ TEST_SUITE("io") {
     MeasurementFileOptions o;
     o.format = MeasurementFormat::kZygoXyz;
     CHECK_THROWS_WITH_AS(read_measurement(dir.write("short.xyz", "Zygo XYZ Data File\n1 2 3\n"), o),
-                         doctest::Contains("short.xyz:2: the Zygo XYZ header is truncated"), InputError);
+                         doctest::Contains("short.xyz:2:1: the Zygo XYZ header is truncated"),
+                         InputError);
     CHECK_THROWS_WITH_AS(read_measurement(dir.write("short.xyz", "Zygo XYZ Data File\n1 2 3\n"), o),
                          doctest::Contains("and the file ends after 2 lines"), InputError);
     CHECK_THROWS_WITH_AS(read_measurement(dir.write("empty.xyz", ""), o),
@@ -69,11 +70,56 @@ TEST_SUITE("io") {
     CHECK_THROWS_WITH_AS(read_measurement(dir.write("cut.xyz", zygo_file("10 20 3 2", 4)), o),
                          doctest::Contains("holds 4 pixels, the header (line 4) says 3 × 2 = 6: truncated"),
                          InputError);
-    CHECK_THROWS_WITH_AS(read_measurement(dir.write("size.xyz", zygo_file("10 20 3", 6)), o),
-                         doctest::Contains("size.xyz:4: the phase origin and size line must hold 4 numbers"),
+    CHECK_THROWS_WITH_AS(
+        read_measurement(dir.write("size.xyz", zygo_file("10 20 3", 6)), o),
+        doctest::Contains("size.xyz:4:1: the phase origin and size line must hold 4 numbers"),
+        InputError);
+    CHECK_THROWS_WITH_AS(
+        read_measurement(dir.write("out.xyz", zygo_file("10 20 2 2", 6)), o),
+        doctest::Contains("out.xyz:18:1: pixel (12, 20) is outside the header's phase area"),
+        InputError);
+  }
+
+  TEST_CASE("a field that is not a number is refused at its line and column") {
+    test::TempDir dir;
+    MeasurementFileOptions o;
+    o.format = MeasurementFormat::kZygoXyz;
+    const auto replaced = [](std::string text, const std::string& from, const std::string& to) {
+      return text.replace(text.find(from), from.size(), to);
+    };
+    // Line 17 is the second pixel, "11 20 -0.2x5": its height starts in column 7.
+    CHECK_THROWS_WITH_AS(
+        read_measurement(
+            dir.write("h.xyz", replaced(zygo_file("10 20 3 2", 6), "11 20 -0.25", "11 20 -0.2x5")),
+            o),
+        doctest::Contains("h.xyz:17:7: the height '-0.2x5' is not a finite number"), InputError);
+    // Line 8's seventh field, after "0 0.5 6.328e-07 0 1 1 " (22 characters).
+    CHECK_THROWS_WITH_AS(
+        read_measurement(
+            dir.write("r.xyz", replaced(zygo_file("10 20 3 2", 6), " 5e-07 ", " -5e-07 ")), o),
+        doctest::Contains("r.xyz:8:23: the camera resolution must be greater than 0"), InputError);
+    o.format = MeasurementFormat::kXyz;
+    CHECK_THROWS_WITH_AS(read_measurement(dir.write("p.xyz", "0 0 5\n1  0 z5\n"), o),
+                         doctest::Contains("p.xyz:2:6: a point is 'x y z'"), InputError);
+    CHECK_THROWS_WITH_AS(read_measurement(dir.write("p.xyz", "0 0 5\n1  0 z5\n"), o),
+                         doctest::Contains(": 'z5' is not a finite number"), InputError);
+    CHECK_THROWS_WITH_AS(read_measurement(dir.write("f.xyz", "0 0 5\n1 0 5 6\n"), o),
+                         doctest::Contains("f.xyz:2:7: a point is 'x y z'"), InputError);
+    CHECK_THROWS_WITH_AS(read_measurement(dir.write("f.xyz", "0 0 5\n1 0 5 6\n"), o),
+                         doctest::Contains("field 4 is one too many"), InputError);
+    CHECK_THROWS_WITH_AS(read_measurement(dir.write("s.xyz", "0 0 5\n1 0\n"), o),
+                         doctest::Contains("s.xyz:2:1: a point is 'x y z'"), InputError);
+    CHECK_THROWS_WITH_AS(read_measurement(dir.write("s.xyz", "0 0 5\n1 0\n"), o),
+                         doctest::Contains("the line holds 2 fields"), InputError);
+    o.format = MeasurementFormat::kCsv;  // an empty y: the third byte of "1,,4"
+    CHECK_THROWS_WITH_AS(read_measurement(dir.write("e.csv", "0,0,5\n1,,4\n"), o),
+                         doctest::Contains("e.csv:2:3: a point is 'x y z'"), InputError);
+    o.format = MeasurementFormat::kGrid;
+    CHECK_THROWS_WITH_AS(read_measurement(dir.write("g.csv", ",0,1\n0,1,x\n"), o),
+                         doctest::Contains("g.csv:2:5: the height 'x' is not a finite number"),
                          InputError);
-    CHECK_THROWS_WITH_AS(read_measurement(dir.write("out.xyz", zygo_file("10 20 2 2", 6)), o),
-                         doctest::Contains("out.xyz:18: pixel (12, 20) is outside the header's phase area"),
+    CHECK_THROWS_WITH_AS(read_measurement(dir.write("g.csv", ",0, a\n0,1,2\n"), o),
+                         doctest::Contains("g.csv:1:5: the column's x 'a' is not a finite number"),
                          InputError);
   }
 
@@ -98,7 +144,8 @@ TEST_SUITE("io") {
     CHECK(grid.points[3].y() == 1);
     CHECK(grid.points[3].z() == 6e-6);
     CHECK_THROWS_WITH_AS(read_measurement(dir.write("bad.csv", ",0,1\n0,1\n"), o),
-                         doctest::Contains("bad.csv:2: the row has 2 cells, the first row 3"), InputError);
+                         doctest::Contains("bad.csv:2:1: the row has 2 cells, the first row 3"),
+                         InputError);
     o.format = MeasurementFormat::kProfile;
     const Measurement profile = read_measurement(dir.write("p.txt", "0 1\n0.5 2\n"), o);
     CHECK(profile.profile);

@@ -20,9 +20,10 @@ TEST_SUITE("io") {
 
   TEST_CASE("xyz points: a bad line is an error at its line") {
     freeturn::test::TempDir dir;
-    CHECK_THROWS_WITH_AS(read_xyz_points(dir.write("p.csv", "1,2,3\n1,2\n")),
-                         doctest::Contains("p.csv:2: expected three numbers x y z (mm)"),
-                         InputError);
+    CHECK_THROWS_WITH_AS(
+        read_xyz_points(dir.write("p.csv", "1,2,3\n1,2\n")),
+        doctest::Contains("p.csv:2:1: expected three numbers x y z (mm); the line holds 2 numbers"),
+        InputError);
     CHECK_THROWS_WITH_AS(read_xyz_points(dir.write("q.csv", "1,2,3\n1,2,nan\n")),
                          doctest::Contains("q.csv:2:"), InputError);
     CHECK_THROWS_WITH_AS(read_xyz_points(dir.write("r.csv", "x y z\n")),
@@ -48,6 +49,18 @@ TEST_SUITE("io") {
       CHECK_THROWS_WITH_AS(read_xyz_points(dir.write("h.csv", std::string(row) + "0 0 0\n1 0 0\n")),
                            doctest::Contains("is not a finite number"), InputError);
     }
+    // The column is the offending field's, counted in bytes from 1.
+    CHECK_THROWS_WITH_AS(
+        read_xyz_points(dir.write("c.csv", "0 0 0\n1 2 3x\n")),
+        doctest::Contains(
+            "c.csv:2:5: expected three numbers x y z (mm); '3x' is not a finite number"),
+        InputError);
+    CHECK_THROWS_WITH_AS(
+        read_xyz_points(dir.write("c.csv", "0 0 0\n1, 2, 3, 4\n")),
+        doctest::Contains("c.csv:2:10: expected three numbers x y z (mm); '4' is a fourth field"),
+        InputError);
+    CHECK_THROWS_WITH_AS(read_xyz_points(dir.write("c.csv", "x -INF z\n0 0 0\n")),
+                         doctest::Contains("c.csv:1:3: '-INF' is not a finite number"), InputError);
     CHECK(read_xyz_points(dir.write("names.csv", "x y z\n0 0 0\n")).size() == 1);
     const auto points = read_xyz_points(dir.write("s.csv", "+1.5 -2E+01 .25\n"));
     REQUIRE(points.size() == 1);

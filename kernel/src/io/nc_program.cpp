@@ -255,7 +255,7 @@ std::vector<NcBlock> read_nc_program(const std::string& path, std::vector<std::s
     for (NcBlock& cb : read(child_path)) {
       for (const NcWord& w : cb.words)
         if (!w.numeric && w.text.rfind("M98(", 0) == 0)
-          throw InputError(SourceLocation{child_path, cb.line, 0},
+          throw InputError(SourceLocation{child_path, cb.line, w.column},
                            "a child program calls another (one level of M98 is read)");
       const bool ends = has_code(cb, 'M', {2, 30});
       const bool returns = has_code(cb, 'M', {99});

@@ -22,6 +22,11 @@ std::string_view next_field(std::string_view& rest) {
   return field;
 }
 
+// The 1-based column where `field`, a view into `line`, starts.
+int column_of(const std::string& line, std::string_view field) {
+  return static_cast<int>(field.data() - line.data()) + 1;
+}
+
 }  // namespace
 
 
@@ -44,16 +49,18 @@ std::vector<Eigen::Vector3d> read_xyz_points(const std::string& path) {
     double v[3];
     int count = 0;
     bool ok = true;
+    std::string_view bad;  // the field that ended the row, if one did
     std::string_view rest(line);
     for (std::string_view field = next_field(rest); !field.empty(); field = next_field(rest)) {
       double x;
       // NaN or infinity is a number that is not finite, not a column name: a first row of
       // them must not pass for a header and vanish.
       if (parse_number(field, x) && !std::isfinite(x))
-        throw InputError(SourceLocation{path, n, 0},
+        throw InputError(SourceLocation{path, n, column_of(line, field)},
                          "'" + std::string(field) + "' is not a finite number (x y z in mm)");
       if (count == 3 || !parse_finite(field, x)) {
         ok = false;
+        bad = field;
         break;
       }
       v[count++] = x;
@@ -68,16 +75,25 @@ std::vector<Eigen::Vector3d> read_xyz_points(const std::string& path) {
       for (std::string_view field = next_field(fields); !field.empty(); field = next_field(fields)) {
         double x;
         if (parse_number(field, x))
-          throw InputError(SourceLocation{path, n, 0},
-                           "'" + std::string(field) + "' is not a finite number, and a header "
-                           "row names the columns: a row of points has three finite numbers");
+          throw InputError(SourceLocation{path, n, column_of(line, field)},
+                           "'" + std::string(field) +
+                               "' is not a finite number, and a header "
+                               "row names the columns: a row of points has three finite numbers");
       }
       header_allowed = false;
       continue;
     }
-    throw InputError(SourceLocation{path, n, 0}, "expected three numbers x y z (mm)");
+    if (bad.empty())
+      throw InputError(SourceLocation{path, n, 1},
+                       "expected three numbers x y z (mm); the line holds " +
+                           std::to_string(count) + (count == 1 ? " number" : " numbers"));
+    throw InputError(SourceLocation{path, n, column_of(line, bad)},
+                     count == 3 ? "expected three numbers x y z (mm); '" + std::string(bad) +
+                                      "' is a fourth field"
+                                : "expected three numbers x y z (mm); '" + std::string(bad) +
+                                      "' is not a finite number");
   }
-  if (points.empty()) throw InputError(SourceLocation{path, n, 0}, "the file has no points");
+  if (points.empty()) throw InputError(SourceLocation{path, 0, 0}, "the file has no points");
   return points;
 }
 
