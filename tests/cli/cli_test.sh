@@ -103,25 +103,56 @@ if grep -q "^PASS" "$tmp/stdout"; then echo "FAIL: check printed PASS for an uns
 # A profile on the Precitech's PVT controller: the cubics through the blocks, timed by the
 # feed, must stay within the machine too. The ring at 1 400 mm/min (within X's 25 mm/s)
 # starts from rest into a first block of 1.6 ms, asking X for 14 477 mm/s² against 500
-# (an independent reader of the cubics from the NC agreed); it is refused at cutting.feed
-# with the feed that holds (acceleration scales with its square; 257.568 mm/min on the
-# unrounded path, 257.569 on the words as written), and that feed runs.
-# Before, it was written under a PASS.
+# (an independent reader of the cubics from the NC agreed). Its first block allows
+# 257.57 mm/min, but the stop after its last block (X from −0.026637 to 0 on the axis, Z
+# 0.001011 lower: v = ΔX/t, t = the chord over the feed, stopped over t) allows only
+# F = 60·chord·√(490/ΔX) = 216.92 mm/min at the 0.98 share of 500 mm/s². It is refused at
+# cutting.feed with the feed every block holds, and that feed runs. Before, it was written
+# under a PASS; then refused at its first block with 257.56, whose program stopped X at
+# 690 mm/s² (the reader below fails on it).
 sed 's/feed: 2.0 /feed: 1400 /; s/period: 2.5 /period: 0.8 /; s/roughing: \[0.01\]/roughing: []/' \
   "$src/configs/jobs/sinusoidal_ring.yaml" > "$tmp/ring_fast.yaml"
 (cd "$src/configs/jobs" && "$freeturn" run "$tmp/ring_fast.yaml" -o "$tmp/ring_fast" --quiet) 2> "$tmp/err"
 expect "PVT profile over the acceleration" 2 $?
 contains "PVT profile refused at the feed" "$tmp/err" "ring_fast.yaml:20:9: cutting.feed: "
-contains "PVT profile names the feed that holds" "$tmp/err" "X acceleration on the controller's PVT cubics exceeds the machine's limit at cutting.feed 1400 mm/min: give a feed of at most 257.56"
+contains "PVT profile names the feed that holds" "$tmp/err" "X acceleration on the controller's PVT cubics (the stop after the last block) exceeds the machine's limit at cutting.feed 1400 mm/min: give a feed of at most 216.91"
 [[ -z "$(ls -A "$tmp/ring_fast" 2> /dev/null)" ]] || { echo "FAIL: the refused profile wrote files"; fail=1; }
-sed 's/feed: 1400 /feed: 257.5 /' "$tmp/ring_fast.yaml" > "$tmp/ring_held.yaml"
+sed 's/feed: 1400 /feed: 216.9 /' "$tmp/ring_fast.yaml" > "$tmp/ring_held.yaml"
 (cd "$src/configs/jobs" && "$freeturn" run "$tmp/ring_held.yaml" -o "$tmp/ring_held" --quiet) 2> "$tmp/err"
 expect "PVT profile at the feed that holds" 0 $?
+# Read back from its NC alone: each axis's cubic Hermite through the blocks, velocities the
+# central differences over the neighbours' times (one-sided at the ends), from rest into the
+# first block and to rest after the last, each over that block's time.
+python3 - "$tmp/ring_held/sinusoidal_ring.precitech-nanoform-250.nc" <<'PY' || { echo "FAIL: the PVT profile's cubics exceed X's 500 mm/s²"; fail=1; }
+import math, re, sys
+feed, xs, zs = None, [], []
+for line in open(sys.argv[1]):
+    if line.startswith("G01 F"): feed = float(line[5:]) / 60
+    m = re.fullmatch(r"X(-?[0-9.]+)Z(-?[0-9.]+)\n", line)
+    if m: xs.append(float(m.group(1))); zs.append(float(m.group(2)))
+t = [math.hypot(xs[k] - xs[k - 1], zs[k] - zs[k - 1]) / feed for k in range(1, len(xs))]
+def velocity(k):  # at position k
+    a, b = max(k - 1, 0), min(k + 1, len(xs) - 1)
+    return (xs[b] - xs[a]) / sum(t[a:b])
+worst = 0.0
+for k in range(len(t)):
+    h, d = t[k], xs[k + 1] - xs[k]
+    va, vb = velocity(k), velocity(k + 1)
+    # q(u) Hermite: acceleration at u = 0 and 1, over h².
+    a0 = (6 * d - 4 * h * va - 2 * h * vb) / h**2
+    a1 = (-6 * d + 2 * h * va + 4 * h * vb) / h**2
+    worst = max(worst, abs(a0), abs(a1))
+start, stop = abs(velocity(0)) / t[0], abs(velocity(len(xs) - 1)) / t[-1]
+worst = max(worst, start, stop)
+print(f"PVT ring at {feed * 60:g} mm/min: X acceleration at most {worst:.1f} mm/s² read back "
+      f"(from rest {start:.1f}, the stop {stop:.1f})")
+sys.exit(0 if 480 < worst <= 500 else 1)
+PY
 # With the limits turned off it is written, and UNSAFE with the feed that would hold.
 sed 's/feed: 1400 /feed: 1400\n  enforce_dynamics: false/' "$tmp/ring_fast.yaml" > "$tmp/ring_unsafe.yaml"
 (cd "$src/configs/jobs" && "$freeturn" run "$tmp/ring_unsafe.yaml" -o "$tmp/ring_unsafe" --quiet) 2> "$tmp/err"
 expect "PVT profile over the limits, turned off" 1 $?
-contains "PVT profile off: UNSAFE with the feed" "$tmp/err" "at 1400 mm/min the program exceeds the machine's limits (enforce_dynamics: false): the highest feasible feed is 257.56"
+contains "PVT profile off: UNSAFE with the feed" "$tmp/err" "at 1400 mm/min the program exceeds the machine's limits (enforce_dynamics: false): the highest feasible feed is 216.91"
 # The CL data is written round-trip exact: each contact's θ is atan2(y, x) of its own point
 # to 1e-12 mm along the arc (nine fixed decimals were 2.5 nm off at r = 5 mm).
 python3 - "$tmp/fast/oap_segment.cl.csv" <<'PY' || { echo "FAIL: CL data not exact"; fail=1; }

@@ -202,6 +202,68 @@ TEST_SUITE("machine") {
         InputError);
   }
 
+  TEST_CASE(
+      "PVT stops after the last block too, and a profile is refused at the feed every block "
+      "holds") {
+    // The linear case's C (3.6° a block at 20 rpm, h = 0.03 s, the last block a third of
+    // one) under PVT: the central differences give 120°/s at every block, the sliver's
+    // included ((3.6 + 1.2)/(h + h/3)), so the cubics do not accelerate; the start reaches
+    // 120°/s over h (4 000°/s²) and the stop leaves it over h/3 (12 000°/s²), as linear
+    // motion does.
+    const double h = 0.03, step = 3.6 * std::numbers::pi / 180;
+    std::vector<CutterLocation> cls(101);
+    for (std::size_t k = 0; k < cls.size(); ++k) {
+      CutterLocation& cl = cls[k];
+      const double turned = k + 1 < cls.size() ? static_cast<double>(k) : k - 1 + 1.0 / 3;
+      cl.contact.theta = cl.c = turned * step;
+      cl.contact.r = cl.x = 1;
+    }
+    MachineDescription m = xzc();
+    m.interpolation = Interpolation::kCubic;
+    m.axes[2].max_acceleration = 6000;
+    MotionOptions motion;
+    motion.spindle_rpm = 20;
+    motion.enforce_dynamics = false;
+    AxisCollector axes;
+    AxisMapper mapper(m, motion, axes);
+    mapper.write(cls);
+    mapper.finish();
+    CHECK(mapper.report().peak_acceleration[2] == doctest::Approx(120 / (h / 3)).epsilon(1e-9));
+    CHECK(mapper.report().max_rpm ==
+          doctest::Approx(20 * std::sqrt(motion.margin * 0.5)).epsilon(1e-9));
+    CHECK(mapper.report().limiting.find(
+              "C acceleration (the stop after the last block) at θ = 6.2") == 0);
+
+    // A profile: X to the axis in 0.01 mm blocks, the last 0.0025 mm, Z still, at F mm/min
+    // (v = F/60 throughout: the central differences are exact on it). The start from rest
+    // asks v²/0.01, the stop v²/0.0025: against 0.98 × 500 mm/s², the start allows
+    // F = 60·√(490 · 0.01) = 132.82 mm/min and the stop 60·√(490 · 0.0025) = 66.41.
+    std::vector<CutterLocation> profile(101);
+    for (int k = 0; k < 100; ++k)
+      profile[static_cast<std::size_t>(k)].contact.r = profile[static_cast<std::size_t>(k)].x =
+          0.0025 + 0.01 * (99 - k);  // the last, profile[100], on the axis
+    MachineDescription lathe = xzc();
+    lathe.axes.pop_back();  // X and Z: a profile turns no C
+    lathe.interpolation = Interpolation::kCubic;
+    lathe.axes[0].max_acceleration = 500;
+    MotionOptions feed;
+    feed.feed = 200;
+    AxisMapper refused(lathe, feed, axes);
+    refused.write(profile);
+    // Refused at the end of the pass, with the feed the stop allows, not the start's.
+    CHECK_THROWS_WITH_AS(
+        refused.finish(),
+        doctest::Contains("X acceleration on the controller's PVT cubics (the stop "
+                          "after the last block) exceeds the machine's limit at "
+                          "cutting.feed 200 mm/min: give a feed of at most 66.407"),
+        InputError);
+    CHECK(refused.report().max_feed == doctest::Approx(60 * std::sqrt(490 * 0.0025)).epsilon(1e-6));
+    feed.feed = 66.4;
+    AxisMapper held(lathe, feed, axes);
+    held.write(profile);
+    CHECK_NOTHROW(held.finish());
+  }
+
   TEST_CASE("travel limits and a B the machine does not have are errors with their place") {
     MachineDescription m = xzc();
     m.axes[1].max = 0.2;  // Z travel

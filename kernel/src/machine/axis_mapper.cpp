@@ -127,19 +127,18 @@ void AxisMapper::judge_block(const double speed[4], const double acceleration[4]
   // its speed at one constant rpm, which scheduled timing would not.
   const std::string what = std::string(axis_letter(limiting->axis)) +
                            (by_acceleration ? " acceleration" : " velocity") +
-                           (!spiral ? " on the controller's PVT cubics"
-                            : stop  ? " (the stop after the last block)"
-                                    : "");
+                           (!spiral ? " on the controller's PVT cubics" : "") +
+                           (stop ? " (the stop after the last block)" : "");
   if (lowest) {
     highest = speed_limit;
     set_by = what + " at " + where(theta, r);
+    if (refused && !spiral) {
+      feed_refused_ = true;
+      feed_refused_where_ = where(theta, r);
+      feed_refused_what_ = what;
+    }
   }
-  if (!refused) return;
-  if (!spiral)
-    throw InputError(where(theta, r),
-                     what + " exceeds the machine's limit at cutting.feed " + number(base) +
-                         " mm/min: give a feed of at most " + number(speed_limit) + " mm/min",
-                     "cutting.feed");
+  if (!refused || !spiral) return;  // a profile's refusal waits for its lowest feed (finish)
   throw CheckFailure(where(theta, r), what + " exceeds the machine's limit at " + number(base) +
                                           " rpm; this block allows at most " + number(speed_limit) +
                                           " rpm");
@@ -155,11 +154,19 @@ void AxisMapper::judge_motion(const BlockMotion& m, double theta, double r) {
 }
 
 void AxisMapper::finish() {
-  // Under PVT the program's last block, its end velocity one-sided; under linear motion
-  // a spiral's stop after it.
+  // Under PVT the program's last block, its end velocity one-sided, and the stop from
+  // that velocity; under linear motion a spiral's stop after it (a linear controller ramps
+  // a profile's feed move itself).
   BlockMotion m;
   if (dynamics_.finish(m) && (!m.stop || motion_.spindle_rpm > 0))
     judge_motion(m, last_place_.theta, last_place_.r);
+  if (dynamics_.stop_after_cubic(m)) judge_motion(m, last_place_.theta, last_place_.r);
+  if (feed_refused_)
+    throw InputError(feed_refused_where_,
+                     feed_refused_what_ + " exceeds the machine's limit at cutting.feed " +
+                         number(motion_.feed) + " mm/min: give a feed of at most " +
+                         number(report_.max_feed) + " mm/min",
+                     "cutting.feed");
 }
 
 void AxisMapper::write(std::span<const CutterLocation> chunk) {

@@ -61,6 +61,18 @@ bool BlockDynamics::finish(BlockMotion& out) {
   return true;
 }
 
+bool BlockDynamics::stop_after_cubic(BlockMotion& out) const {
+  if (!cubic_ || positions_ < 2) return false;
+  out.block = positions_ - 1;
+  out.stop = true;
+  for (int a = 0; a < 4; ++a) {
+    const double v_end = pvt::velocity(q_before_[a], q_last_[a], t_last_);
+    out.velocity[a] = 0;
+    out.acceleration[a] = -v_end / t_last_;
+  }
+  return true;
+}
+
 void BlockDynamics::draw_cubic(long block, const std::array<double, 4>& v_end, BlockMotion& out) {
   out.block = block;
   const bool from_rest = block == 1;

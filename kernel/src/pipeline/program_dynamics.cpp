@@ -55,6 +55,7 @@ void ProgramDynamics::add(const std::array<double, 4>& q, const Feed& feed, cons
     if (started_) {
       BlockMotion m;
       if (dynamics_.finish(m)) judge(m, last_);
+      if (dynamics_.stop_after_cubic(m)) judge(m, last_);
       dynamics_ = BlockDynamics(machine_.interpolation == Interpolation::kCubic);
       started_ = false;
     }
@@ -130,6 +131,7 @@ void ProgramDynamics::finish(RunReport& report, PassFigures& figures) {
   }
   BlockMotion m;
   if (dynamics_.finish(m)) judge(m, last_);
+  if (dynamics_.stop_after_cubic(m)) judge(m, last_);
   figures.cycle_time = cycle_time_;
   for (std::size_t a = 0; a < 4; ++a) {
     figures.dynamics.peak_velocity[a] = peak_velocity_[a];

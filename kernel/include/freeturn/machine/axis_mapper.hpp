@@ -60,13 +60,16 @@ class AxisMapper final : public CutterSink {
   AxisMapper(const MachineDescription& machine, const MotionOptions& motion, AxisSink& out);
 
   // Throws InputError at the first block outside travel or B limits (and, with
-  // enforce_dynamics, the first beyond a dynamic limit), naming the axis, the value, the
-  // limit and where.
+  // enforce_dynamics, a spiral's first block beyond a dynamic limit), naming the axis, the
+  // value, the limit and where.
   void write(std::span<const CutterLocation> chunk) override;
   // The path is done: under PVT its last block's cubic (which waits for the block after it,
   // whose place sets the velocity it ends with) is judged now, with the one-sided velocity
-  // of the program's end; under linear interpolation, a spiral's stop after its last block
-  // (a profile runs at a feed, which the controller ramps itself).
+  // of the program's end and the stop from it; under linear interpolation, a spiral's stop
+  // after its last block (a profile runs at a feed, which the controller ramps itself).
+  // With enforce_dynamics, a PVT profile whose feed some block cannot follow is refused
+  // here, at cutting.feed, with the highest feed that every block allows: refused at its
+  // first such block, it named a feed that a later one (the stop) refused again.
   void finish();
 
   const DynamicsReport& report() const { return report_; }
@@ -103,6 +106,10 @@ class AxisMapper final : public CutterSink {
     double theta = 0, r = 0;
   };
   Place last_place_;
+  // A PVT profile's feed that a block cannot follow (enforce_dynamics): where the lowest
+  // feed allowed is set, and what sets it.
+  bool feed_refused_ = false;
+  std::string feed_refused_where_, feed_refused_what_;
   Eigen::Vector3d previous_point_ = Eigen::Vector3d::Zero();
 };
 

@@ -11,7 +11,8 @@
 // PVT: the cubic Hermite through the block's ends, whose velocities are the central
 // differences over their neighbours (path/pvt_rule.hpp; one-sided at the program's ends):
 // the velocity of largest size on it, and the larger of its end accelerations (linear in
-// time in between); the first block starts from rest, |v_start|/t at least.
+// time in between); the first block starts from rest, |v_start|/t at least, and the last
+// ends at its one-sided velocity, from which the controller stops: −v_end/t_last.
 #include <array>
 
 namespace freeturn {
@@ -38,6 +39,11 @@ class BlockDynamics {
   // makes over that block: a spiral at one constant speed that ends in a short block stops
   // its spindle hard there.
   bool finish(BlockMotion& out);
+  // Under PVT, after finish(): the stop after the last block (`stop` set). The last cubic
+  // ends at its one-sided velocity, and the controller brings each axis to rest from it
+  // over that block's time, as the first block starts from rest over its own. False under
+  // linear motion, whose finish() is the stop.
+  bool stop_after_cubic(BlockMotion& out) const;
 
  private:
   // The cubic of `block` (from q_before_ to q_last_, time t_last_), ending at v_end.
