@@ -104,20 +104,20 @@ if grep -q "^PASS" "$tmp/stdout"; then echo "FAIL: check printed PASS for an uns
 # feed, must stay within the machine too. The ring at 1 400 mm/min (within X's 25 mm/s)
 # starts from rest into a first block of 1.6 ms, asking X for 14 477 mm/s² against 500
 # (an independent reader of the cubics from the NC agreed). Its first block allows
-# 257.57 mm/min, but the stop after its last block (X from −0.026637 to 0 on the axis, Z
-# 0.001011 lower: v = ΔX/t, t = the chord over the feed, stopped over t) allows only
-# F = 60·chord·√(490/ΔX) = 216.92 mm/min at the 0.98 share of 500 mm/s². It is refused at
+# 257.57 mm/min, but the stop after its last block (X from −0.034642 to 0 on the axis, Z
+# 0.001303 lower: v = ΔX/t, t = the chord over the feed, stopped over t) allows only
+# F = 60·chord·√(490/ΔX) = 247.38 mm/min at the 0.98 share of 500 mm/s². It is refused at
 # cutting.feed with the feed every block holds, and that feed runs. Before, it was written
-# under a PASS; then refused at its first block with 257.56, whose program stopped X at
-# 690 mm/s² (the reader below fails on it).
+# under a PASS; then refused at its first block with 257.56, whose program's last block
+# (from −0.026637, before the last two steps were evened) stopped X at 690 mm/s².
 sed 's/feed: 2.0 /feed: 1400 /; s/period: 2.5 /period: 0.8 /; s/roughing: \[0.01\]/roughing: []/' \
   "$src/configs/jobs/sinusoidal_ring.yaml" > "$tmp/ring_fast.yaml"
 (cd "$src/configs/jobs" && "$freeturn" run "$tmp/ring_fast.yaml" -o "$tmp/ring_fast" --quiet) 2> "$tmp/err"
 expect "PVT profile over the acceleration" 2 $?
 contains "PVT profile refused at the feed" "$tmp/err" "ring_fast.yaml:20:9: cutting.feed: "
-contains "PVT profile names the feed that holds" "$tmp/err" "X acceleration on the controller's PVT cubics (the stop after the last block) exceeds the machine's limit at cutting.feed 1400 mm/min: give a feed of at most 216.91"
+contains "PVT profile names the feed that holds" "$tmp/err" "X acceleration on the controller's PVT cubics (the stop after the last block) exceeds the machine's limit at cutting.feed 1400 mm/min: give a feed of at most 247.37"
 [[ -z "$(ls -A "$tmp/ring_fast" 2> /dev/null)" ]] || { echo "FAIL: the refused profile wrote files"; fail=1; }
-sed 's/feed: 1400 /feed: 216.9 /' "$tmp/ring_fast.yaml" > "$tmp/ring_held.yaml"
+sed 's/feed: 1400 /feed: 247.3 /' "$tmp/ring_fast.yaml" > "$tmp/ring_held.yaml"
 (cd "$src/configs/jobs" && "$freeturn" run "$tmp/ring_held.yaml" -o "$tmp/ring_held" --quiet) 2> "$tmp/err"
 expect "PVT profile at the feed that holds" 0 $?
 # Read back from its NC alone: each axis's cubic Hermite through the blocks, velocities the
@@ -152,7 +152,7 @@ PY
 sed 's/feed: 1400 /feed: 1400\n  enforce_dynamics: false/' "$tmp/ring_fast.yaml" > "$tmp/ring_unsafe.yaml"
 (cd "$src/configs/jobs" && "$freeturn" run "$tmp/ring_unsafe.yaml" -o "$tmp/ring_unsafe" --quiet) 2> "$tmp/err"
 expect "PVT profile over the limits, turned off" 1 $?
-contains "PVT profile off: UNSAFE with the feed" "$tmp/err" "at 1400 mm/min the program exceeds the machine's limits (enforce_dynamics: false): the highest feasible feed is 216.91"
+contains "PVT profile off: UNSAFE with the feed" "$tmp/err" "at 1400 mm/min the program exceeds the machine's limits (enforce_dynamics: false): the highest feasible feed is 247.37"
 # The CL data is written round-trip exact: each contact's θ is atan2(y, x) of its own point
 # to 1e-12 mm along the arc (nine fixed decimals were 2.5 nm off at r = 5 mm).
 python3 - "$tmp/fast/oap_segment.cl.csv" <<'PY' || { echo "FAIL: CL data not exact"; fail=1; }

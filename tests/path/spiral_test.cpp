@@ -466,41 +466,43 @@ TEST_SUITE("path") {
     // The program stops after its last block, over that block's time: at one spindle speed
     // a last block of f caps asks C for ω²/(f·cap), 1/f times what the start from rest
     // asks. The cap binds everywhere here (as above), and the path ends f caps past a whole
-    // number of them. Where the end lies within 2.5 caps, the steps left are laid out as
-    // [(L − c)/2, (L − c)/2, c] (L = 2 + f caps) or [L − c, c] (L = 1 + f, f ≥ 1/2), the
-    // last a whole cap. Before, the last step was f caps: 0.02 of the others. Linear
-    // motion only: under PVT the last blocks keep the search's steps (path_stepper.hpp).
+    // number of them. Under linear motion, where the end lies within 2.5 caps the steps left
+    // are laid out as [(L − c)/2, (L − c)/2, c] (L = 2 + f caps) or [L − c, c] (L = 1 + f,
+    // f ≥ 1/2), the last a whole cap; under PVT the last two are evened, [L/2, L/2] for
+    // L = 1 + f (path_stepper.hpp says why). Before, the last step was f caps: 0.02 of the
+    // others.
     const EvenAsphere sphere(1 / 200.0, 0);
     const double cap = 3 * std::numbers::pi / 180;
     struct Case {
+      Interpolation mode;
       double f;
       std::vector<double> last_steps;  // in caps
     };
-    for (const Case& c :
-         {Case{0.02, {0.51, 0.51, 1}}, Case{0.3, {0.65, 0.65, 1}}, Case{0.7, {0.7, 1}}}) {
-      {
-        CAPTURE(c.f);
-        const Interpolation mode = Interpolation::kLinear;
-        SpiralOptions o;
-        o.pitch = 0.05;
-        o.outer_radius = o.pitch * (20 + c.f / 120);  // 20 turns of 120 caps, and f more
-        o.points.tolerance = 1e-2;
-        o.points.max_angle_step = cap;
-        o.points.interpolation = mode;
-        o.threads = 2;
-        ContactCollector out;
-        plan_spiral(sphere, BaseSurface::plane(o.outer_radius), o, out);
-        const std::vector<ContactPoint>& p = out.points;
-        const std::size_t n = c.last_steps.size();
-        REQUIRE(p.size() == 20 * 120 + 2);  // 2 400 caps and f: one step more, one point more
-        CHECK(p.back().theta ==
-              doctest::Approx(2 * std::numbers::pi * o.outer_radius / o.pitch).epsilon(1e-12));
-        for (std::size_t k = 1; k < p.size(); ++k) {
-          CAPTURE(k);
-          const std::size_t from_end = p.size() - k;  // 1 for the last step
-          const double expected = from_end <= n ? c.last_steps[n - from_end] : 1.0;
-          CHECK((p[k].theta - p[k - 1].theta) / cap == doctest::Approx(expected).epsilon(1e-9));
-        }
+    const Interpolation linear = Interpolation::kLinear, cubic = Interpolation::kCubic;
+    for (const Case& c : {Case{linear, 0.02, {0.51, 0.51, 1}}, Case{linear, 0.3, {0.65, 0.65, 1}},
+                          Case{linear, 0.7, {0.7, 1}}, Case{cubic, 0.02, {0.51, 0.51}},
+                          Case{cubic, 0.3, {0.65, 0.65}}, Case{cubic, 0.7, {0.85, 0.85}}}) {
+      CAPTURE(c.f);
+      CAPTURE(static_cast<int>(c.mode));
+      SpiralOptions o;
+      o.pitch = 0.05;
+      o.outer_radius = o.pitch * (20 + c.f / 120);  // 20 turns of 120 caps, and f more
+      o.points.tolerance = 1e-2;
+      o.points.max_angle_step = cap;
+      o.points.interpolation = c.mode;
+      o.threads = 2;
+      ContactCollector out;
+      plan_spiral(sphere, BaseSurface::plane(o.outer_radius), o, out);
+      const std::vector<ContactPoint>& p = out.points;
+      const std::size_t n = c.last_steps.size();
+      REQUIRE(p.size() == 20 * 120 + 2);  // 2 400 caps and f: one step more, one point more
+      CHECK(p.back().theta ==
+            doctest::Approx(2 * std::numbers::pi * o.outer_radius / o.pitch).epsilon(1e-12));
+      for (std::size_t k = 1; k < p.size(); ++k) {
+        CAPTURE(k);
+        const std::size_t from_end = p.size() - k;  // 1 for the last step
+        const double expected = from_end <= n ? c.last_steps[n - from_end] : 1.0;
+        CHECK((p[k].theta - p[k - 1].theta) / cap == doctest::Approx(expected).epsilon(1e-9));
       }
     }
   }

@@ -1425,23 +1425,25 @@ void distribute(Path& path, const CutterPointOptions& o, Emit&& emit, double beg
       // stops after its last block, over that block's time, and at one spindle speed a
       // last block of a few hundredths of a step asked C for 25 times the start's
       // acceleration (the stop is v/t = ω²/Δθ). Where the end lies within 2.5 steps s of
-      // this one, the steps left are laid out as [(R − s)/2, (R − s)/2, s] or [R − s, s]
-      // (R the τ remaining; at least [s/2, R − s/2]), so that the last block is s where it
+      // this one, the steps left are laid out as [(L − s)/2, (L − s)/2, s] or [L − s, s]
+      // (L the τ left; at least [s/2, L − s/2]), so that the last block is s where it
       // can be and no block is shorter than s/2. Each shortened step is measured as any
       // trial and taken only within the target; the next search finds its own step.
-      // Linear motion only. Under PVT a last step longer than the one before it makes
-      // the last cubic (its end velocity one-sided) run unevenly in time, and the slide
-      // measured on a creased design then read 95.6 nm on the ring profile's last segment,
-      // where the controller's cubic stays at the stand-off, 50 nm: the planner's figures
-      // would no longer be the dense sampler's (tests/path/nose_chord_test.cpp). PVT keeps
-      // the search's steps; its stop is judged all the same (machine/block_dynamics.hpp).
-      if (!pvt && o.rule == CutterPointRule::kChordError && end >= path.tau_end() && !jump &&
+      // Under PVT the last two steps are evened instead, [L/2, L/2] for L in (s, 2s): a
+      // last step longer than the one before makes the last cubic (its end velocity
+      // one-sided) run unevenly in time, and the slide measured on a creased design then
+      // read 95.6 nm on the ring profile's last segment, where the controller's cubic stays
+      // at the stand-off, 50 nm (tests/path/nose_chord_test.cpp): the planner's figures
+      // would no longer be the dense sampler's. The stop then asks at most twice the start.
+      if (o.rule == CutterPointRule::kChordError && end >= path.tau_end() && !jump &&
           !on_kink && trial.tau < end && trial.held == current.held && step >= min_step) {
         // Within a millionth of a step of a whole number of steps, the last sliver would
         // join the step before it (below): the steps are whole already.
         const double left = end - current.tau, whole = 1e-6 * step;
         double shortened = step;
-        if (left > 2 * step + whole && left < 2.5 * step) {
+        if (pvt) {
+          if (left > step + whole && left < 2 * step) shortened = 0.5 * left;
+        } else if (left > 2 * step + whole && left < 2.5 * step) {
           shortened = 0.5 * (left - step);
         } else if (left > step + whole && left <= 2 * step + whole) {
           shortened = std::max(left - step, 0.5 * step);
