@@ -395,6 +395,13 @@ printf '0 0 0\n1 0 0\n0 1e-3 z0\n' > "$tmp/field.xyz"
 sed "s|$tmp/three.xyz|$tmp/field.xyz|" "$tmp/three.yaml" > "$tmp/field.yaml"
 refused "a measurement point that is not a number" "$tmp/field.yaml" "$tmp/field.xyz:3:8:" \
   "'z0' is not a finite number"
+# The same for a point cloud named as the design, after the job's `file` key that names
+# it: the field "1e-3x" of its third line, from column 5.
+printf 'x y z\n0 0 0\n1 0 1e-3x\n0 1 0\n1 1 0\n' > "$tmp/cloud.xyz"
+sed "s|^  type: sphere\$|  type: point_cloud\n  file: $tmp/cloud.xyz\n  control_points: [4, 4]|; s|^  radius: 50.0\$||" \
+  "$base" > "$tmp/cloud.yaml"
+refused "a point cloud's field that is not a number" "$tmp/cloud.yaml" "$tmp/cloud.yaml:6:9:" \
+  "$tmp/cloud.xyz:3:5: expected three numbers x y z (mm); '1e-3x' is not a finite number"
 
 # Refusals found while planning or posting, far from the file, name the job's key that
 # leads to them. A compound eye whose lenslets (radius 1 mm, 0.9 mm wide) tilt the normal
