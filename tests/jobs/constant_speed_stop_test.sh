@@ -1,6 +1,7 @@
 #!/usr/bin/env bash
 # A spiral at one constant spindle speed stops after its last block: a tilted sphere on a
-# lathe whose C may accelerate 2 600 °/s², cut edge to centre and centre to edge. Coming to
+# lathe whose C may accelerate 2 600 °/s², cut edge to centre and centre to edge, with
+# linear motion and under PVT. Coming to
 # rest over the last block asks C for ω²/Δθ, as starting from rest over the first does.
 # Read back from the NC alone (tests/jobs/nc_dynamics.py: the last block ends at rest),
 # every axis stays within the machine. Before the stop was judged, the edge-to-centre
@@ -78,5 +79,33 @@ sys.exit(abs(rpm / expected - 1) > 1e-3)' "$report" ||
   # The warning says what scheduled timing would keep: this machine writes a time a block.
   "$py" -c 'import json, sys; w = [w["message"] for w in json.load(open(sys.argv[1]))["warnings"] if w["kind"] == "spindle_speed"]; print(w[0]); sys.exit("with cutting.timing: scheduled it would run at 20 rpm" not in w[0])' "$report" ||
     { echo "FAIL: $direction: the spindle speed warning does not point to scheduled timing"; fail=1; }
+done
+# The same lathe under PVT (the Precitech dialect with a time word): its program runs at
+# one speed, and its last cubic ends at its one-sided velocity, from which the axes stop
+# over the last block's time. The last two steps are evened there ([L/2, L/2]), so no
+# block is under half a step and the stop asks at most twice the start: at least
+# 14.741/√2 = 10.42 rpm. Read back from the NC's cubics alone (tests/jobs/nc_pvt_dynamics.py).
+# Before the stop was judged, the edge-to-centre program ran at 14.74 rpm and its stop asked
+# C for about 40 000 °/s²; judged, with its last block of 0.195°, it ran at 3.71 rpm.
+sed -e 's/^name: slow-c-lathe/name: slow-c-pvt/' -e 's/^plugin: moore/plugin: precitech/' \
+    -e 's/^interpolation: linear/interpolation: pvt\nblock_times: varying/' -e '/^moore:/,$d' \
+    "$tmp/slow-c-lathe.yaml" > "$tmp/slow-c-pvt.yaml"
+printf 'precitech:\n  header: "; PVT on"\n  footer: "; end of data"\n  time_word: T\n' >> "$tmp/slow-c-pvt.yaml"
+for direction in edge_to_centre centre_to_edge; do
+  sed -e "s/^  direction: .*/  direction: $direction/" -e "s|^machine: .*|machine: $tmp/slow-c-pvt.yaml|" \
+      "$tmp/tilted.yaml" > "$tmp/tilted_pvt.yaml"
+  rm -rf "$tmp/out"
+  "$freeturn" run "$tmp/tilted_pvt.yaml" -o "$tmp/out" --quiet || { echo "FAIL: PVT $direction: the run failed"; fail=1; continue; }
+  if "$py" "$src/tests/jobs/nc_pvt_dynamics.py" "$tmp/out/tilted.slow-c-pvt.nc" "$tmp/slow-c-pvt.yaml" T > "$tmp/dyn.txt"; then
+    echo "PVT $direction: $(tail -1 "$tmp/dyn.txt")"
+  else
+    echo "FAIL: PVT $direction: the program exceeds its machine:"; cat "$tmp/dyn.txt"; fail=1
+  fi
+  "$py" -c 'import json, math, sys
+rpm = json.load(open(sys.argv[1]))["passes"][-1]["constant_rpm"]["max_rpm"]
+floor = math.sqrt(0.98 * 2600 * 3.07) / 6 / math.sqrt(2)
+print(f"  {rpm:.4f} rpm, at least {floor:.4f}")
+sys.exit(rpm < floor)' "$tmp/out/tilted.report.json" ||
+    { echo "FAIL: PVT $direction: a short last block sets the speed"; fail=1; }
 done
 exit $fail
