@@ -1435,8 +1435,8 @@ void distribute(Path& path, const CutterPointOptions& o, Emit&& emit, double beg
       // read 95.6 nm on the ring profile's last segment, where the controller's cubic stays
       // at the stand-off, 50 nm (tests/path/nose_chord_test.cpp): the planner's figures
       // would no longer be the dense sampler's. The stop then asks at most twice the start.
-      if (o.rule == CutterPointRule::kChordError && end >= path.tau_end() && !jump &&
-          !on_kink && trial.tau < end && trial.held == current.held && step >= min_step) {
+      if (o.rule == CutterPointRule::kChordError && end >= path.tau_end() && !jump && !on_kink &&
+          trial.tau < end && trial.held == current.held && step >= min_step) {
         // Within a millionth of a step of a whole number of steps, the last sliver would
         // join the step before it (below): the steps are whole already.
         const double left = end - current.tau, whole = 1e-6 * step;
