@@ -1429,12 +1429,12 @@ void distribute(Path& path, const CutterPointOptions& o, Emit&& emit, double beg
       // (L the τ left; at least [s/2, L − s/2]), so that the last block is s where it
       // can be and no block is shorter than s/2. Each shortened step is measured as any
       // trial and taken only within the target; the next search finds its own step.
-      // Under PVT the last two steps are evened instead, [L/2, L/2] for L in (s, 2s): a
-      // last step longer than the one before makes the last cubic (its end velocity
-      // one-sided) run unevenly in time, and the slide measured on a creased design then
-      // read 95.6 nm on the ring profile's last segment, where the controller's cubic stays
-      // at the stand-off, 50 nm (tests/path/nose_chord_test.cpp): the planner's figures
-      // would no longer be the dense sampler's. The stop then asks at most twice the start.
+      // Under PVT the last two steps are evened instead, [L/2, L/2] for L in (s, 2s): with
+      // a last step longer than the one before (the last cubic's end velocity one-sided),
+      // the planner's figure for the ring profile's last segment read 95.6 nm where the
+      // controller's cubic stays at the stand-off, 50 nm (tests/path/nose_chord_test.cpp),
+      // so that its figures were no longer the dense sampler's. The stop then asks at most
+      // twice the start.
       if (o.rule == CutterPointRule::kChordError && end >= path.tau_end() && !jump && !on_kink &&
           trial.tau < end && trial.held == current.held && step >= min_step) {
         // Within a millionth of a step of a whole number of steps, the last sliver would
