@@ -163,10 +163,8 @@ class ParameterReader {
     return value;
   }
   std::size_t remaining() const { return fields_.size() - index_; }
-  // The entity's first parameter, for an error about the entity as a whole.
-  SourceLocation where() const { return section_.at(fields_.empty() ? 0 : fields_.front().offset); }
-  const std::string& entity() const { return entity_; }
-  // Where the k-th parameter (0 the entity type) is; past the last, where the data ends.
+  // Where the k-th parameter (0 the entity type: the entity as a whole) is; past the last,
+  // where the data ends.
   SourceLocation at_field(std::size_t k) const {
     if (fields_.empty()) return section_.at(0);
     return section_.at(k < fields_.size() ? fields_[k].offset : fields_.back().offset);
@@ -341,8 +339,8 @@ class IgesFile {
 nurbs::NurbsSurface read_entity_128(const IgesFile& file, const Directory& d) {
   ParameterReader p = file.parameters(d);
   if (p.integer("the entity type") != 128)
-    throw InputError(p.where(), "directory line " + std::to_string(d.line) +
-                                    " points at parameters of another entity");
+    throw InputError(p.at_field(0), "directory line " + std::to_string(d.line) +
+                                        " points at parameters of another entity");
   const int k1 = p.integer("K1"), k2 = p.integer("K2"), m1 = p.integer("M1"),
             m2 = p.integer("M2");
   if (k1 < 1 || k2 < 1 || m1 < 1 || m2 < 1 || m1 > k1 || m2 > k2)
@@ -356,10 +354,11 @@ nurbs::NurbsSurface read_entity_128(const IgesFile& file, const Directory& d) {
   const long long needed = (static_cast<long long>(k1) + m1 + 2) + (static_cast<long long>(k2) + m2 + 2) +
                            4 * (static_cast<long long>(k1) + 1) * (static_cast<long long>(k2) + 1) + 4;
   if (needed > static_cast<long long>(p.remaining()))
-    throw InputError(p.where(), "entity 128 with K1=" + std::to_string(k1) + ", K2=" + std::to_string(k2) +
-                                    ", M1=" + std::to_string(m1) + ", M2=" + std::to_string(m2) + " needs " +
-                                    std::to_string(needed) + " more parameters; the entity holds " +
-                                    std::to_string(p.remaining()));
+    throw InputError(p.at_field(0),
+                     "entity 128 with K1=" + std::to_string(k1) + ", K2=" + std::to_string(k2) +
+                         ", M1=" + std::to_string(m1) + ", M2=" + std::to_string(m2) + " needs " +
+                         std::to_string(needed) + " more parameters; the entity holds " +
+                         std::to_string(p.remaining()));
   const std::size_t first_knot = p.index();
   std::vector<double> s(static_cast<std::size_t>(k1 + m1 + 2)), t(static_cast<std::size_t>(k2 + m2 + 2));
   for (std::size_t k = 0; k < s.size(); ++k) s[k] = p.real("knot S(" + std::to_string(k) + ")");
