@@ -8,7 +8,8 @@
 # program asked C for 40 187 °/s²; once it was, its last block (0.195°, what the path's
 # last step left) set the speed, 3.71 rpm. The path's last steps are now laid out so that
 # the last block is a whole step, the 3.07° cap here as the first block is: the stop then
-# allows what the start does, ω = √(0.98 · 2600 · 3.07) °/s = 14.741 rpm, both ways.
+# allows what the start does, ω = √(0.98 · 2600 · 3.07) °/s = 14.741 rpm, both ways. Equal
+# angles and equal arcs lay out their last steps alike (at the end of this file).
 # usage: constant_speed_stop_test.sh <freeturn> <source dir>
 set -u
 freeturn=$1 src=$2
@@ -107,5 +108,62 @@ floor = math.sqrt(0.98 * 2600 * 3.07) / 6 / math.sqrt(2)
 print(f"  {rpm:.4f} rpm, at least {floor:.4f}")
 sys.exit(rpm < floor)' "$tmp/out/tilted.report.json" ||
     { echo "FAIL: PVT $direction: a short last block sets the speed"; fail=1; }
+done
+# Equal angles (120 a turn, 3°) and equal arcs (0.1 mm) on the same sphere and lathes. Their
+# steps were a lattice or a length to the end, and the path's last step whatever was left:
+# at 120 a turn the linear program ran at 2.14 rpm edge to centre, its stop over a 0.065°
+# block setting the speed. Their last steps are now laid out as the chord rule's (in 0.98
+# of an equal arc's step). Read from the NC alone: the C steps of the first block and of the
+# last three, and the speed the report names against the closed form from the start and
+# the stop, √(0.98 · 2600 · min(first, last)) °/s (linear: every step's C at one speed binds
+# only at the start and the stop). The last step is at least 0.97 of the fourth from the end
+# (linear), and none of the last three under 0.48 of it (both).
+for points in "equal_angle: {per_rev: 120}" "equal_arc: {length: 0.1}"; do
+  for machine in slow-c-lathe slow-c-pvt; do
+    for direction in edge_to_centre centre_to_edge; do
+      sed -e "s/^  direction: .*/  direction: $direction/" -e "s|^machine: .*|machine: $tmp/$machine.yaml|" \
+          -e "s/^  points: .*/  points: {$points}/" "$tmp/tilted.yaml" > "$tmp/tilted_rule.yaml"
+      rm -rf "$tmp/out"
+      what="$points, $machine, $direction"
+      "$freeturn" run "$tmp/tilted_rule.yaml" -o "$tmp/out" --quiet || { echo "FAIL: $what: the run failed"; fail=1; continue; }
+      nc="$tmp/out/tilted.$machine.nc"
+      if [[ $machine == slow-c-pvt ]]; then
+        "$py" "$src/tests/jobs/nc_pvt_dynamics.py" "$nc" "$tmp/$machine.yaml" T > "$tmp/dyn.txt"
+      else
+        cycle=$("$py" -c 'import json, sys; print(json.load(open(sys.argv[1]))["passes"][-1]["cycle_time_s"])' "$tmp/out/tilted.report.json")
+        "$py" "$src/tests/jobs/nc_dynamics.py" "$nc" "$tmp/$machine.yaml" moore --cycle "$cycle" > "$tmp/dyn.txt"
+      fi || { echo "FAIL: $what: the program exceeds its machine:"; cat "$tmp/dyn.txt"; fail=1; }
+      "$py" - "$nc" "$tmp/out/tilted.report.json" "$machine" "$what" <<'PY' || fail=1
+import json, math, re, sys
+nc, report, machine, what = sys.argv[1:5]
+c = []
+for line in open(nc):
+    if line.lstrip().startswith(("(", ";")):
+        continue
+    m = re.search(r"C(-?[0-9.]+)", line)
+    if m and re.search(r"X-?[0-9.]", line):
+        c.append(float(m.group(1)))
+# C is wrapped to [0, 360): unwrap, the spiral turns one way.
+steps = [((b - a) % 360.0) for a, b in zip(c, c[1:])]
+while steps and steps[0] == 0:  # the approach's blocks, at the start's C
+    steps.pop(0)
+first, last, before = steps[0], steps[-1], steps[-4]
+rpm = json.load(open(report))["passes"][-1]["constant_rpm"]["max_rpm"]
+ok = min(steps[-3:]) >= 0.48 * before
+line = f"{what}: first {first:.5f}°, last three {[round(s, 5) for s in steps[-3:]]}, before them {before:.5f}°; {rpm:.4f} rpm"
+if machine == "slow-c-lathe":
+    ok = ok and last >= 0.97 * before
+    expected = math.sqrt(0.98 * 2600 * min(first, last)) / 6
+    ok = ok and abs(rpm / expected - 1) <= 1e-3
+    line += f" against {expected:.4f} from the start and the stop"
+else:
+    floor = math.sqrt(0.98 * 2600 * 0.48 * min(first, before)) / 6
+    ok = ok and rpm >= floor
+    line += f", at least {floor:.4f}"
+print(("" if ok else "FAIL: ") + line)
+sys.exit(0 if ok else 1)
+PY
+    done
+  done
 done
 exit $fail

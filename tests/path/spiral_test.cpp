@@ -462,15 +462,19 @@ TEST_SUITE("path") {
     }
   }
 
-  TEST_CASE("chord control: the path's last steps leave no sliver, and the last is a whole step") {
+  TEST_CASE(
+      "the path's last steps leave no sliver, and the last is a whole step: chords and equal "
+      "angles") {
     // The program stops after its last block, over that block's time: at one spindle speed
     // a last block of f caps asks C for ω²/(f·cap), 1/f times what the start from rest
     // asks. The cap binds everywhere here (as above), and the path ends f caps past a whole
-    // number of them. Under linear motion, where the end lies within 2.5 caps the steps left
-    // are laid out as [(L − c)/2, (L − c)/2, c] (L = 2 + f caps) or [L − c, c] (L = 1 + f,
-    // f ≥ 1/2), the last a whole cap; under PVT the last two are evened, [L/2, L/2] for
-    // L = 1 + f (path_stepper.hpp says why). Before, the last step was f caps: 0.02 of the
-    // others.
+    // number of them; equal angles of 120 a turn step as the cap does. Under linear motion,
+    // where the end lies within 2.5 caps the steps left are laid out as
+    // [(L − c)/2, (L − c)/2, c] (L = 2 + f caps) or [L − c, c] (L = 1 + f, f ≥ 1/2), the last
+    // a whole cap; under PVT the last two are evened, [L/2, L/2] for L = 1 + f
+    // (path_stepper.hpp, last_step_laid_out, says why). Before, the last step was f caps:
+    // 0.02 of the others (equal angles: a tilted sphere at one speed then ran at 2.14 rpm
+    // where its blocks allow 14.57, tests/jobs/constant_speed_stop_test.sh).
     const EvenAsphere sphere(1 / 200.0, 0);
     const double cap = 3 * std::numbers::pi / 180;
     struct Case {
@@ -479,32 +483,74 @@ TEST_SUITE("path") {
       std::vector<double> last_steps;  // in caps
     };
     const Interpolation linear = Interpolation::kLinear, cubic = Interpolation::kCubic;
-    for (const Case& c : {Case{linear, 0.02, {0.51, 0.51, 1}}, Case{linear, 0.3, {0.65, 0.65, 1}},
-                          Case{linear, 0.7, {0.7, 1}}, Case{cubic, 0.02, {0.51, 0.51}},
-                          Case{cubic, 0.3, {0.65, 0.65}}, Case{cubic, 0.7, {0.85, 0.85}}}) {
-      CAPTURE(c.f);
-      CAPTURE(static_cast<int>(c.mode));
-      SpiralOptions o;
-      o.pitch = 0.05;
-      o.outer_radius = o.pitch * (20 + c.f / 120);  // 20 turns of 120 caps, and f more
-      o.points.tolerance = 1e-2;
-      o.points.max_angle_step = cap;
-      o.points.interpolation = c.mode;
-      o.threads = 2;
-      ContactCollector out;
-      plan_spiral(sphere, BaseSurface::plane(o.outer_radius), o, out);
-      const std::vector<ContactPoint>& p = out.points;
-      const std::size_t n = c.last_steps.size();
-      REQUIRE(p.size() == 20 * 120 + 2);  // 2 400 caps and f: one step more, one point more
-      CHECK(p.back().theta ==
-            doctest::Approx(2 * std::numbers::pi * o.outer_radius / o.pitch).epsilon(1e-12));
-      for (std::size_t k = 1; k < p.size(); ++k) {
-        CAPTURE(k);
-        const std::size_t from_end = p.size() - k;  // 1 for the last step
-        const double expected = from_end <= n ? c.last_steps[n - from_end] : 1.0;
-        CHECK((p[k].theta - p[k - 1].theta) / cap == doctest::Approx(expected).epsilon(1e-9));
+    for (const CutterPointRule rule : {CutterPointRule::kChordError, CutterPointRule::kEqualAngle})
+      for (const Case& c : {Case{linear, 0.02, {0.51, 0.51, 1}}, Case{linear, 0.3, {0.65, 0.65, 1}},
+                            Case{linear, 0.7, {0.7, 1}}, Case{cubic, 0.02, {0.51, 0.51}},
+                            Case{cubic, 0.3, {0.65, 0.65}}, Case{cubic, 0.7, {0.85, 0.85}}}) {
+        CAPTURE(static_cast<int>(rule));
+        CAPTURE(c.f);
+        CAPTURE(static_cast<int>(c.mode));
+        SpiralOptions o;
+        o.pitch = 0.05;
+        o.outer_radius = o.pitch * (20 + c.f / 120);  // 20 turns of 120 caps, and f more
+        o.points.rule = rule;
+        o.points.points_per_revolution = 120;
+        o.points.tolerance = 1e-2;
+        o.points.max_angle_step = cap;
+        o.points.interpolation = c.mode;
+        o.threads = 2;
+        ContactCollector out;
+        plan_spiral(sphere, BaseSurface::plane(o.outer_radius), o, out);
+        const std::vector<ContactPoint>& p = out.points;
+        const std::size_t n = c.last_steps.size();
+        REQUIRE(p.size() == 20 * 120 + 2);  // 2 400 caps and f: one step more, one point more
+        CHECK(p.back().theta ==
+              doctest::Approx(2 * std::numbers::pi * o.outer_radius / o.pitch).epsilon(1e-12));
+        for (std::size_t k = 1; k < p.size(); ++k) {
+          CAPTURE(k);
+          const std::size_t from_end = p.size() - k;  // 1 for the last step
+          const double expected = from_end <= n ? c.last_steps[n - from_end] : 1.0;
+          CHECK((p[k].theta - p[k - 1].theta) / cap == doctest::Approx(expected).epsilon(1e-9));
+        }
       }
-    }
+  }
+
+  TEST_CASE(
+      "equal arc lengths: the path's last steps leave no sliver, none longer than the length") {
+    // Centre to edge on a gentle sphere, 0.05 mm chords: at the edge (r = 1 + f/120 mm at
+    // the end) a step is about 0.05/1 rad = 2.9°, and the path ends part of a step past a
+    // whole number of them. The last steps are laid out as the chord rule's in 0.98 of the
+    // arc's own step in τ (path_stepper.hpp: the step the length gives drifts along the
+    // path): under linear motion the last is at least 0.97 of the steps before the end and
+    // none of the last three under 0.48 of them; under PVT none of the last two under
+    // 0.48. Every chord stays within the length. Before, the last step was what was left.
+    const EvenAsphere sphere(1 / 200.0, 0);
+    for (const Interpolation mode : {Interpolation::kLinear, Interpolation::kCubic})
+      for (const double f : {0.0, 0.15, 0.3, 0.45, 0.6, 0.75, 0.9}) {
+        CAPTURE(f);
+        CAPTURE(static_cast<int>(mode));
+        SpiralOptions o;
+        o.pitch = 0.01;
+        o.outer_radius = 1 + f * 0.05 / 1.0 * o.pitch / (2 * std::numbers::pi);
+        o.centre_to_edge = true;
+        o.points.rule = CutterPointRule::kEqualArcLength;
+        o.points.arc_length = 0.05;
+        o.points.interpolation = mode;
+        o.threads = 2;
+        ContactCollector out;
+        plan_spiral(sphere, BaseSurface::plane(o.outer_radius), o, out);
+        const std::vector<ContactPoint>& p = out.points;
+        REQUIRE(p.size() > 10);
+        const std::size_t m = p.size() - 1;                     // the last step ends at p[m]
+        const double before = p[m - 3].theta - p[m - 4].theta;  // a whole step, before the end's
+        CHECK(p[m].r == doctest::Approx(o.outer_radius).epsilon(1e-12));
+        for (std::size_t k = m - 2; k <= m; ++k) {
+          CAPTURE(k);
+          CHECK((p[k].theta - p[k - 1].theta) >= 0.48 * before);
+          CHECK((p[k].point - p[k - 1].point).norm() <= 0.05 * (1 + 1e-8));
+        }
+        if (mode == Interpolation::kLinear) CHECK((p[m].theta - p[m - 1].theta) >= 0.97 * before);
+      }
   }
 
   TEST_CASE("equal angles in bands of whole turns: the same points on 1 and 2 threads, equal steps") {
@@ -517,13 +563,19 @@ TEST_SUITE("path") {
     o.points.points_per_revolution = 90;
     const std::vector<std::vector<ContactPoint>> runs = plan_on_threads(surface, base, o, {1, 2});
     REQUIRE(same_points(runs[1], runs[0]));
-    // Every step is 2π/90 (the last one ends the path), across the seams too: the k-th point
-    // at k·2π/90 to rounding.
+    // Every step is 2π/90, across the seams too: the k-th point at k·2π/90 to rounding. The
+    // path's last three steps excepted: the base's fit ends the path part of a step past
+    // the lattice, and those are laid out (the test above), none under half a step.
     const double step = 2 * std::numbers::pi / 90;
     double worst = 0;
-    for (std::size_t k = 1; k + 1 < runs[0].size(); ++k)
+    const std::size_t n = runs[0].size();
+    for (std::size_t k = 1; k + 3 < n; ++k)
       worst = std::max(worst, std::abs(runs[0][k].theta - runs[0][k - 1].theta - step));
     CHECK(worst <= 1e-12);
+    for (std::size_t k = n - 3; k < n; ++k) {
+      CHECK(runs[0][k].theta - runs[0][k - 1].theta >= 0.5 * step * (1 - 1e-12));
+      CHECK(runs[0][k].theta - runs[0][k - 1].theta <= step * (1 + 1e-12));
+    }
     CHECK(std::abs(runs[0][360].theta - 360 * step) <= 1e-12);
     CHECK(runs[0].size() > 200 * 90);
   }
@@ -543,13 +595,14 @@ TEST_SUITE("path") {
     // The path is about π·4²/0.02 = 2513 mm long (its turns a pitch apart): some 50 000
     // chords of 0.05 mm. Where the angle cap (5°) binds, inside r = 0.05 mm / 5° = 0.573 mm,
     // a chord is shorter: 0.573 / 0.02 = 28.6 turns of 72 steps, 2 063. Elsewhere every
-    // chord is 0.05 mm to the rule's 1e-8, the last excepted, and none is shorter (a seam
-    // that cut a step short would show here).
+    // chord is 0.05 mm to the rule's 1e-8, the last three excepted (laid out: "equal arc
+    // lengths: the path's last steps", above), and none is shorter (a seam that cut a step
+    // short would show here).
     const std::vector<ContactPoint>& p = runs[0];
     REQUIRE(p.size() > 40000);
     double worst = 0;
     long capped = 0;
-    for (std::size_t k = 1; k + 1 < p.size(); ++k) {
+    for (std::size_t k = 1; k + 3 < p.size(); ++k) {
       const double chord = (p[k].point - p[k - 1].point).norm();
       if (p[k].theta - p[k - 1].theta >= 5 * std::numbers::pi / 180 * (1 - 1e-9)) {
         ++capped;
@@ -578,12 +631,12 @@ TEST_SUITE("path") {
     // is short of the length (the step ends before the jump) or longer (it counts from
     // where the contact lands). Every other chord has the length, the cap's (inside
     // r = 0.01 mm / 5°; a band's points follow its seams' walk to 1e-8 of a step, so a
-    // capped step that ends on a seam can fall short of the cap by that) and the last
-    // excepted.
+    // capped step that ends on a seam can fall short of the cap by that) and the last three
+    // excepted (laid out).
     const std::vector<ContactPoint>& p = runs[0];
     REQUIRE(p.size() > 20000);
     long off = 0, off_unheld = 0;
-    for (std::size_t k = 1; k + 1 < p.size(); ++k) {
+    for (std::size_t k = 1; k + 3 < p.size(); ++k) {
       const double chord = (p[k].point - p[k - 1].point).norm();
       if (p[k].theta - p[k - 1].theta >= 5 * std::numbers::pi / 180 * (1 - 1e-6)) continue;
       if (std::abs(chord / 0.01 - 1) <= 1e-6) continue;

@@ -1003,6 +1003,31 @@ inline double chord_target(const CutterPointOptions& o, double stand_off) {
   return 0.97 * (o.tolerance - stand_off);
 }
 
+// The path's last steps (docs/path.md, "The path's last steps"): the program stops after
+// its last block, over that block's time, and at one spindle speed a last block of a few
+// hundredths of a step asked C for 25 times the start's acceleration (the stop is
+// v/t = ω²/Δθ). With `left` of τ to the path's end and steps of `step`, the step to take
+// now: under linear motion the steps left are laid out as [(L − s)/2, (L − s)/2, s] for L
+// in (2s, 2.5s) and [max(L − s, s/2), the rest] for L in (s, 2s], so that the last block
+// is s where it can be and none of the last three is shorter than s/2. Under PVT the last
+// two are evened instead, [L/2, L/2] for L in (s, 2s): with a last step longer than the
+// one before (the last cubic's end velocity one-sided) the planner's figure for the ring
+// profile's last segment read 95.6 nm where the controller's cubic stays at the stand-off,
+// 50 nm (tests/path/nose_chord_test.cpp). `step` itself where nothing changes: beyond
+// 2.5 steps, or within a millionth of a step of a whole number of them (the last sliver
+// then joins the step before it, in distribute).
+inline double last_step_laid_out(double left, double step, bool pvt) {
+  const double whole = 1e-6 * step;
+  if (pvt) return left > step + whole && left < 2 * step ? 0.5 * left : step;
+  if (left > 2 * step + whole && left < 2.5 * step) return 0.5 * (left - step);
+  if (left > step + whole && left <= 2 * step + whole)
+    return std::min(step, std::max(left - step, 0.5 * step));
+  return step;
+}
+
+// The part of an equal arc's step in τ its last steps are laid out in (distribute).
+inline constexpr double kArcLayoutStep = 0.98;
+
 // Where a piece of a PVT path meets the pieces either side (spiral.cpp plans bands at
 // once). A cubic's velocity at a seam depends on blocks on both sides, so a piece either
 // knows the blocks before its start (`before2`, `before`: a band planned again after the one
@@ -1152,6 +1177,10 @@ void distribute(Path& path, const CutterPointOptions& o, Emit&& emit, double beg
   const double angle_step = 2 * std::numbers::pi / std::max(1, o.points_per_revolution);
   const long long first_step = std::llround(begin / angle_step);
   long long steps_taken = 0;
+  // Equal angles and equal arcs: the path's last steps are being laid out
+  // (last_step_laid_out); from the first step laid out to the end, the lattice is left.
+  const bool at_path_end = end >= path.tau_end();
+  bool laying_out = false;
   while (current.tau < end) {
     const double remaining = end - current.tau;
     // The end is reached exactly, never by a sum that rounds short of it.
@@ -1163,12 +1192,34 @@ void distribute(Path& path, const CutterPointOptions& o, Emit&& emit, double beg
       // The path's j-th point at j·(2π/n), a product and not a running sum: the steps stay
       // equal to rounding however long the path, and across the seams of bands, which begin
       // on such a point (spiral.cpp, band_bounds).
-      const double next = static_cast<double>(first_step + ++steps_taken) * angle_step;
+      double next = static_cast<double>(first_step + ++steps_taken) * angle_step;
+      // Near the path's end the steps left are laid out as the chord rule's are: the last
+      // lattice step was what the turns left, often a sliver, and at one spindle speed the
+      // stop after it set the whole program's speed (a tilted sphere at 120 steps a turn:
+      // 2.14 rpm where its blocks allow 14.57).
+      if (at_path_end) {
+        const double laid = last_step_laid_out(remaining, angle_step, pvt);
+        if (laying_out || laid < angle_step) {
+          laying_out = true;
+          next = current.tau + laid;
+        }
+      }
       path.at(next >= end ? end : next, trial);
       step = trial.tau - current.tau;
       measure(trial, kFull);
     } else if (o.rule == CutterPointRule::kEqualArcLength) {
       next_equal_arc_point(path, o, current, end, step, trial);
+      // The last steps as the chord rule's, each only shorter than the arc's own step (the
+      // rule's blocks are at most its length apart). Laid out in 0.98 of the step: the
+      // step in τ the length gives drifts along the path, and a last step laid out as a
+      // whole one fell a hair short of the end, then evened into two halves.
+      if (at_path_end && trial.tau < end) {
+        const double laid = last_step_laid_out(remaining, kArcLayoutStep * step, pvt);
+        if (laid < kArcLayoutStep * step) {
+          path.at(current.tau + laid, trial);
+          step = trial.tau - current.tau;
+        }
+      }
       measure(trial, kFull);
     } else {
       // The largest step whose error is at most the target: e ∝ step^order locally, so
@@ -1421,33 +1472,12 @@ void distribute(Path& path, const CutterPointOptions& o, Emit&& emit, double beg
           previous_error = best_previous;
         }
       }
-      // The path's last blocks (the whole path's end, not a band's seam): the program
-      // stops after its last block, over that block's time, and at one spindle speed a
-      // last block of a few hundredths of a step asked C for 25 times the start's
-      // acceleration (the stop is v/t = ω²/Δθ). Where the end lies within 2.5 steps s of
-      // this one, the steps left are laid out as [(L − s)/2, (L − s)/2, s] or [L − s, s]
-      // (L the τ left; at least [s/2, L − s/2]), so that the last block is s where it
-      // can be and no block is shorter than s/2. Each shortened step is measured as any
-      // trial and taken only within the target; the next search finds its own step.
-      // Under PVT the last two steps are evened instead, [L/2, L/2] for L in (s, 2s): with
-      // a last step longer than the one before (the last cubic's end velocity one-sided),
-      // the planner's figure for the ring profile's last segment read 95.6 nm where the
-      // controller's cubic stays at the stand-off, 50 nm (tests/path/nose_chord_test.cpp),
-      // so that its figures were no longer the dense sampler's. The stop then asks at most
-      // twice the start.
+      // The path's last blocks (the whole path's end, not a band's seam), laid out by
+      // last_step_laid_out. Each shortened step is measured as any trial and taken only
+      // within the target; the next search finds its own step.
       if (o.rule == CutterPointRule::kChordError && end >= path.tau_end() && !jump && !on_kink &&
           trial.tau < end && trial.held == current.held && step >= min_step) {
-        // Within a millionth of a step of a whole number of steps, the last sliver would
-        // join the step before it (below): the steps are whole already.
-        const double left = end - current.tau, whole = 1e-6 * step;
-        double shortened = step;
-        if (pvt) {
-          if (left > step + whole && left < 2 * step) shortened = 0.5 * left;
-        } else if (left > 2 * step + whole && left < 2.5 * step) {
-          shortened = 0.5 * (left - step);
-        } else if (left > step + whole && left <= 2 * step + whole) {
-          shortened = std::max(left - step, 0.5 * step);
-        }
+        const double shortened = last_step_laid_out(end - current.tau, step, pvt);
         if (shortened < step) {
           path.at(current.tau + shortened, shortened_trial);
           const double saved_new = new_error, saved_previous = previous_error;

@@ -198,6 +198,11 @@ class SpiralPath {
 // banded by whole turns, seams on the steps' own angles; equal arc lengths at points of
 // one walk of the rule (equal_arc_seams below), so that no step is cut short at a seam. A
 // path of one band streams to the sink.
+// The last band is at least this many steps (the cap, or the equal angle) long: the path's
+// last steps are laid out within it (path_stepper.hpp, last_step_laid_out, over up to 2.5
+// steps), and a seam a sliver before the end had left the last band only that sliver.
+constexpr double kLastBandSteps = 4;
+
 std::vector<double> band_bounds(double end, const CutterPointOptions& points) {
   constexpr double kTurn = 2 * std::numbers::pi;
   std::vector<double> bounds{0.0};
@@ -221,17 +226,18 @@ std::vector<double> band_bounds(double end, const CutterPointOptions& points) {
       const long n = std::lround(per_turn);
       if (n > 1 && std::abs(per_turn - static_cast<double>(n)) <= 1e-9 * per_turn)
         while (std::gcd(per_band, n) != 1) ++per_band;
-      for (long k = 1; static_cast<double>(k * per_band) * cap < end - 1e-9 * cap; ++k)
+      for (long k = 1; static_cast<double>(k * per_band) * cap < end - kLastBandSteps * cap; ++k)
         bounds.push_back(static_cast<double>(k * per_band) * cap);
     } else {
-      for (int k = 1; k * width < end - 1e-9 * width; ++k) bounds.push_back(k * width);
+      const double last = end - kLastBandSteps * points.max_angle_step;
+      for (int k = 1; k * width < last; ++k) bounds.push_back(k * width);
     }
   } else if (points.rule == CutterPointRule::kEqualAngle && end > kTurn) {
     // Equal angles: bands of whole turns, each seam the j-th step's angle j·(2π/n), so the
     // steps stay equal across it (to rounding, as they are along one band).
     const double step = kTurn / points.points_per_revolution;
     const long per_band = static_cast<long>(turns) * points.points_per_revolution;
-    for (long k = 1; static_cast<double>(k * per_band) * step < end - 1e-9 * step; ++k)
+    for (long k = 1; static_cast<double>(k * per_band) * step < end - kLastBandSteps * step; ++k)
       bounds.push_back(static_cast<double>(k * per_band) * step);
   }
   bounds.push_back(end);
@@ -260,8 +266,8 @@ std::vector<double> equal_arc_seams(const SpiralPath& path, const CutterPointOpt
     detail::next_equal_arc_point(walker, points, current, end, step, next);
     walker.commit(next);
     current = next;
-    // A seam within a step of the end would leave a band of one short step.
-    if (current.tau >= nominal[k] && end - current.tau > walker.cap()) {
+    // A seam near the end would leave a band too short to lay out the last steps in.
+    if (current.tau >= nominal[k] && end - current.tau > kLastBandSteps * walker.cap()) {
       bounds.push_back(current.tau);
       while (k + 1 < nominal.size() && nominal[k] <= current.tau) ++k;
     }
