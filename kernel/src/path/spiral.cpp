@@ -189,6 +189,11 @@ class SpiralPath {
   double lambda_ = 0;  // the committed point's projection distance
 };
 
+// The last band is at least this many steps (the cap, or the equal angle) long: the path's
+// last steps are laid out within it (path_stepper.hpp, last_step_laid_out, over up to 2.5
+// steps), and a seam a sliver before the end had left the last band only that sliver.
+constexpr double kLastBandSteps = 4;
+
 // The spiral is planned in bands, each from a cold start at its first angle and ending
 // exactly at its last, so that bands can be planned at once on several threads and the
 // points stay the same on any number (docs/path.md, "Bands"). About 64 bands over the
@@ -198,11 +203,6 @@ class SpiralPath {
 // banded by whole turns, seams on the steps' own angles; equal arc lengths at points of
 // one walk of the rule (equal_arc_seams below), so that no step is cut short at a seam. A
 // path of one band streams to the sink.
-// The last band is at least this many steps (the cap, or the equal angle) long: the path's
-// last steps are laid out within it (path_stepper.hpp, last_step_laid_out, over up to 2.5
-// steps), and a seam a sliver before the end had left the last band only that sliver.
-constexpr double kLastBandSteps = 4;
-
 std::vector<double> band_bounds(double end, const CutterPointOptions& points) {
   constexpr double kTurn = 2 * std::numbers::pi;
   std::vector<double> bounds{0.0};
