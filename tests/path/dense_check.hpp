@@ -51,7 +51,8 @@ namespace freeturn::test {
 // spiral at one speed, the X-Z chord at one feed in profile mode), one-sided at the ends,
 // and a cubic Hermite in time through each block, for every coordinate. With
 // `only_segment` = k > 0, the segment that ends at block k alone, its cubics' velocities
-// still from the whole path.
+// still from the whole path. With `section_normal`, the overlap is scaled to the normal of
+// the radial section, 1/√(1 + f_ρ²), as the planner measures it, instead of the surface's.
 struct DenseNoseFigures {
   double worst = 0;  // the largest |overlap| (mm, normal): the chord error
   double gouge = 0;  // the largest overlap > 0 (mm, normal): how deep the nose cuts into the design
@@ -64,7 +65,8 @@ inline DenseNoseFigures dense_nose_figures(const Surface& s,
                                            const std::vector<CutterLocation>& path, double R,
                                            int samples = 50, int grid = 400,
                                            const CompensationOptions* axes = nullptr,
-                                           bool pvt = false, std::size_t only_segment = 0) {
+                                           bool pvt = false, std::size_t only_segment = 0,
+                                           bool section_normal = false) {
   DenseNoseFigures figures;
   const auto radial = [](const Eigen::Vector3d& p, double c) { return p.x() * std::cos(c) + p.y() * std::sin(c); };
   // Per block: the coordinates that move (C, the centre's radial position and z, and the
@@ -127,7 +129,9 @@ inline DenseNoseFigures dense_nose_figures(const Surface& s,
       const double rho = 0.5 * (lo + hi);
       double f, fx, fy;
       s.sag_gradient(rho * ct, rho * st, f, fx, fy);
-      const double normal = overlap(rho) / std::sqrt(1 + fx * fx + fy * fy);
+      const double slope_r = fx * ct + fy * st;
+      const double normal =
+          overlap(rho) / std::sqrt(1 + (section_normal ? slope_r * slope_r : fx * fx + fy * fy));
       figures.worst = std::max(figures.worst, std::abs(normal));
       figures.gouge = std::max(figures.gouge, normal);
       figures.lowest = std::min(figures.lowest, -normal);

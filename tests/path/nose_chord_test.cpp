@@ -171,6 +171,26 @@ TEST_SUITE("path") {
       CHECK(f.worst <= 1.002 * eps);
       CHECK(f.gouge <= 1e-9);
       CHECK(planned == doctest::Approx(f.worst).epsilon(0.02).scale(0));
+      // Segment by segment the planner's figure is the band's (ContactPoint::chord_error):
+      // the stand-off plus the motion's largest deviation from it either way, as the
+      // sampler finds it (highest and lowest distance above the design, here along the
+      // radial section's normal, as the planner measures). On a segment whose worst
+      // deviation dips toward the design (a one-sided end velocity's cubic) that is more
+      // than the motion's largest distance from the design: the ring's first segment reads
+      // 67.7 nm where the nose stays 32.3 to 50.1 nm above it. Scaled to the surface's own
+      // normal instead, the spiral's segments differ from the figure by −8.9 to +13.8 nm of
+      // ε = 500 nm (the sphere's slope across the section), to 0.12 nm along the section's.
+      double worst_identity = 0;
+      for (std::size_t k = 1; k < cls.size(); ++k) {
+        const test::DenseNoseFigures g =
+            test::dense_nose_figures(s, cls, R, 100, 400, nullptr, true, k, true);
+        const double stand_off = cls[k].contact.stand_off;
+        const double band = stand_off + std::max(g.highest - stand_off, stand_off - g.lowest);
+        worst_identity = std::max(worst_identity, std::abs(cls[k].contact.chord_error - band));
+      }
+      MESSAGE(what << ": the planner's figure against the band's from the sampler, worst "
+                   << worst_identity * 1e6 << " nm apart");
+      CHECK(worst_identity <= 1e-6);
     };
     {
       // The ring's profile, as a Precitech in PVT mode cuts it at one feed.

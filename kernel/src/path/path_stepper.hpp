@@ -1011,9 +1011,9 @@ inline double chord_target(const CutterPointOptions& o, double stand_off) {
 // in (2s, 2.5s) and [max(L − s, s/2), the rest] for L in (s, 2s], so that the last block
 // is s where it can be and none of the last three is shorter than s/2. Under PVT the last
 // two are evened instead, [L/2, L/2] for L in (s, 2s): with a last step longer than the
-// one before (the last cubic's end velocity one-sided) the planner's figure for the ring
-// profile's last segment read 95.6 nm where the controller's cubic stays at the stand-off,
-// 50 nm (tests/path/nose_chord_test.cpp). `step` itself where nothing changes: beyond
+// one before, the last cubic (its end velocity one-sided) dipped 45.6 nm toward the ring
+// profile's design (tests/path/nose_chord_test.cpp), to 4.4 nm above it from the 50 nm
+// stand-off, where evened it dips 25.5 nm. `step` itself where nothing changes: beyond
 // 2.5 steps, or within a millionth of a step of a whole number of them (the last sliver
 // then joins the step before it, in distribute).
 inline double last_step_laid_out(double left, double step, bool pvt) {

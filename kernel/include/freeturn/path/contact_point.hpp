@@ -17,8 +17,15 @@ struct ContactPoint {
   double r = 0;      // radial position of the contact, ≥ 0 (mm)
   Eigen::Vector3d point = Eigen::Vector3d::Zero();   // on the design surface: (r cos θ, r sin θ, z)
   Eigen::Vector3d normal = Eigen::Vector3d::UnitZ();  // unit, toward the tool
-  // Predicted chord error of the segment that ends here (mm): the largest distance of the
-  // machine's interpolated motion from the design surface; 0 for the first point.
+  // Predicted chord error of the segment that ends here (mm), the band's figure: the
+  // stand-off plus the largest deviation of the machine's interpolated motion from the
+  // blocks' stand-off, either way, along the normal of the radial section (on a surface
+  // that slopes across the section, a few per cent from the figure along its own normal);
+  // 0 for the first point. Where that deviation leans away from the design this is the
+  // motion's largest distance from it; where it dips toward the design (a PVT path's first
+  // and last cubics, whose end velocities are one-sided), the motion there comes
+  // 2·stand_off − chord_error above the design, and its largest distance may be as little
+  // as the stand-off.
   double chord_error = 0;
   // Which side of the design that worst deviation lies: below it (the motion cuts into
   // the design) or above (it leaves material, which adds to the scallop).
