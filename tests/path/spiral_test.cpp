@@ -517,10 +517,11 @@ TEST_SUITE("path") {
 
   TEST_CASE(
       "equal arc lengths: the path's last steps leave no sliver, none longer than the length") {
-    // Centre to edge on a gentle sphere, 0.05 mm chords: at the edge (r = 1 + f/120 mm at
-    // the end) a step is about 0.05/1 rad = 2.9°, and the path ends part of a step past a
-    // whole number of them. The last steps are laid out as the chord rule's in 0.98 of the
-    // arc's own step in τ (path_stepper.hpp: the step the length gives drifts along the
+    // Centre to edge on a gentle sphere, 0.05 mm chords: at the edge (r about 1 mm) a step
+    // is about 0.05/1 rad = 2.9°, and the outer radius moves the path's end by f such steps
+    // (f·0.05 mm of spiral, 0.05·f·pitch/2π mm of radius), so that it ends at several parts
+    // of a step past a whole number of them. The last steps are laid out as the chord rule's in
+    // 0.98 of the arc's own step in τ (path_stepper.hpp: the step the length gives drifts along the
     // path): under linear motion the last is at least 0.97 of the steps before the end and
     // none of the last three under 0.48 of them; under PVT none of the last two under
     // 0.48. Every chord stays within the length. Before, the last step was what was left.
@@ -531,7 +532,7 @@ TEST_SUITE("path") {
         CAPTURE(static_cast<int>(mode));
         SpiralOptions o;
         o.pitch = 0.01;
-        o.outer_radius = 1 + f * 0.05 / 1.0 * o.pitch / (2 * std::numbers::pi);
+        o.outer_radius = 1 + f * 0.05 * o.pitch / (2 * std::numbers::pi);
         o.centre_to_edge = true;
         o.points.rule = CutterPointRule::kEqualArcLength;
         o.points.arc_length = 0.05;
