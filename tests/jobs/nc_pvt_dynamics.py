@@ -1,10 +1,14 @@
 #!/usr/bin/env python3
-"""Axis dynamics of a PVT program read back from its NC alone (the Precitech dialect with a
-time word on every data line).
+"""Axis dynamics of a PVT program read back from its NC alone (the Precitech dialect).
 
-usage: nc_pvt_dynamics.py PROGRAM.nc MACHINE.yaml TIME_LETTER
+usage: nc_pvt_dynamics.py PROGRAM.nc MACHINE.yaml TIME
 
-The data lines carry C, X, Z and the block's time (TIME_LETTER, seconds). A PVT controller
+TIME: the letter of the time word every data line but the first carries (seconds), or
+`feed` for a program at one feed (its G01 F word, mm/min: a profile), where a block's time
+is its X-Z chord over the feed.
+
+The data lines carry the machine's axes that the first of them holds (C, X, Z on a spiral;
+X, Z on a profile). A PVT controller
 derives each axis's velocity at a block from its neighbours, (q[k+1] − q[k−1]) / (t[k+1] −
 t[k−1]), one-sided at the program's two ends, and runs the cubic Hermite through the
 positions and those velocities. Per block: the cubic's largest speed (its velocity is
@@ -35,21 +39,36 @@ def main():
     program, machine, letter = sys.argv[1], sys.argv[2], sys.argv[3]
     limits = machine_limits(machine)
     word = re.compile(r"([A-Z])([-+]?[0-9]*\.?[0-9]+)")
-    q = {a: [] for a in limits}
+    q = None
     times = [0.0]
+    feed = None
     for line in open(program, encoding="utf-8"):
-        if line.startswith(";") or line.startswith("G"):
+        if line.startswith(";"):
+            continue
+        if line.startswith("G"):
+            m = re.search(r"F([0-9.]+)", line)
+            if m:
+                feed = float(m.group(1)) / 60
             continue
         words = dict(word.findall(line))
-        if not all(a in words for a in limits):
+        if "X" not in words:
             continue
-        for a in limits:
+        if q is None:
+            q = {a: [] for a in limits if a in words}
+        if not all(a in words for a in q):
+            continue
+        for a in q:
             q[a].append(float(words[a]))
-        if letter in words:
+        if letter == "feed" and len(q["X"]) > 1 and feed:
+            times.append(times[-1] + math.hypot(q["X"][-1] - q["X"][-2], q["Z"][-1] - q["Z"][-2]) / feed)
+        elif letter in words:
             times.append(times[-1] + float(words[letter]))
+    if q is None:
+        sys.exit(f"{program}: no data lines")
+    limits = {a: limits[a] for a in q}
     n = len(times)
     if n < 2 or any(len(v) != n for v in q.values()):
-        sys.exit(f"{program}: expected a time word on every data line but the first")
+        sys.exit(f"{program}: expected a time word on every data line but the first, or a feed")
     if "C" in q:
         c = q["C"]
         for k in range(1, n):

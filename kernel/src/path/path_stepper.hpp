@@ -1177,8 +1177,8 @@ void distribute(Path& path, const CutterPointOptions& o, Emit&& emit, double beg
   const double angle_step = 2 * std::numbers::pi / std::max(1, o.points_per_revolution);
   const long long first_step = std::llround(begin / angle_step);
   long long steps_taken = 0;
-  // Equal angles and equal arcs: the path's last steps are being laid out
-  // (last_step_laid_out); from the first step laid out to the end, the lattice is left.
+  // This piece ends the whole path (not at a band's seam): its last steps are laid out
+  // (last_step_laid_out). Equal angles leave their lattice from the first step laid out.
   const bool at_path_end = end >= path.tau_end();
   bool laying_out = false;
   while (current.tau < end) {
@@ -1475,7 +1475,7 @@ void distribute(Path& path, const CutterPointOptions& o, Emit&& emit, double beg
       // The path's last blocks (the whole path's end, not a band's seam), laid out by
       // last_step_laid_out. Each shortened step is measured as any trial and taken only
       // within the target; the next search finds its own step.
-      if (o.rule == CutterPointRule::kChordError && end >= path.tau_end() && !jump && !on_kink &&
+      if (o.rule == CutterPointRule::kChordError && at_path_end && !jump && !on_kink &&
           trial.tau < end && trial.held == current.held && step >= min_step) {
         const double shortened = last_step_laid_out(end - current.tau, step, pvt);
         if (shortened < step) {
