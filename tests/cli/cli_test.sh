@@ -263,20 +263,35 @@ if [[ -x /usr/bin/python3 ]] && /usr/bin/python3 -c "import numpy" 2> /dev/null;
   awk -v d="$deepest" 'BEGIN { exit !(d < 10) }' || { echo "FAIL: the wide nose's edge goes $deepest nm below the design"; fail=1; }
 fi
 # An 0.8 mm nose over troughs 0.3 mm apart (concave radius 1/(Aω²) = 0.228 mm), five
-# periods under it: no step meets the tolerance. In PVT mode (this machine's) the planner
-# once took slivers of no length there without end; now it stops as linear motion does:
-# exit 2, the place named, nothing written.
+# periods under it: it rests on the crests, dropped onto the section where its touch
+# passes each trough (section_envelope.cpp, hold_by_overhang). It stopped at the chord
+# tolerance until December 2026 (no offset of a contact within 2R overhung nothing);
+# now it is written and read back above the design.
 sed -e 's/amplitude: 0.005 /amplitude: 0.01 /' -e 's/period: 2.5 /period: 0.3 /' \
+    -e 's/nose_radius: 0.5/nose_radius: 0.8/' \
+    "$src/configs/jobs/sinusoidal_ring.yaml" > "$tmp/five.yaml"
+timeout 120 "$freeturn" run "$tmp/five.yaml" -o "$tmp/five" > /dev/null 2> "$tmp/err"; expect "a nose five periods wide" 0 $?
+contains "it says what it leaves" "$tmp/err" "cannot reach into: up to "
+if [[ -x /usr/bin/python3 ]] && /usr/bin/python3 -c "import numpy" 2> /dev/null; then
+  deepest=$(/usr/bin/python3 "$src/tests/jobs/nc_profile_gouge.py" \
+    "$tmp/five/sinusoidal_ring.precitech-nanoform-250.nc" sinusoidal_ring:0.01:0.3 0.8 0 60 5.0)
+  awk -v d="$deepest" 'BEGIN { exit !(d < 10) }' || { echo "FAIL: the five-period nose's edge goes $deepest nm below the design"; fail=1; }
+fi
+# Troughs 10 µm apart (concave radius 1/(Aω²) = 2.5 µm) under the same nose bend faster than the view
+# of tight troughs samples them (path/tight_troughs.hpp): no step meets the tolerance. In
+# PVT mode (this machine's) the planner once took slivers of no length there without end;
+# now it stops as linear motion does: exit 2, the place named, nothing written.
+sed -e 's/amplitude: 0.005 /amplitude: 0.001 /' -e 's/period: 2.5 /period: 0.01 /' \
     -e 's/nose_radius: 0.5/nose_radius: 0.8/' \
     "$src/configs/jobs/sinusoidal_ring.yaml" > "$tmp/crawl.yaml"
 timeout 120 "$freeturn" run "$tmp/crawl.yaml" -o "$tmp/crawl" > /dev/null 2> "$tmp/err"; expect "PVT run where no step meets the tolerance" 2 $?
 contains "it names the tolerance" "$tmp/err" "cannot meet the chord tolerance 0.1 µm"
 contains "and where" "$tmp/err" "r = "
-# And why: the section's concave radius (the troughs' own 0.228 mm, or a sample's near it)
-# against the 0.8 mm nose, and a radius to use instead.
+# And why: the section's concave radius (the tightest of 65 samples across the nose, tens
+# of micrometres at most) against the 0.8 mm nose, and a radius to use instead.
 contains "and why: the section's concave radius against the nose's" "$tmp/err" \
-  "the design's section bends to a concave radius of 0.2"
-contains "and what to use instead" "$tmp/err" "use a nose radius under 0.2"
+  "the design's section bends to a concave radius of 0.0"
+contains "and what to use instead" "$tmp/err" "use a nose radius under 0.0"
 [[ -z "$(ls -A "$tmp/crawl" 2> /dev/null)" ]] || { echo "FAIL: a run stopped by bad input left files:"; ls "$tmp/crawl"; fail=1; }
 # With the checks as errors (the default) the steep job stops at the first finding: exit 1
 # (a check failed, not bad input), the place named, nothing written.

@@ -10,6 +10,7 @@
 #include <numbers>
 
 #include "freeturn/path/section_envelope.hpp"
+#include "freeturn/surface/lenslet_array.hpp"
 #include "freeturn/surface/sinusoidal.hpp"
 #include "nose_brute_force.hpp"
 
@@ -97,6 +98,105 @@ TEST_SUITE("path") {
     const NoseTouch free = nose_touch(ring, RadialLine(0.0), kR, 2.2, z, zx, kStandOff);
     CHECK_FALSE(free.held);
     CHECK(test::brute_overlap(ring, free.centre_x, free.centre_z, placed) > 1e-3);
+  }
+
+  // Bowls of radius 0.15 mm, 0.2 mm across on a square 0.25 mm lattice under a 0.2 mm nose:
+  // every radial section of a bowl is a circle of radius at most 0.15 mm, tighter than the
+  // nose, so the nose never reaches into a bowl; it rests on its two rims (ridges).
+  LensletArrayOptions tight_bowls() {
+    LensletArrayOptions lo;
+    lo.lens_radius = 0.15;
+    lo.lens_diameter = 0.2;
+    lo.pitch = 0.25;
+    lo.pattern = LensletArrayOptions::Pattern::kSquare;
+    lo.extent = 1.0;
+    return lo;
+  }
+
+  TEST_CASE("tight troughs: a bowl tighter than the nose, between two rims: it rests on both") {
+    // On θ = 0 the bowl centred at 0.25 has its rims at 0.15 and 0.35 on the plane z = 0.
+    // The nose across it rests on both rims: its centre at x = 0.25, √(R'² − 0.1²) above
+    // them, and the real nose leaves the bowl's bottom, 0.15 − √(0.15² − 0.1²) deep, that
+    // less the nose's sag over the rims. The library before placed contacts inside the bowl
+    // 22.4 µm into its far wall, and its centre jumped back 33 µm at each rim: the job
+    // stopped at the chord tolerance ("the design's section bends to a concave radius of
+    // 0.15 mm").
+    const LensletArray bowls(tight_bowls());
+    const double nose = 0.2, placed = nose + kStandOff;
+    const TightTroughs view(bowls, placed, 1.0);
+    REQUIRE(view.any());
+    const double centre_z = std::sqrt(placed * placed - 0.01);
+    const double bottom = -(0.15 - std::sqrt(0.15 * 0.15 - 0.01));
+    const double uncut = centre_z - nose - bottom;
+    const double step = 2.5e-4;
+    double last_x = -1, last_z = 0, widest = 0;
+    int held = 0, on_rims = 0;
+    for (double rho = 0.105; rho <= 0.395; rho += step) {
+      CAPTURE(rho);
+      double z, zx, zy;
+      bowls.sag_gradient(rho, 0, z, zx, zy);
+      const NoseTouch t = nose_touch(view, RadialLine(0.0), nose, rho, z, zx, kStandOff);
+      // Touching the section and overhanging it nowhere (R' about the centre), by brute force.
+      CHECK(std::abs(test::brute_overlap(bowls, t.centre_x, t.centre_z, placed)) < 1e-9);
+      // The centre moves on along the section with the contact, never back, and never by
+      // more than a few steps of it (the rims' windows: their roll over 0.45 R either side).
+      if (last_x >= 0) {
+        CHECK(t.centre_x >= last_x - 1e-12);
+        widest = std::max(widest, std::hypot(t.centre_x - last_x, t.centre_z - last_z) / step);
+      }
+      last_x = t.centre_x;
+      last_z = t.centre_z;
+      on_rims += t.at_ridge;
+      if (rho > 0.241 && rho < 0.259) {
+        // Inside the bowl, past both rims' windows (0.45 R = 0.09 mm from each): held on
+        // both rims.
+        REQUIRE(t.held);
+        ++held;
+        CHECK(std::abs(t.centre_x - 0.25) < 1e-9);
+        CHECK(std::abs(t.centre_z - centre_z) < 1e-9);
+        CHECK(std::abs(t.uncut - uncut) < 1e-9);
+        CHECK(t.at_ridge);
+        CHECK(std::abs(std::abs(t.rho - 0.25) - 0.1) < 1e-12);  // its touch is a rim
+      }
+    }
+    MESSAGE("held ", held, ", touching a rim ", on_rims, ", the centre's widest move ", widest,
+            " times the contact's");
+    CHECK(held == 73);
+    // Across the land between the axis's bowl and this one both rims' windows overlap: the
+    // centre moves 1 + 0.1/0.135 + 0.1/0.18 = 2.30 times as fast as the contact along the
+    // section, and the drop moves it up and down besides.
+    CHECK(widest < 3);
+  }
+
+  TEST_CASE("tight troughs: a section that grazes a tight bowl: the centre continuous in θ") {
+    // The section at θ ≈ 0.923 rad crosses the bowl centred at (0.25, 0.25) near its edge,
+    // leaving it at r ≈ 0.4377 onto the plane. The view samples each section at whole steps
+    // of ρ, so the stretch's end listed beside the rim came and went with θ; while it bounded
+    // the rim's window, the centre of one contact jumped with θ and the chord rule stopped
+    // there (the centre moved up to 10.9 µm in a step of 2e-5 rad). Now for a contact in the
+    // rim's window the centre moves with θ as the rim does.
+    const LensletArray bowls(tight_bowls());
+    const double nose = 0.2, placed = nose + kStandOff;
+    const TightTroughs view(bowls, placed, 1.0);
+    for (const double rho : {0.43, 0.4374, 0.4380}) {
+      CAPTURE(rho);
+      double last_x = 0, last_z = 0, widest = 0;
+      const double turn = 2e-5;
+      for (double theta = 0.915; theta <= 0.93; theta += turn) {
+        const RadialLine line(theta);
+        double z, zx, zy;
+        bowls.sag_gradient(rho * line.cos, rho * line.sin, z, zx, zy);
+        const NoseTouch t =
+            nose_touch(view, line, nose, rho, z, zx * line.cos + zy * line.sin, kStandOff);
+        CHECK(std::abs(test::brute_overlap(bowls, t.centre_x, t.centre_z, placed, theta)) < 1e-9);
+        if (theta > 0.915)
+          widest = std::max(widest, std::hypot(t.centre_x - last_x, t.centre_z - last_z) / turn);
+        last_x = t.centre_x;
+        last_z = t.centre_z;
+      }
+      MESSAGE("the centre's widest move ", widest, " mm per radian of θ");
+      CHECK(widest < 2.0);
+    }
   }
 
   TEST_CASE("tight troughs: wide tight stretches and a nose wider than the period, touching") {

@@ -70,6 +70,7 @@ struct AxisState {
   // while the axes move, so the contact the path itself placed there (path_r, before the
   // nose's touch) measures how far the state moved.
   bool rolling = false;  // `slope` is then the nose's tangent at the touch
+  bool at_ridge = false;  // the touch lies on a ridge (NoseTouch::at_ridge): so is `slope`
   double path_r = 0;
   double spread = 1;  // how far the touches of neighbouring passes spread (NoseTouch::spread)
   double warm = 0;   // the path's warm start for the next point (a projection distance)

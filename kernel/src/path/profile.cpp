@@ -75,6 +75,7 @@ class ProfilePath {
     s.uncut = touch.held ? touch.uncut : 0.0;
     s.crease_rho = touch.held ? touch.crease_rho : 0.0;
     s.rolling = touch.rolling;
+    s.at_ridge = touch.at_ridge;
     s.path_r = r;
     s.spread = touch.spread;
     nose_.axes(touch.rho, touch.z, touch.slope, s.x_axis, s.z, s.b);
@@ -121,7 +122,7 @@ PathSummary plan_profile(const Surface& design, const ProfileOptions& o, Contact
     p.r = s.contact_r;
     p.point = s.point;
     detail::set_chord(p, s, error, jump, path.stand_off(), path.chord_floor());
-    detail::fill_section(design, p, s.rolling ? &s.slope : nullptr);
+    detail::fill_section(design, p, s.rolling || s.at_ridge ? &s.slope : nullptr, s.at_ridge);
     summary.add(p.theta, p.r, p.chord_error, jump);
     out.push(p);
   });

@@ -650,6 +650,9 @@ NoseTouch hold_at_crease(const Section& section, const SectionCreases& creases, 
 // rounding of the flanks' slopes at kOffCrease either side (a smooth point listed as a
 // crease), and a jump that small leaves chords a fraction of a picometre deep.
 constexpr double kLeastRoll = 1e-9;  // mm
+// A crease whose offset folds back by less than this fraction of R (its slope jumps by
+// less) is taken for a smooth point where it could bound a ridge's window (ridge_windows).
+constexpr double kSmoothRoll = 1e-6;
 // A ridge's window reaches this fraction of R, and of the distance to the next crease
 // that is no ridge (or to the axis), either side: so no window reaches a valley's, and
 // every crease that can bound one lies within 1.45 R of a contact in it.
@@ -691,17 +694,28 @@ struct RidgeWindows {
   double on_ridge = std::numeric_limits<double>::quiet_NaN();
 };
 
+//
+// held_x(ρ, x) says where the contact's own placement at ρ (just beside a ridge) is held,
+// its centre's abscissa x, or returns false where it is the offset. A hold beside a ridge
+// moves the jump: across a bowl tighter than the nose, between two rims, the placement
+// jumps from the rim's offset to the nose resting on both rims (docs/tool.md, "Bowls
+// tighter than the nose"), not to the bowl's own offset, and a ramp of the flanks' roll
+// jumped back by the difference at the ridge (33 µm on a bowl of radius 0.15 mm under a
+// 0.2 mm nose).
+template <class HeldX>
 RidgeWindows ridge_windows(const Section& section, const SectionCreases& creases, double R,
-                           double rho_p) {
+                           double rho_p, HeldX held_x) {
   RidgeWindows out;
   // The roll across the creases k..last (within 2·kOffCrease of each other: one crease,
   // two rims through one point), the slopes taken either side of the group.
-  const auto roll_across = [&](int k, int last, double& roll) {
+  const auto roll_across = [&](int k, int last, double& roll, double& x_in, double& x_out) {
     double g, s_in, s_out;
     if (!section.at(creases.rho[k] - kOffCrease, g, s_in) ||
         !section.at(creases.rho[last] + kOffCrease, g, s_out))
       return false;
-    roll = offset_x(creases.rho[k], s_out, R) - offset_x(creases.rho[k], s_in, R);
+    x_in = offset_x(creases.rho[k], s_in, R);
+    x_out = offset_x(creases.rho[k], s_out, R);
+    roll = x_out - x_in;
     return true;
   };
   const auto group_end = [&](int k) {
@@ -711,26 +725,37 @@ RidgeWindows ridge_windows(const Section& section, const SectionCreases& creases
   // Most contacts near creases are near valleys alone: those within kWindow·R first.
   bool ridge_near = false;
   for (int k = 0; k < creases.count && !ridge_near; k = group_end(k) + 1) {
-    double roll;
+    double roll, x_in, x_out;
     if (!(std::abs(creases.rho[k] - rho_p) < kWindow * R)) continue;
-    if (!roll_across(k, group_end(k), roll)) return out;
+    if (!roll_across(k, group_end(k), roll, x_in, x_out)) return out;
     ridge_near = roll > kLeastRoll;
   }
   if (!ridge_near) return out;
   // Each crease within 1.45 R, with its roll: the ridges within kWindow·R and every crease
   // that can bound their windows.
   struct Crease {  // trivial: the buffer is not filled on every call
-    double rho, roll;
+    double rho, last, roll, x_in, x_out;
   };
   std::array<Crease, SectionCreases::kCapacity> near;
   int count = 0;
   for (int k = 0; k < creases.count; k = group_end(k) + 1) {
-    double roll;
+    double roll, x_in, x_out;
+    const int last = group_end(k);
     if (!(std::abs(creases.rho[k] - rho_p) < (1 + kWindow) * R)) continue;
-    if (!roll_across(k, group_end(k), roll)) return out;
-    near[static_cast<std::size_t>(count++)] = {creases.rho[k], roll};
+    if (!roll_across(k, last, roll, x_in, x_out)) return out;
+    near[static_cast<std::size_t>(count++)] = {creases.rho[k], creases.rho[last], roll, x_in,
+                                               x_out};
   }
   const auto ridge = [&](int i) { return near[static_cast<std::size_t>(i)].roll > kLeastRoll; };
+  // A crease that bounds a ridge's window: a valley, where the nose may be held. A crease
+  // across which the offset neither jumps nor folds back (a slope jump under a
+  // millionth) is a point the view of troughs tighter than the nose lists on a smooth
+  // piece (path/tight_troughs.hpp): its samples fall at whole steps of ρ, so it comes and
+  // goes with θ, and a window it bounded would change its width at once from one section
+  // to the next, the centre with it.
+  const auto bounds_windows = [&](int i) {
+    return !(near[static_cast<std::size_t>(i)].roll > -kSmoothRoll * R);
+  };
   for (int i = 0; i < count; ++i) {
     const Crease& c = near[static_cast<std::size_t>(i)];
     if (!ridge(i) || !(c.rho >= 0) || !(std::abs(c.rho - rho_p) < kWindow * R)) continue;
@@ -741,12 +766,12 @@ RidgeWindows ridge_windows(const Section& section, const SectionCreases& creases
     double below = c.rho > 0 ? c.rho : std::numeric_limits<double>::infinity(),
            above = std::numeric_limits<double>::infinity();
     for (int j = i - 1; j >= 0; --j)
-      if (!ridge(j)) {
+      if (bounds_windows(j)) {
         below = std::min(below, c.rho - near[static_cast<std::size_t>(j)].rho);
         break;
       }
     for (int j = i + 1; j < count; ++j)
-      if (!ridge(j)) {
+      if (bounds_windows(j)) {
         above = near[static_cast<std::size_t>(j)].rho - c.rho;
         break;
       }
@@ -758,37 +783,38 @@ RidgeWindows ridge_windows(const Section& section, const SectionCreases& creases
       return out;
     }
     out.inside = true;
-    out.shift += c.roll * ((rho_p - start) / (end - start) - (rho_p > c.rho ? 1.0 : 0.0));
-    out.rate += c.roll / (end - start);
+    double x_in = c.x_in, x_out = c.x_out;
+    const bool held_in = held_x(c.rho - kOffCrease, x_in);
+    const bool held_out = held_x(c.last + kOffCrease, x_out);
+    const double roll = held_in || held_out ? x_out - x_in : c.roll;
+    out.shift += roll * ((rho_p - start) / (end - start) - (rho_p > c.rho ? 1.0 : 0.0));
+    out.rate += roll / (end - start);
   }
   return out;
 }
 
-// The nose over the ridges' windows (nose_touch): the contact's own placement moved along
-// the section by windows.shift and dropped onto the design there, touching it at the
-// section's highest point over the nose's lower arc (nose_overlap). The slope handed on is
-// the nose's tangent at the touch (at a ridge, no flank's), so that the offset along it
-// is the centre. False where the section is undefined.
-bool roll_over_ridges(const Surface& design, const Section& section, const SectionCreases& creases,
-                      const RadialLine& line, double R, double rho_p, const RidgeWindows& windows,
-                      NoseTouch& t) {
-  const double x_c = t.centre_x + windows.shift;
-  NoseOverlap o = nose_overlap(design, line, x_c, t.centre_z, R, rho_p);
-  // The searches start kOffCrease off each crease, a few 1e-11 mm below a ridge's peak;
-  // the section's value at the crease itself (its slope is either flank's, its height
-  // both) makes the touch there exact.
-  bool at_crease = false;
+// The nose of radius R centred at abscissa x_c dropped onto the section (the drop-cutter):
+// the section's highest point over the lower arc of the nose about (x_c, z_ref), as
+// nose_overlap finds it from `hint`, made exact at a crease (the searches start kOffCrease
+// off each crease, a few 1e-11 mm below a ridge's peak, and the section's value at the
+// crease itself, its height both flanks', makes the touch there exact) and on a flank
+// (nose_overlap settles the peak to 1 pm; Newton's steps with the flank's own curvature,
+// h'' = g'' − R²/s³, take it to rounding, so that the dropped nose is not that far into the
+// design; a step that would cross a crease is not taken). `creases` must hold every crease
+// within R of x_c. at_crease: the touch lies at (or within 1e-12 mm of) a crease.
+NoseOverlap drop_onto_section(const Surface& design, const Section& section,
+                              const SectionCreases& creases, const RadialLine& line, double x_c,
+                              double z_ref, double R, double hint, bool& at_crease) {
+  NoseOverlap o = nose_overlap(design, line, x_c, z_ref, R, hint);
+  at_crease = false;
   for (int k = 0; k < creases.count; ++k) {
     const double d = creases.rho[k] - x_c;
     double g, s;
     if (!(std::abs(d) < 0.999 * R) || !section.at(creases.rho[k], g, s)) continue;
-    const double h = g - t.centre_z + std::sqrt(R * R - d * d);
-    if (h >= o.height - 1e-12) at_crease = true;  // the touch lies at (or within 1e-12 of) it
+    const double h = g - z_ref + std::sqrt(R * R - d * d);
+    if (h >= o.height - 1e-12) at_crease = true;
     if (h > o.height) o.height = h, o.rho = creases.rho[k];
   }
-  // On a flank the search settles the peak to 1 pm; Newton's steps with the flank's own
-  // curvature (h'' = g'' − R²/s³) take it to rounding, so the dropped nose is not that far
-  // into the design. A step that would cross a crease is not taken.
   for (int it = 0; it < 3 && !at_crease; ++it) {
     double g, s, bend;
     const double d = o.rho - x_c, arc = std::sqrt(R * R - d * d);
@@ -803,11 +829,26 @@ bool roll_over_ridges(const Surface& design, const Section& section, const Secti
     if (crosses || !section.at(next, g_next, s_next)) break;
     const double d_next = next - x_c;
     if (!(std::abs(d_next) < R)) break;
-    const double h = g_next - t.centre_z + std::sqrt(R * R - d_next * d_next);
+    const double h = g_next - z_ref + std::sqrt(R * R - d_next * d_next);
     if (!(h > o.height)) break;
     o.height = h;
     o.rho = next;
   }
+  return o;
+}
+
+// The nose over the ridges' windows (nose_touch): the contact's own placement moved along
+// the section by windows.shift and dropped onto the design there (drop_onto_section),
+// touching it at the section's highest point over the nose's lower arc. The slope handed
+// on is the nose's tangent at the touch (at a ridge, no flank's), so that the offset along
+// it is the centre. False where the section is undefined.
+bool roll_over_ridges(const Surface& design, const Section& section, const SectionCreases& creases,
+                      const RadialLine& line, double R, double rho_p, const RidgeWindows& windows,
+                      NoseTouch& t) {
+  const double x_c = t.centre_x + windows.shift;
+  bool at_crease;
+  const NoseOverlap o =
+      drop_onto_section(design, section, creases, line, x_c, t.centre_z, R, rho_p, at_crease);
   const double d = o.rho - x_c, rise = std::sqrt(std::max(R * R - d * d, 0.0));
   if (!(o.height > -1e300) || !(rise > 0)) return false;
   const double z_c = t.centre_z + o.height;
@@ -823,6 +864,7 @@ bool roll_over_ridges(const Surface& design, const Section& section, const Secti
     touch_rate = std::min(touch_rate, offset_rate(s, bend, R));
   }
   t.rolling = true;
+  t.at_ridge = at_crease;
   t.held = false;
   t.uncut = 0;
   t.rho = o.rho;
@@ -836,71 +878,136 @@ bool roll_over_ridges(const Surface& design, const Section& section, const Secti
 
 // The hold found from the nose's overhang of the whole section, for a section with no
 // concavity bound where the creases' own holds leave the nose overhanging (a trough
-// tighter than the nose whose tight stretch is wide, or a nose wider than the troughs'
-// period, path/tight_troughs.hpp). The contact's own offset overhangs the section
-// somewhere (nose_overlap); walking the contact away from the deepest overhang, along its
-// own side, the first offset that overhangs nothing (by `tolerance`) is the trimmed
-// envelope's crossing: the nose there touches the section at the contact and at the far
-// point it last overhung. Found by doubling steps, then bisection to rounding, so that
-// every contact of one held region gives the same centre. t (unheld) where no such offset
-// lies within 2R.
+// tighter than the nose whose tight stretch is wide, a nose wider than the troughs' period,
+// path/tight_troughs.hpp, or a bowl tighter than the nose between two rims). A contact whose
+// own offset overhangs the section somewhere (nose_overlap) is one the nose never touches:
+// it lies in a gap of the envelope. The nose dropped onto the section at abscissa x
+// (drop_onto_section) touches it at ρ*(x), which never falls as x grows (a circle's
+// translates' upper envelope), and jumps across each gap: the hold is the drop at the x*
+// where ρ* passes the contact, the centre from which the nose touches both sides of the
+// gap, whatever they are (flanks, or ridges the nose rolls over). Found by doubling steps
+// from the contact, then bisection to rounding, so that every contact of one held region
+// gives the same centre. Walking the contact's own offset along its side to the first one
+// that overhangs nothing, as before December 2026, found the same point on a smooth
+// trough, but between two rims no offset of the bowl overhangs nothing, and the walk ended
+// on the rim: a nose there is still rolling, and the contacts beyond were placed 22 µm
+// into the bowl's far wall. t (unheld) where no such x lies within 2R.
 NoseTouch hold_by_overhang(const Surface& design, const Section& section, const RadialLine& line,
                            NoseTouch t, double rho_p, double R, double nose_radius,
                            double tolerance) {
-  double g = 0, slope = 0, far = 0;
-  const auto overhang = [&](double a, double& centre_x, double& centre_z) {
-    if (!section.at(a, g, slope)) return std::numeric_limits<double>::infinity();
-    const double l = std::sqrt(1 + slope * slope);
-    centre_x = a - R * slope / l;
-    centre_z = g + R / l;
-    const NoseOverlap o = nose_overlap(design, line, centre_x, centre_z, R, a);
-    far = o.rho;
-    return o.height;
+  const NoseOverlap first = nose_overlap(design, line, t.centre_x, t.centre_z, R, rho_p);
+  if (!(first.height > tolerance) || !std::isfinite(first.height)) return t;
+  SectionCreases creases;
+  creases.find(design, line, rho_p - 3 * R, rho_p + 3 * R);
+  const double z_ref = t.centre_z;
+  // The drop at x: its touch, and the height it lifts the nose by from z_ref.
+  const auto drop = [&](double x, NoseOverlap& o, bool& at_crease) {
+    o = drop_onto_section(design, section, creases, line, x, z_ref, R,
+                          std::clamp(rho_p, x - 0.999 * R, x + 0.999 * R), at_crease);
+    return o.height > -1e300;
   };
-  double cx, cz;
-  const double first = overhang(rho_p, cx, cz);
-  if (!(first > tolerance) || !std::isfinite(first)) return t;
-  const double away = far > rho_p ? -1.0 : 1.0;
-  // The far point the last offset that overhangs does: the held nose's other touch.
-  double far_touch = far;
-  double inside = rho_p, outside = rho_p, step = 1e-3 * R;
-  for (;; step *= 2) {
+  NoseOverlap o;
+  bool before_on_crease = false, after_on_crease = false;
+  if (!drop(rho_p, o, before_on_crease)) return t;
+  // x below the crossing where the touch lies below the contact, above it where not.
+  const double toward = o.rho < rho_p ? 1.0 : -1.0;
+  double before = rho_p, after = rho_p;
+  NoseOverlap touch_before = o, touch_after;
+  for (double step = 1e-3 * R;; step *= 2) {
     if (step > 2 * R) return t;
-    outside = rho_p + away * step;
-    if (!(overhang(outside, cx, cz) > tolerance)) break;
-    inside = outside;
-    far_touch = far;
+    after = rho_p + toward * step;
+    if (!drop(after, touch_after, after_on_crease)) return t;
+    if ((touch_after.rho - rho_p) * toward >= 0) break;
+    before = after;
+    touch_before = touch_after;
+    before_on_crease = after_on_crease;
   }
-  // Bisection to rounding on the whole section's overlap, so that every contact of one
-  // held region ends on the same centre.
-  for (int it = 0; it < 200 && std::abs(outside - inside) > 1e-14 * (1 + std::abs(inside)); ++it) {
-    const double mid = 0.5 * (inside + outside);
-    if (mid == inside || mid == outside) break;
-    if (overhang(mid, cx, cz) > tolerance) {
-      inside = mid;
-      far_touch = far;
+  // Where both touches lie on creases (a bowl's two rims), the nose resting on both has its
+  // centre at the upper crossing of the circles of radius R about them, in closed form. It
+  // stands where it lies in the bracket and the drop there finds nothing higher; then the
+  // bisection's fifty drops are two.
+  double x = after, z_c = z_ref + touch_after.height;
+  bool closed = false;
+  double tried_below = std::numeric_limits<double>::quiet_NaN(), tried_above = tried_below;
+  const auto rest_on_creases = [&] {
+    if (!(before_on_crease && after_on_crease) || touch_before.rho == touch_after.rho ||
+        (touch_before.rho == tried_below && touch_after.rho == tried_above))
+      return false;
+    tried_below = touch_before.rho;
+    tried_above = touch_after.rho;
+    double g_a, g_b, slope;
+    if (!section.at(touch_before.rho, g_a, slope) || !section.at(touch_after.rho, g_b, slope))
+      return false;
+    const double vx = touch_after.rho - touch_before.rho, vz = g_b - g_a;
+    const double d = std::hypot(vx, vz);
+    if (!(d < 2 * R)) return false;
+    const double h = std::sqrt(R * R - 0.25 * d * d), up = vx > 0 ? 1.0 : -1.0;
+    const double cx = 0.5 * (touch_before.rho + touch_after.rho) - up * h * vz / d;
+    const double cz = 0.5 * (g_a + g_b) + up * h * vx / d;
+    if (!((cx - before) * toward > 0 && (after - cx) * toward > 0)) return false;
+    NoseOverlap check;
+    bool on_crease;
+    if (!drop(cx, check, on_crease) || !(check.height <= cz - z_ref + 1e-12)) return false;
+    x = cx;
+    z_c = cz;
+    return true;
+  };
+  for (int it = 0; it < 200 && std::abs(after - before) > 1e-14 * (1 + std::abs(before)); ++it) {
+    if ((closed = rest_on_creases())) break;
+    const double mid = 0.5 * (before + after);
+    if (mid == before || mid == after) break;
+    NoseOverlap m;
+    bool on_crease;
+    if (!drop(mid, m, on_crease)) return t;
+    if ((m.rho - rho_p) * toward >= 0) {
+      after = mid;
+      touch_after = m;
+      after_on_crease = on_crease;
     } else {
-      outside = mid;
+      before = mid;
+      touch_before = m;
+      before_on_crease = on_crease;
     }
   }
-  const double clear = overhang(outside, cx, cz);
-  if (!(clear <= tolerance)) return t;
+  // The nose at the crossing's upper end: it touches the section there, and its other
+  // touch (the one just below the crossing) to rounding.
+  const double below_touch = toward > 0 ? touch_before.rho : touch_after.rho;
+  const double above_touch = toward > 0 ? touch_after.rho : touch_before.rho;
+  const bool below_on_crease = toward > 0 ? before_on_crease : after_on_crease;
+  const bool above_on_crease = toward > 0 ? after_on_crease : before_on_crease;
+  // The touch on the side away from the contact's deepest overhang is its own (the nose
+  // rests on the far side of the gap from the overhang as on the near one of a crease).
+  const bool own_below = first.rho > rho_p;
+  const double own = own_below ? below_touch : above_touch;
+  const bool own_on_crease = own_below ? below_on_crease : above_on_crease;
+  const double far_touch = own_below ? above_touch : below_touch;
+  if (!closed) {
+    x = after;
+    z_c = z_ref + touch_after.height;
+  }
+  const double d = own - x, rise = std::sqrt(std::max(R * R - d * d, 0.0));
+  double g, slope;
+  if (!(rise > 0) || !section.at(own, g, slope)) return t;
   NoseTouch held = t;
-  held.rho = outside;
-  held.z = g;
-  held.slope = slope;
-  held.centre_x = cx;
-  held.centre_z = cz;
+  held.rho = own;
+  held.z = z_c - rise;
+  held.slope = d / rise;  // the nose's tangent at the touch: the offset along it is x
+  held.centre_x = x;
+  held.centre_z = z_c;
   held.held = true;
+  held.at_ridge = own_on_crease;
   held.far_rho = far_touch;
   // The material left between the two touches, at the creases between them (the bottoms
   // of the troughs the view lists, and any real crease), as the crease's hold measures it.
-  SectionCreases creases;
-  creases.find(design, line, std::min(outside, far_touch), std::max(outside, far_touch));
   held.uncut = 0;
-  held.crease_rho = creases.count > 0 ? creases.rho[0] : 0.5 * (outside + far_touch);
-  for (int k = 0; k < creases.count; ++k)
-    held.uncut = std::max(held.uncut, left_at_crease(section, creases.rho[k], cx, cz, nose_radius));
+  held.crease_rho = 0.5 * (below_touch + above_touch);
+  bool lowest = true;
+  for (int k = 0; k < creases.count; ++k) {
+    if (!(creases.rho[k] > below_touch && creases.rho[k] < above_touch)) continue;
+    if (lowest) held.crease_rho = creases.rho[k];
+    lowest = false;
+    held.uncut = std::max(held.uncut, left_at_crease(section, creases.rho[k], x, z_c, nose_radius));
+  }
   return held;
 }
 
@@ -1043,7 +1150,26 @@ NoseTouch place_nose(const Surface& design, const RadialLine& line, double nose_
   };
   // Within a ridge's window the nose rolls over it instead of jumping across.
   if (!design.may_have_ridges()) return own_placement(t, rho_p);
-  RidgeWindows windows = ridge_windows(section, creases, R, rho_p);
+  // Where the section has no concavity bound (a trough tighter than the nose, listed by
+  // path/tight_troughs.hpp), the placement beside a ridge may be held (ridge_windows).
+  const bool unbounded = hold && !(section_concavity(design, R, std::abs(rho_p) + 3 * R) > 0);
+  const auto held_x = [&](double rho, double& x) {
+    if (!unbounded) return false;
+    NoseTouch side;
+    if (!section.at(rho, side.z, side.slope)) return false;
+    const double l = std::sqrt(1 + side.slope * side.slope);
+    side.rho = rho;
+    side.centre_x = rho - R * side.slope / l;
+    side.centre_z = side.z + R / l;
+    SectionCreases near;
+    near.find(design, line, std::min(rho, side.centre_x) - 2 * R,
+              std::max(rho, side.centre_x) + 2 * R);
+    const NoseTouch h =
+        offset_or_hold(design, section, line, near, side, rho, R, nose_radius, tolerance);
+    if (h.held) x = h.centre_x;
+    return h.held;
+  };
+  RidgeWindows windows = ridge_windows(section, creases, R, rho_p, held_x);
   if (!std::isnan(windows.on_ridge)) {
     rho_p = windows.on_ridge;
     if (!section.at(rho_p, t.z, t.slope)) return t;
@@ -1051,7 +1177,7 @@ NoseTouch place_nose(const Surface& design, const RadialLine& line, double nose_
     t.rho = rho_p;
     t.centre_x = rho_p - R * t.slope / l;
     t.centre_z = t.z + R / l;
-    windows = ridge_windows(section, creases, R, rho_p);
+    windows = ridge_windows(section, creases, R, rho_p, held_x);
   }
   const NoseTouch placed = own_placement(t, rho_p);
   NoseTouch rolled = placed;

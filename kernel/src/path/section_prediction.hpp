@@ -2,6 +2,7 @@
 // Per-point prediction shared by the planners: the surface's radial section at a contact
 // point, the pass spacing along it, and the scallop the tool's nose leaves.
 
+#include <algorithm>
 #include <cmath>
 
 #include "freeturn/path/contact_point.hpp"
@@ -18,9 +19,13 @@ namespace freeturn::detail {
 // radial_slope (optional): the slope the tool sees in the radial plane where it is not the
 // design's, over a ridge the nose rolls over (section_envelope.hpp): the normal then takes
 // it in place of the design's radial slope, so that compensation puts the centre where
-// the planner placed it; the tangential slope and the curvature stay the design's.
+// the planner placed it; the tangential slope stays the design's.
+// at_ridge: the touch lies on a ridge (NoseTouch::at_ridge). The section bends away from
+// the nose at that corner, so no flank's concavity is the touch's: the curvature is taken
+// as at most 0 there. A bowl tighter than the nose, whose rims the nose rests on, had
+// failed the local gouge check on its own rims' touches.
 inline double fill_section(const Surface& design, ContactPoint& p,
-                           const double* radial_slope = nullptr) {
+                           const double* radial_slope = nullptr, bool at_ridge = false) {
   const HeightDerivatives h = design.height_derivatives(p.point.x(), p.point.y());
   const double c = std::cos(p.theta), s = std::sin(p.theta);
   p.normal = Eigen::Vector3d(-h.zx, -h.zy, 1).normalized();
@@ -33,6 +38,7 @@ inline double fill_section(const Surface& design, ContactPoint& p,
   const double zrr = h.zxx * c * c + 2 * h.zxy * c * s + h.zyy * s * s;
   p.section_curvature =
       zrr / ((1 + zr * zr) * std::sqrt(1 + h.zx * h.zx + h.zy * h.zy));
+  if (at_ridge) p.section_curvature = std::min(p.section_curvature, 0.0);
   return radial_slope ? *radial_slope : zr;
 }
 

@@ -176,6 +176,7 @@ class SpiralPath {
     s.uncut = touch.held ? touch.uncut : 0.0;
     s.crease_rho = touch.held ? touch.crease_rho : 0.0;
     s.rolling = touch.rolling;
+    s.at_ridge = touch.at_ridge;
     s.path_r = contact_r;
     s.spread = touch.spread;
     nose_.axes(touch.rho, touch.z, touch.slope, s.x_axis, s.z, s.b);
@@ -311,7 +312,8 @@ PathSummary plan_spiral(const Surface& design, const BaseSurface& base,
     p.r = s.contact_r;
     p.point = s.point;
     detail::set_chord(p, s, error, jump, piece.stand_off(), piece.chord_floor());
-    const double zr = detail::fill_section(design, p, s.rolling ? &s.slope : nullptr);
+    const double zr =
+        detail::fill_section(design, p, s.rolling || s.at_ridge ? &s.slope : nullptr, s.at_ridge);
     // Adjacent turns are p apart along the base's generating curve; on the design
     // they are p / cos β apart, β the angle between the two sections' tangents.
     const BasePoint bp = piece.base_point(s.c);

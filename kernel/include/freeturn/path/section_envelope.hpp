@@ -100,6 +100,10 @@ struct NoseTouch {
   // then the nose's tangent at the touch, not the design's, so that the offset along it
   // is the centre (at the ridge itself no flank's slope is).
   bool rolling = false;
+  // The touch lies on a ridge (rolling over it, or resting on it with the nose held across
+  // a bowl tighter than itself): `slope` is the nose's tangent there, and the section bends
+  // away from the nose at the corner whatever its flanks' curvature.
+  bool at_ridge = false;
   // How far apart the touches of neighbouring passes lie, per unit of their contacts'
   // spacing (rolling only, else 1): the window moves the centre faster than the contact,
   // and a flank's offset moves 1 − R·κ times as fast as its foot (κ the section's
