@@ -277,6 +277,22 @@ if [[ -x /usr/bin/python3 ]] && /usr/bin/python3 -c "import numpy" 2> /dev/null;
     "$tmp/five/sinusoidal_ring.precitech-nanoform-250.nc" sinusoidal_ring:0.01:0.3 0.8 0 60 5.0)
   awk -v d="$deepest" 'BEGIN { exit !(d < 10) }' || { echo "FAIL: the five-period nose's edge goes $deepest nm below the design"; fail=1; }
 fi
+# Bowls of radius 0.15 mm, 0.2 mm across, under the microlens mold's 0.2 mm nose: every
+# section of a bowl is tighter than the nose, which rests on its two rims across it
+# (docs/tool.md, "Bowls tighter than the nose"). It stopped at the chord tolerance until
+# December 2026; now it is written, leaves the bowls' bottoms (the closed form
+# (R_b − √(R_b² − a²)) − (R − √(R'² − a²)) with a = 0.1 mm and R' = R + 0.1 µm: 11 518 nm)
+# and is read back above the design. Its walls (41.8° at the rims) pass a 45° clearance.
+sed -e 's/lens_radius: 0.6 /lens_radius: 0.15 /' -e 's/outer_radius: 1.0 /outer_radius: 0.4 /' \
+    -e 's/included_angle_deg: 120/included_angle_deg: 120\n  clearance_angle_deg: 45/' \
+    "$src/configs/jobs/microlens_mold.yaml" > "$tmp/bowls.yaml"
+timeout 300 "$freeturn" run "$tmp/bowls.yaml" -o "$tmp/bowls" > /dev/null 2> "$tmp/err"; expect "bowls tighter than the nose" 0 $?
+contains "they leave the bowls' bottoms" "$tmp/err" "up to 11517."
+if [[ -x /usr/bin/python3 ]] && /usr/bin/python3 -c "import numpy" 2> /dev/null; then
+  deepest=$(/usr/bin/python3 "$src/tests/jobs/nc_rake_gouge.py" \
+    "$tmp/bowls/microlens_mold.moore-nanotech-250upl.nc" microlens_array:0.15:0.2:0.25:0.4 0.2 0 60 0 0.4)
+  awk -v d="$deepest" 'BEGIN { exit !(d < 1) }' || { echo "FAIL: the nose over the tight bowls goes $deepest nm below the design"; fail=1; }
+fi
 # Troughs 10 µm apart (concave radius 1/(Aω²) = 2.5 µm) under the same nose bend faster than the view
 # of tight troughs samples them (path/tight_troughs.hpp): no step meets the tolerance. In
 # PVT mode (this machine's) the planner once took slivers of no length there without end;

@@ -9,9 +9,13 @@
 #include <cmath>
 #include <numbers>
 
+#include "dense_check.hpp"
+#include "freeturn/path/base_surface.hpp"
 #include "freeturn/path/section_envelope.hpp"
+#include "freeturn/path/spiral.hpp"
 #include "freeturn/surface/lenslet_array.hpp"
 #include "freeturn/surface/sinusoidal.hpp"
+#include "freeturn/tool/compensation.hpp"
 #include "nose_brute_force.hpp"
 
 namespace freeturn {
@@ -166,6 +170,52 @@ TEST_SUITE("path") {
     // centre moves 1 + 0.1/0.135 + 0.1/0.18 = 2.30 times as fast as the contact along the
     // section, and the drop moves it up and down besides.
     CHECK(widest < 3);
+  }
+
+  TEST_CASE("tight troughs: a spiral over bowls tighter than the nose, sampled densely") {
+    // The chord rule's spiral over the bowls to 0.4 mm, planned on the view as the run
+    // plans it (the nose's radius plus the stand-off, half the tolerance), compensated, and
+    // sampled along the interpolated motion by the tests' own nose sampler against the
+    // bowls themselves: no jump, the nose nowhere below the design, the chord within ε.
+    // It stopped at the chord tolerance before.
+    const LensletArray bowls(tight_bowls());
+    const double nose = 0.2, tolerance = 2e-4;
+    const TightTroughs view(bowls, nose + 0.5 * tolerance, 0.4);
+    REQUIRE(view.any());
+    SpiralOptions o;
+    o.outer_radius = 0.4;
+    o.pitch = 0.005;
+    o.points.tolerance = tolerance;
+    o.points.max_angle_step = 4 * std::numbers::pi / 180;
+    o.tool.nose_radius = nose;
+    ContactCollector out;
+    const PathSummary summary = plan_spiral(view, BaseSurface::plane(o.outer_radius), o, out);
+    CompensationOptions c;
+    c.tool.nose_radius = nose;
+    std::vector<CutterLocation> cls;
+    long held = 0;
+    double uncut = 0;
+    for (const ContactPoint& p : out.points) {
+      cls.push_back(compensate(p, c));
+      held += p.uncut_residual > 0;
+      uncut = std::max(uncut, p.uncut_residual);
+    }
+    // 2 000 values across the nose: a rim's peak is sharp, and the default grid's 1.6 µm
+    // spacing put the search beside it (391 nm read where the nose passed 192 nm above).
+    const test::DenseNoseFigures f = test::dense_nose_figures(bowls, cls, nose, 12, 2000);
+    MESSAGE("points ", cls.size(), ", held ", held, ", uncut at most ", uncut * 1e6,
+            " nm, deepest ", f.gouge * 1e6, " nm, chord ", f.worst * 1e6, " nm");
+    CHECK(summary.jumps == 0);
+    CHECK(f.gouge <= 1e-6);
+    CHECK(f.worst <= tolerance * 1.02);
+    CHECK(held > 0);
+    // The most left: a bowl's bottom under the nose resting on rims 0.1 mm either side of
+    // its centre (the previous case's closed form), on no section more.
+    const double placed = nose + 0.5 * tolerance;
+    const double most =
+        (std::sqrt(placed * placed - 0.01) - nose) + 0.15 - std::sqrt(0.15 * 0.15 - 0.01);
+    CHECK(uncut <= most + 1e-9);
+    CHECK(uncut > 0.9 * most);
   }
 
   TEST_CASE("tight troughs: a section that grazes a tight bowl: the centre continuous in θ") {

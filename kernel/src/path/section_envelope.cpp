@@ -398,6 +398,19 @@ NoseOverlap nose_overlap(const Surface& design, const RadialLine& line, double x
       search(section, x_c, z_c, R, creases.rho[k] + side * kOffCrease, a, b, 3, best, side, m,
              best.height, &piece_ceiling);
     }
+  // Highest at a crease (a ridge the nose passes over): the section has two normals there,
+  // and the gap along the flatter flank's is the larger. The material left beside a rim on
+  // the plane is the nose's height over the plane, not its distance from the rim along the
+  // steeper flank's normal, which read a chord of 218 nm as 196 (a bowl tighter than the
+  // nose, its rim crossed at 26°).
+  for (int k = 0; k < creases.count; ++k) {
+    if (!(std::abs(creases.rho[k] - best.rho) <= 2 * kOffCrease)) continue;
+    double g, below, above;
+    if (section.at(creases.rho[k] - kOffCrease, g, below) &&
+        section.at(creases.rho[k] + kOffCrease, g, above))
+      best.slope = std::abs(below) < std::abs(above) ? below : above;
+    break;
+  }
   return best;
 }
 
