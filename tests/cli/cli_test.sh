@@ -281,7 +281,7 @@ fi
 # section of a bowl is tighter than the nose, which rests on its two rims across it
 # (docs/tool.md, "Bowls tighter than the nose"). It stopped at the chord tolerance until
 # December 2026; now it is written, leaves the bowls' bottoms (the closed form
-# (R_b − √(R_b² − a²)) − (R − √(R'² − a²)) with a = 0.1 mm and R' = R + 0.1 µm: 11 518 nm)
+# (R_b − √(R_b² − a²)) − (R − √(R'² − a²)) with a = 0.1 mm and R' = R + 0.1 µm: 11 517.1 nm)
 # and is read back above the design. Its walls (41.8° at the rims) pass a 45° clearance.
 sed -e 's/lens_radius: 0.6 /lens_radius: 0.15 /' -e 's/outer_radius: 1.0 /outer_radius: 0.4 /' \
     -e 's/included_angle_deg: 120/included_angle_deg: 120\n  clearance_angle_deg: 45/' \
