@@ -77,7 +77,11 @@ def compound_eye(base, lens, diameter, pitch, extent):
             near = (x - c[0]) ** 2 + (y - c[1]) ** 2 < (diameter / 2 + 0.05) ** 2
             if near.any():
                 s = lens * lens - (x[near] - c[0]) ** 2 - (y[near] - c[1]) ** 2
-                out[near] = np.maximum(out[near], c[2] - np.sign(lens) * np.sqrt(np.maximum(s, 0)))
+                lenslet = c[2] - np.sign(lens) * np.sqrt(np.maximum(s, 0))
+                if lens > 0:  # a bowl: below the base inside its rim, above it outside
+                    out[near] = np.minimum(out[near], np.where(s > 0, lenslet, np.inf))
+                else:  # a dome: above the base inside its rim
+                    out[near] = np.maximum(out[near], lenslet)
         return out
 
     return z
