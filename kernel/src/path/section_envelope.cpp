@@ -1166,8 +1166,26 @@ NoseTouch place_nose(const Surface& design, const RadialLine& line, double nose_
   // Where the section has no concavity bound (a trough tighter than the nose, listed by
   // path/tight_troughs.hpp), the placement beside a ridge may be held (ridge_windows).
   const bool unbounded = hold && !(section_concavity(design, R, std::abs(rho_p) + 3 * R) > 0);
+  const auto flanks_only = [](double, double&) { return false; };
+  RidgeWindows windows = ridge_windows(section, creases, R, rho_p, flanks_only);
+  if (!std::isnan(windows.on_ridge)) {
+    rho_p = windows.on_ridge;
+    if (!section.at(rho_p, t.z, t.slope)) return t;
+    const double l = std::sqrt(1 + t.slope * t.slope);
+    t.rho = rho_p;
+    t.centre_x = rho_p - R * t.slope / l;
+    t.centre_z = t.z + R / l;
+    windows = ridge_windows(section, creases, R, rho_p, flanks_only);
+  }
+  const NoseTouch placed = own_placement(t, rho_p);
   const auto held_x = [&](double rho, double& x) {
-    if (!unbounded) return false;
+    // A point inside the contact's own hold's gap (between its two touches) is held at
+    // the same centre: the contact's hold stands for it, and is not searched again.
+    if (placed.held && rho > std::min(placed.rho, placed.far_rho) &&
+        rho < std::max(placed.rho, placed.far_rho)) {
+      x = placed.centre_x;
+      return true;
+    }
     NoseTouch side;
     if (!section.at(rho, side.z, side.slope)) return false;
     const double l = std::sqrt(1 + side.slope * side.slope);
@@ -1182,17 +1200,7 @@ NoseTouch place_nose(const Surface& design, const RadialLine& line, double nose_
     if (h.held) x = h.centre_x;
     return h.held;
   };
-  RidgeWindows windows = ridge_windows(section, creases, R, rho_p, held_x);
-  if (!std::isnan(windows.on_ridge)) {
-    rho_p = windows.on_ridge;
-    if (!section.at(rho_p, t.z, t.slope)) return t;
-    const double l = std::sqrt(1 + t.slope * t.slope);
-    t.rho = rho_p;
-    t.centre_x = rho_p - R * t.slope / l;
-    t.centre_z = t.z + R / l;
-    windows = ridge_windows(section, creases, R, rho_p, held_x);
-  }
-  const NoseTouch placed = own_placement(t, rho_p);
+  if (unbounded && windows.inside) windows = ridge_windows(section, creases, R, rho_p, held_x);
   NoseTouch rolled = placed;
   if (windows.inside && roll_over_ridges(design, section, creases, line, R, rho_p, windows, rolled))
     return rolled;
