@@ -926,7 +926,10 @@ NoseTouch hold_by_overhang(const Surface& design, const Section& section, const 
   const double toward = o.rho < rho_p ? 1.0 : -1.0;
   double before = rho_p, after = rho_p;
   NoseOverlap touch_before = o, touch_after;
-  for (double step = 1e-3 * R;; step *= 2) {
+  // Doubling from a twentieth of R: a bowl's far rim lies a few such steps off, and the
+  // bracket's width costs the bisection only its logarithm (from a thousandth of R, the
+  // doubling had been a fifth of a tight bowl's plan).
+  for (double step = 0.05 * R;; step *= 2) {
     if (step > 2 * R) return t;
     after = rho_p + toward * step;
     if (!drop(after, touch_after, after_on_crease)) return t;
