@@ -707,9 +707,8 @@ struct RidgeWindows {
   double on_ridge = std::numeric_limits<double>::quiet_NaN();
 };
 
-//
-// held_x(ρ, x) says where the contact's own placement at ρ (just beside a ridge) is held,
-// its centre's abscissa x, or returns false where it is the offset. A hold beside a ridge
+// ridge_windows: held_x(ρ, x) says where the contact's own placement at ρ (just beside a ridge) is
+// held, its centre's abscissa x, or returns false where it is the offset. A hold beside a ridge
 // moves the jump: across a bowl tighter than the nose, between two rims, the placement
 // jumps from the rim's offset to the nose resting on both rims (docs/tool.md, "Bowls
 // tighter than the nose"), not to the bowl's own offset, and a ramp of the flanks' roll
