@@ -293,6 +293,21 @@ if [[ -x /usr/bin/python3 ]] && /usr/bin/python3 -c "import numpy" 2> /dev/null;
     "$tmp/bowls/microlens_mold.moore-nanotech-250upl.nc" microlens_array:0.15:0.2:0.25:0.4 0.2 0 60 0 0.4)
   awk -v d="$deepest" 'BEGIN { exit !(d < 1) }' || { echo "FAIL: the nose over the tight bowls goes $deepest nm below the design"; fail=1; }
 fi
+# The same bowls on a lathe that interpolates PVT cubics (the Moore's axes in the Precitech
+# dialect with a time word a block), read back along the controller's cubics: the nose
+# stays above the design between the blocks too, not only on the chords.
+sed -e 's/^name: .*/name: bowl-pvt/' -e 's/^plugin: moore/plugin: precitech/' \
+    -e 's/^interpolation: linear/interpolation: pvt\nblock_times: varying/' -e '/^moore:/,$d' \
+    "$src/postprocessors/moore/machines/moore-nanotech-250upl.yaml" > "$tmp/bowl-pvt.yaml"
+printf 'precitech:\n  header: "; PVT on"\n  footer: "; end of data"\n  time_word: T\n' >> "$tmp/bowl-pvt.yaml"
+sed -e "s|^machine: .*|machine: $tmp/bowl-pvt.yaml|" -e 's/outer_radius: 0.4 /outer_radius: 0.3 /' \
+    "$tmp/bowls.yaml" > "$tmp/bowls_pvt.yaml"
+timeout 300 "$freeturn" run "$tmp/bowls_pvt.yaml" -o "$tmp/bowls_pvt" > /dev/null 2> "$tmp/err"; expect "bowls tighter than the nose, PVT" 0 $?
+if [[ -x /usr/bin/python3 ]] && /usr/bin/python3 -c "import numpy" 2> /dev/null; then
+  deepest=$(/usr/bin/python3 "$src/tests/jobs/nc_rake_gouge.py" \
+    "$tmp/bowls_pvt/microlens_mold.bowl-pvt.nc" microlens_array:0.15:0.2:0.25:0.3 0.2 0 60 0 0.3)
+  awk -v d="$deepest" 'BEGIN { exit !(d < 1) }' || { echo "FAIL: the PVT nose over the tight bowls goes $deepest nm below the design"; fail=1; }
+fi
 # Troughs 10 µm apart (concave radius 1/(Aω²) = 2.5 µm) under the same nose bend faster than the view
 # of tight troughs samples them (path/tight_troughs.hpp): no step meets the tolerance. In
 # PVT mode (this machine's) the planner once took slivers of no length there without end;

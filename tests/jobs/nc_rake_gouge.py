@@ -3,9 +3,10 @@
 
 The edge is an arc of radius R in the rake plane, machine y = h (the tool's centre height):
 its point at angle phi sits at machine (X - R sin phi, h, Z - R cos phi), the part turned
-by C. The blocks' X, Z and C are interpolated linearly (2 samples a block), the arc every
-0.25 degrees; the designs are written here from their definitions (docs/surfaces.md),
-sharing no code with freeturn.
+by C. The blocks' X, Z and C are interpolated linearly (2 samples a block), or, in a PVT
+program (a T word on every block), along the controller's cubics in time (16 samples a
+block); the arc every 0.25 degrees; the designs are written here from their definitions
+(docs/surfaces.md), sharing no code with freeturn.
 
 usage: nc_rake_gouge.py PROGRAM.nc DESIGN R H HALF_ANGLE_DEG R_MIN R_MAX [WAVINESS]
 DESIGN: decentred_sphere:RADIUS:DX, compound_eye:BASE:LENS:DIAMETER:PITCH:EXTENT (rings),
@@ -31,14 +32,14 @@ def read(path, blocks, state):
         if call:
             read(os.path.join(folder, call.group(1)), blocks, state)
             continue
-        text = re.sub(r"\(.*?\)", "", line).strip()
+        text = re.sub(r"\(.*?\)", "", line.split(";")[0]).strip()
         if not text or "G53" in text:  # machine coordinates: the home move
             continue
         words = {k: float(v) for k, v in WORD.findall(text) if v not in ("", ".", "-", "+")}
         if any(a in words for a in "XZC"):
             state.update({a: words[a] for a in "XZC" if a in words})
             if state["X"] is not None and state["Z"] is not None:
-                blocks.append((state["X"], state["Z"], state["C"]))
+                blocks.append((state["X"], state["Z"], state["C"], words.get("T", np.nan)))
         if words.get("M") in (2.0, 30.0):
             break
     return blocks
@@ -132,10 +133,28 @@ def main():
     z_of = designs[kind](*numbers, *[v for v in p if v in ("square", "hexagonal")])
     b = np.array(read(path, [], {"X": None, "Z": None, "C": 0.0}))
     X, Z, C = b[:, 0], b[:, 1], np.unwrap(np.radians(b[:, 2]))
-    t = np.array([0.0, 0.5])
-    xs = (X[:-1, None] + np.diff(X)[:, None] * t).ravel()
-    zs = (Z[:-1, None] + np.diff(Z)[:, None] * t).ravel()
-    cs = (C[:-1, None] + np.diff(C)[:, None] * t).ravel()
+    if len(b) > 2 and not np.isnan(b[1:, 3]).any():
+        # A PVT program (a T word, the block's time, on every block after the first): each
+        # axis moves along the cubic Hermite through the blocks in time, each block's
+        # velocity the central difference of its neighbours (one-sided at the ends), as the
+        # controller interpolates them (tests/jobs/nc_profile_gouge.py), 16 samples a block.
+        time = np.concatenate([[0.0], np.cumsum(b[1:, 3])])
+        s = np.arange(16) / 16.0
+        basis = [2 * s**3 - 3 * s**2 + 1, s**3 - 2 * s**2 + s, -2 * s**3 + 3 * s**2, s**3 - s**2]
+        dt = np.diff(time)[:, None]
+
+        def cubic(q):
+            lo, hi = np.maximum(np.arange(len(q)) - 1, 0), np.minimum(np.arange(len(q)) + 1, len(q) - 1)
+            v = (q[hi] - q[lo]) / (time[hi] - time[lo])
+            return (basis[0] * q[:-1, None] + basis[1] * dt * v[:-1, None] + basis[2] * q[1:, None] +
+                    basis[3] * dt * v[1:, None]).ravel()
+
+        xs, zs, cs = cubic(X), cubic(Z), cubic(C)
+    else:
+        t = np.array([0.0, 0.5])
+        xs = (X[:-1, None] + np.diff(X)[:, None] * t).ravel()
+        zs = (Z[:-1, None] + np.diff(Z)[:, None] * t).ravel()
+        cs = (C[:-1, None] + np.diff(C)[:, None] * t).ravel()
     phi_deg = np.arange(-half, half + 1e-9, 0.25)
     phi = np.radians(phi_deg)
     radius = np.full(phi.shape, R)
