@@ -46,7 +46,7 @@ def read(path, blocks, state):
 
 
 def sphere_sag(c, r2):
-    return c * r2 / (1 + np.sqrt(1 - c * c * r2))
+    return c * r2 / (1 + np.sqrt(np.maximum(1 - c * c * r2, 0.0)))  # a hemisphere's rim rounds past 1
 
 
 def decentred_sphere(radius, dx):

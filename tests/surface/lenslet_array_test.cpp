@@ -525,5 +525,19 @@ TEST_SUITE("surface") {
     o = eye(Pattern::kHexagonal);
     o.lens_radius = 0.4;
     CHECK_THROWS_AS(LensletArray{o}, InputError);
+    // A hemisphere (|R| = D/2): its wall is vertical at the rim, where its slope is
+    // infinite. A hemispherical bowl's program had been written 6.9 µm into its wall.
+    for (const double sign : {1.0, -1.0}) {
+      o = eye(Pattern::kHexagonal);
+      o.lens_radius = sign * 0.5 * o.lens_diameter;
+      CHECK_THROWS_WITH_AS(LensletArray{o},
+                           doctest::Contains("equals half the lens diameter: each lenslet would be "
+                                             "a hemisphere"),
+                           InputError);
+      // A radius a hair larger has a finite wall (its slope D/2 / √(R² − D²/4) at the rim).
+      o.lens_radius = sign * 0.5 * o.lens_diameter * (1 + 1e-9);
+      const LensletArray steep(o);
+      CHECK(steep.lenslet_count() > 0);
+    }
   }
 }

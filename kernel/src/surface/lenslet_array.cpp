@@ -66,6 +66,15 @@ LensletArray::LensletArray(const LensletArrayOptions& options) : o_(options) {
   if (!(std::abs(r) >= d / 2))
     throw InputError("lens_radius", "|lens_radius| " + mm(std::abs(r)) +
                                         " is smaller than half the lens diameter " + mm(d / 2));
+  // At |R| = D/2 the lenslet is a hemisphere: its wall stands vertical at the rim, its
+  // slope infinite there, which no nose follows and no evaluation of the rim can carry (a
+  // hemispherical bowl's program was written 6.9 µm into its wall, the checks blind to
+  // it). Any radius a rounding larger is a finite wall and is planned.
+  if (!(std::isfinite(d / 2 / std::sqrt(r * r - d * d / 4))))
+    throw InputError("lens_radius", "|lens_radius| " + mm(std::abs(r)) +
+                                        " equals half the lens diameter: each lenslet would be a "
+                                        "hemisphere, its wall vertical at its rim (an infinite "
+                                        "slope); give a lens radius above " + mm(d / 2));
   if (!(o_.extent > 0)) throw InputError("extent", "must be greater than 0");
   if (std::abs(cb) * o_.extent >= 1)
     throw InputError("base_radius", "the base sphere (radius " + mm(1 / std::abs(cb)) +
