@@ -12,6 +12,18 @@ expect() {  # description, expected exit code, actual exit code
 contains() {  # description, haystack file, needle
   if ! grep -qF -- "$3" "$2"; then echo "FAIL: $1: '$3' not in:"; cat "$2"; fail=1; fi
 }
+# The deepest the edge goes below the design, read from a program alone by one of
+# tests/jobs' readers (they share no code with freeturn), against a limit in nm; skipped
+# where NumPy is missing.
+below_at_most() {  # description, limit (nm), reader, the reader's arguments...
+  local what=$1 limit=$2 reader=$3 deepest
+  shift 3
+  [[ -x /usr/bin/python3 ]] && /usr/bin/python3 -c "import numpy" 2> /dev/null || return 0
+  deepest=$(/usr/bin/python3 "$src/tests/jobs/$reader" "$@")
+  [[ $deepest =~ ^-?[0-9]+(\.[0-9]+)?$ ]] || { echo "FAIL: $what: the reader printed '$deepest'"; fail=1; return 0; }
+  awk -v d="$deepest" -v l="$limit" 'BEGIN { exit !(d < l) }' ||
+    { echo "FAIL: $what goes $deepest nm below the design"; fail=1; }
+}
 
 "$freeturn" --help > "$tmp/help" 2>&1; expect "--help" 0 $?
 contains "--help lists sample" "$tmp/help" "sample"
@@ -182,11 +194,8 @@ sed -e 's/amplitude: 0.005 /amplitude: 0.05 /' -e 's/period: 2.5 /period: 1.0 /'
 contains "the material left is named" "$tmp/err" "hold the nose at a crease or a trough it cannot reach into: up to "
 contains "the report says PASS" "$tmp/held/sinusoidal_ring.report.json" '"status": "PASS"'
 contains "the uncut residual is a structured warning" "$tmp/held/sinusoidal_ring.report.json" '"kind": "uncut_residual"'
-if [[ -x /usr/bin/python3 ]] && /usr/bin/python3 -c "import numpy" 2> /dev/null; then
-  deepest=$(/usr/bin/python3 "$src/tests/jobs/nc_profile_gouge.py" \
-    "$tmp/held/sinusoidal_ring.precitech-nanoform-250.nc" sinusoidal_ring:0.05:1.0 0.6 0 60 5.0)
-  awk -v d="$deepest" 'BEGIN { exit !(d < 10) }' || { echo "FAIL: the held ring's edge goes $deepest nm below the design"; fail=1; }
-fi
+below_at_most "the held ring's edge" 10 nc_profile_gouge.py \
+  "$tmp/held/sinusoidal_ring.precitech-nanoform-250.nc" sinusoidal_ring:0.05:1.0 0.6 0 60 5.0
 # Its 0.6 mm nose is held still on the cone point at the centre: a PVT block there that
 # repeats the last one's place would have no time (a profile's block time is its X-Z chord).
 repeated="$(grep '^X' "$tmp/held/sinusoidal_ring.precitech-nanoform-250.nc" | uniq -d)"
@@ -205,11 +214,8 @@ machine: moore-nanotech-250upl
 YAML
 "$freeturn" run "$tmp/held_spiral.yaml" -o "$tmp/held_spiral" > /dev/null 2> "$tmp/err"; expect "a spiral over troughs tighter than the nose" 0 $?
 contains "the spiral's report says PASS" "$tmp/held_spiral/held_spiral.report.json" '"status": "PASS"'
-if [[ -x /usr/bin/python3 ]] && /usr/bin/python3 -c "import numpy" 2> /dev/null; then
-  deepest=$(/usr/bin/python3 "$src/tests/jobs/nc_rake_gouge.py" \
-    "$tmp/held_spiral/held_spiral.moore-nanotech-250upl.nc" sinusoidal_ring:0.05:0.8 0.5 0 60 0 1.5)
-  awk -v d="$deepest" 'BEGIN { exit !(d < 10) }' || { echo "FAIL: the held spiral's edge goes $deepest nm below the design"; fail=1; }
-fi
+below_at_most "the held spiral's edge" 10 nc_rake_gouge.py \
+  "$tmp/held_spiral/held_spiral.moore-nanotech-250upl.nc" sinusoidal_ring:0.05:0.8 0.5 0 60 0 1.5
 
 # With B following the normal no nose is held: the same troughs stop the job, and the
 # message points to a fixed B, which cuts them as above.
@@ -257,11 +263,8 @@ sed -e 's/amplitude: 0.005 /amplitude: 0.05 /' -e 's/period: 2.5 /period: 1.0 /'
     -e 's/nose_radius: 0.5/nose_radius: 1.0/' \
     "$src/configs/jobs/sinusoidal_ring.yaml" > "$tmp/wide.yaml"
 timeout 120 "$freeturn" run "$tmp/wide.yaml" -o "$tmp/wide" > /dev/null 2> "$tmp/err"; expect "a nose wider than the troughs" 0 $?
-if [[ -x /usr/bin/python3 ]] && /usr/bin/python3 -c "import numpy" 2> /dev/null; then
-  deepest=$(/usr/bin/python3 "$src/tests/jobs/nc_profile_gouge.py" \
-    "$tmp/wide/sinusoidal_ring.precitech-nanoform-250.nc" sinusoidal_ring:0.05:1.0 1.0 0 60 5.0)
-  awk -v d="$deepest" 'BEGIN { exit !(d < 10) }' || { echo "FAIL: the wide nose's edge goes $deepest nm below the design"; fail=1; }
-fi
+below_at_most "the wide nose's edge" 10 nc_profile_gouge.py \
+  "$tmp/wide/sinusoidal_ring.precitech-nanoform-250.nc" sinusoidal_ring:0.05:1.0 1.0 0 60 5.0
 # An 0.8 mm nose over troughs 0.3 mm apart (concave radius 1/(Aω²) = 0.228 mm), five
 # periods under it: it rests on the crests, dropped onto the section where its touch
 # passes each trough (section_envelope.cpp, hold_by_overhang). It stopped at the chord
@@ -272,11 +275,8 @@ sed -e 's/amplitude: 0.005 /amplitude: 0.01 /' -e 's/period: 2.5 /period: 0.3 /'
     "$src/configs/jobs/sinusoidal_ring.yaml" > "$tmp/five.yaml"
 timeout 120 "$freeturn" run "$tmp/five.yaml" -o "$tmp/five" > /dev/null 2> "$tmp/err"; expect "a nose five periods wide" 0 $?
 contains "it says what it leaves" "$tmp/err" "cannot reach into: up to "
-if [[ -x /usr/bin/python3 ]] && /usr/bin/python3 -c "import numpy" 2> /dev/null; then
-  deepest=$(/usr/bin/python3 "$src/tests/jobs/nc_profile_gouge.py" \
-    "$tmp/five/sinusoidal_ring.precitech-nanoform-250.nc" sinusoidal_ring:0.01:0.3 0.8 0 60 5.0)
-  awk -v d="$deepest" 'BEGIN { exit !(d < 10) }' || { echo "FAIL: the five-period nose's edge goes $deepest nm below the design"; fail=1; }
-fi
+below_at_most "the five-period nose's edge" 10 nc_profile_gouge.py \
+  "$tmp/five/sinusoidal_ring.precitech-nanoform-250.nc" sinusoidal_ring:0.01:0.3 0.8 0 60 5.0
 # Bowls of radius 0.15 mm, 0.2 mm across, under the microlens mold's 0.2 mm nose: every
 # section of a bowl is tighter than the nose, which rests on its two rims across it
 # (docs/tool.md, "Bowls tighter than the nose"). It stopped at the chord tolerance until
@@ -288,11 +288,8 @@ sed -e 's/lens_radius: 0.6 /lens_radius: 0.15 /' -e 's/outer_radius: 1.0 /outer_
     "$src/configs/jobs/microlens_mold.yaml" > "$tmp/bowls.yaml"
 timeout 300 "$freeturn" run "$tmp/bowls.yaml" -o "$tmp/bowls" > /dev/null 2> "$tmp/err"; expect "bowls tighter than the nose" 0 $?
 contains "they leave the bowls' bottoms" "$tmp/err" "up to 11517."
-if [[ -x /usr/bin/python3 ]] && /usr/bin/python3 -c "import numpy" 2> /dev/null; then
-  deepest=$(/usr/bin/python3 "$src/tests/jobs/nc_rake_gouge.py" \
-    "$tmp/bowls/microlens_mold.moore-nanotech-250upl.nc" microlens_array:0.15:0.2:0.25:0.4 0.2 0 60 0 0.4)
-  awk -v d="$deepest" 'BEGIN { exit !(d < 1) }' || { echo "FAIL: the nose over the tight bowls goes $deepest nm below the design"; fail=1; }
-fi
+below_at_most "the nose over the tight bowls" 1 nc_rake_gouge.py \
+  "$tmp/bowls/microlens_mold.moore-nanotech-250upl.nc" microlens_array:0.15:0.2:0.25:0.4 0.2 0 60 0 0.4
 # The same bowls on a lathe that interpolates PVT cubics (the Moore's axes in the Precitech
 # dialect with a time word a block), read back along the controller's cubics: the nose
 # stays above the design between the blocks too, not only on the chords.
@@ -303,11 +300,8 @@ printf 'precitech:\n  header: "; PVT on"\n  footer: "; end of data"\n  time_word
 sed -e "s|^machine: .*|machine: $tmp/bowl-pvt.yaml|" -e 's/outer_radius: 0.4 /outer_radius: 0.3 /' \
     "$tmp/bowls.yaml" > "$tmp/bowls_pvt.yaml"
 timeout 300 "$freeturn" run "$tmp/bowls_pvt.yaml" -o "$tmp/bowls_pvt" > /dev/null 2> "$tmp/err"; expect "bowls tighter than the nose, PVT" 0 $?
-if [[ -x /usr/bin/python3 ]] && /usr/bin/python3 -c "import numpy" 2> /dev/null; then
-  deepest=$(/usr/bin/python3 "$src/tests/jobs/nc_rake_gouge.py" \
-    "$tmp/bowls_pvt/microlens_mold.bowl-pvt.nc" microlens_array:0.15:0.2:0.25:0.3 0.2 0 60 0 0.3)
-  awk -v d="$deepest" 'BEGIN { exit !(d < 1) }' || { echo "FAIL: the PVT nose over the tight bowls goes $deepest nm below the design"; fail=1; }
-fi
+below_at_most "the PVT nose over the tight bowls" 1 nc_rake_gouge.py \
+  "$tmp/bowls_pvt/microlens_mold.bowl-pvt.nc" microlens_array:0.15:0.2:0.25:0.3 0.2 0 60 0 0.3
 # Troughs 10 µm apart (concave radius 1/(Aω²) = 2.5 µm) under the same nose bend faster than the view
 # of tight troughs samples them (path/tight_troughs.hpp): no step meets the tolerance. In
 # PVT mode (this machine's) the planner once took slivers of no length there without end;

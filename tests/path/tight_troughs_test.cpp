@@ -108,13 +108,11 @@ TEST_SUITE("path") {
   // every radial section of a bowl is a circle of radius at most 0.15 mm, tighter than the
   // nose, so the nose never reaches into a bowl; it rests on its two rims (ridges).
   LensletArrayOptions tight_bowls() {
-    LensletArrayOptions lo;
-    lo.lens_radius = 0.15;
-    lo.lens_diameter = 0.2;
-    lo.pitch = 0.25;
-    lo.pattern = LensletArrayOptions::Pattern::kSquare;
-    lo.extent = 1.0;
-    return lo;
+    return {.lens_radius = 0.15,
+            .lens_diameter = 0.2,
+            .pitch = 0.25,
+            .pattern = LensletArrayOptions::Pattern::kSquare,
+            .extent = 1.0};
   }
 
   TEST_CASE("tight troughs: a bowl tighter than the nose, between two rims: it rests on both") {

@@ -707,8 +707,8 @@ struct RidgeWindows {
   double on_ridge = std::numeric_limits<double>::quiet_NaN();
 };
 
-// ridge_windows: held_x(ρ, x) says where the contact's own placement at ρ (just beside a ridge) is
-// held, its centre's abscissa x, or returns false where it is the offset. A hold beside a ridge
+// ridge_windows: held_x(ρ, x) puts in x (the flank's offset there) the centre's abscissa where
+// the contact's own placement at ρ, just beside a ridge, is held. A hold beside a ridge
 // moves the jump: across a bowl tighter than the nose, between two rims, the placement
 // jumps from the rim's offset to the nose resting on both rims (docs/tool.md, "Bowls
 // tighter than the nose"), not to the bowl's own offset, and a ramp of the flanks' roll
@@ -720,14 +720,15 @@ RidgeWindows ridge_windows(const Section& section, const SectionCreases& creases
   RidgeWindows out;
   // The roll across the creases k..last (within 2·kOffCrease of each other: one crease,
   // two rims through one point), the slopes taken either side of the group.
-  const auto roll_across = [&](int k, int last, double& roll, double& x_in, double& x_out) {
+  // The roll is x_out − x_in: the inner flank's offset ends at x_in, the outer one's
+  // starts at x_out.
+  const auto roll_across = [&](int k, int last, double& x_in, double& x_out) {
     double g, s_in, s_out;
     if (!section.at(creases.rho[k] - kOffCrease, g, s_in) ||
         !section.at(creases.rho[last] + kOffCrease, g, s_out))
       return false;
     x_in = offset_x(creases.rho[k], s_in, R);
     x_out = offset_x(creases.rho[k], s_out, R);
-    roll = x_out - x_in;
     return true;
   };
   const auto group_end = [&](int k) {
@@ -737,28 +738,28 @@ RidgeWindows ridge_windows(const Section& section, const SectionCreases& creases
   // Most contacts near creases are near valleys alone: those within kWindow·R first.
   bool ridge_near = false;
   for (int k = 0; k < creases.count && !ridge_near; k = group_end(k) + 1) {
-    double roll, x_in, x_out;
+    double x_in, x_out;
     if (!(std::abs(creases.rho[k] - rho_p) < kWindow * R)) continue;
-    if (!roll_across(k, group_end(k), roll, x_in, x_out)) return out;
-    ridge_near = roll > kLeastRoll;
+    if (!roll_across(k, group_end(k), x_in, x_out)) return out;
+    ridge_near = x_out - x_in > kLeastRoll;
   }
   if (!ridge_near) return out;
   // Each crease within 1.45 R, with its roll: the ridges within kWindow·R and every crease
   // that can bound their windows.
   struct Crease {  // trivial: the buffer is not filled on every call
-    double rho, last, roll, x_in, x_out;
+    double rho, last, x_in, x_out;
+    double roll() const { return x_out - x_in; }
   };
   std::array<Crease, SectionCreases::kCapacity> near;
   int count = 0;
   for (int k = 0; k < creases.count; k = group_end(k) + 1) {
-    double roll, x_in, x_out;
+    double x_in, x_out;
     const int last = group_end(k);
     if (!(std::abs(creases.rho[k] - rho_p) < (1 + kWindow) * R)) continue;
-    if (!roll_across(k, last, roll, x_in, x_out)) return out;
-    near[static_cast<std::size_t>(count++)] = {creases.rho[k], creases.rho[last], roll, x_in,
-                                               x_out};
+    if (!roll_across(k, last, x_in, x_out)) return out;
+    near[static_cast<std::size_t>(count++)] = {creases.rho[k], creases.rho[last], x_in, x_out};
   }
-  const auto ridge = [&](int i) { return near[static_cast<std::size_t>(i)].roll > kLeastRoll; };
+  const auto ridge = [&](int i) { return near[static_cast<std::size_t>(i)].roll() > kLeastRoll; };
   // A crease that bounds a ridge's window: a valley, where the nose may be held. A crease
   // across which the offset neither jumps nor folds back (a slope jump under a
   // millionth) is a point the view of troughs tighter than the nose lists on a smooth
@@ -766,7 +767,7 @@ RidgeWindows ridge_windows(const Section& section, const SectionCreases& creases
   // goes with θ, and a window it bounded would change its width at once from one section
   // to the next, the centre with it.
   const auto bounds_windows = [&](int i) {
-    return !(near[static_cast<std::size_t>(i)].roll > -kSmoothRoll * R);
+    return !(near[static_cast<std::size_t>(i)].roll() > -kSmoothRoll * R);
   };
   for (int i = 0; i < count; ++i) {
     const Crease& c = near[static_cast<std::size_t>(i)];
@@ -795,10 +796,11 @@ RidgeWindows ridge_windows(const Section& section, const SectionCreases& creases
       return out;
     }
     out.inside = true;
+    // Beside a held placement, its centre in place of the flank's offset.
     double x_in = c.x_in, x_out = c.x_out;
-    const bool held_in = held_x(c.rho - kOffCrease, x_in);
-    const bool held_out = held_x(c.last + kOffCrease, x_out);
-    const double roll = held_in || held_out ? x_out - x_in : c.roll;
+    held_x(c.rho - kOffCrease, x_in);
+    held_x(c.last + kOffCrease, x_out);
+    const double roll = x_out - x_in;
     out.shift += roll * ((rho_p - start) / (end - start) - (rho_p > c.rho ? 1.0 : 0.0));
     out.rate += roll / (end - start);
   }
@@ -1168,7 +1170,7 @@ NoseTouch place_nose(const Surface& design, const RadialLine& line, double nose_
   // Where the section has no concavity bound (a trough tighter than the nose, listed by
   // path/tight_troughs.hpp), the placement beside a ridge may be held (ridge_windows).
   const bool unbounded = hold && !(section_concavity(design, R, std::abs(rho_p) + 3 * R) > 0);
-  const auto flanks_only = [](double, double&) { return false; };
+  const auto flanks_only = [](double, double&) {};
   RidgeWindows windows = ridge_windows(section, creases, R, rho_p, flanks_only);
   if (!std::isnan(windows.on_ridge)) {
     rho_p = windows.on_ridge;
@@ -1186,10 +1188,10 @@ NoseTouch place_nose(const Surface& design, const RadialLine& line, double nose_
     if (placed.held && rho > std::min(placed.rho, placed.far_rho) &&
         rho < std::max(placed.rho, placed.far_rho)) {
       x = placed.centre_x;
-      return true;
+      return;
     }
     NoseTouch side;
-    if (!section.at(rho, side.z, side.slope)) return false;
+    if (!section.at(rho, side.z, side.slope)) return;
     const double l = std::sqrt(1 + side.slope * side.slope);
     side.rho = rho;
     side.centre_x = rho - R * side.slope / l;
@@ -1200,7 +1202,6 @@ NoseTouch place_nose(const Surface& design, const RadialLine& line, double nose_
     const NoseTouch h =
         offset_or_hold(design, section, line, near, side, rho, R, nose_radius, tolerance);
     if (h.held) x = h.centre_x;
-    return h.held;
   };
   if (unbounded && windows.inside) windows = ridge_windows(section, creases, R, rho_p, held_x);
   NoseTouch rolled = placed;
