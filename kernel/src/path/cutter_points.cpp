@@ -116,7 +116,7 @@ double centre_height_reach(const ToolMotion& tool, const Surface& design, double
     // The line's creases, kCreases at a time (a fine array meets more).
     for (double from = lo;;) {
       const int found = design.section_creases(line, from, outer_radius, creases);
-      for (int k = 0; k < found; ++k) {
+      for (int k = 0; k < std::min(found, kCreases); ++k) {
         const double c = creases[static_cast<std::size_t>(k)];
         // The touches lie R|sin ψ1 − sin ψ2| ≤ R|ψ1 − ψ2| apart with the crease between
         // them, so within `apart` of it when their normals' angles differ by no more than
@@ -142,7 +142,7 @@ double centre_height_reach(const ToolMotion& tool, const Surface& design, double
           reach = std::max(reach, window_reach(c));
         largest = std::max(largest, reach);
       }
-      if (found < kCreases) break;
+      if (found <= kCreases) break;  // more: the lowest kCreases were listed
       from = std::nextafter(creases[kCreases - 1], INFINITY);
     }
   }

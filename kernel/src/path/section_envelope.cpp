@@ -363,6 +363,13 @@ NoseOverlap nose_overlap(const Surface& design, const RadialLine& line, double x
   NoseOverlap best;
   SectionCreases creases;
   creases.find(design, line, lo, hi);
+  // More creases under the nose than the list holds: the nose is taken to be in the
+  // design, so that no step is measured clear from a list that leaves some out.
+  if (!creases.covers(lo, hi)) {
+    best.height = std::numeric_limits<double>::infinity();
+    best.rho = x_c;
+    return best;
+  }
   // The hint's own piece, the `hint_piece`-th (piece p lies between creases p − 1 and p).
   double a = lo, b = hi;
   int hint_piece = 0;
@@ -821,6 +828,9 @@ NoseOverlap drop_onto_section(const Surface& design, const Section& section,
                               double z_ref, double R, double hint, bool& at_crease) {
   NoseOverlap o = nose_overlap(design, line, x_c, z_ref, R, hint);
   at_crease = false;
+  // More creases than a list holds, under the nose or about it: no drop is made.
+  if (o.height == std::numeric_limits<double>::infinity() || !creases.covers(x_c - R, x_c + R))
+    return NoseOverlap{};
   for (int k = 0; k < creases.count; ++k) {
     const double d = creases.rho[k] - x_c;
     double g, s;
@@ -911,8 +921,14 @@ NoseTouch hold_by_overhang(const Surface& design, const Section& section, const 
                            double tolerance) {
   const NoseOverlap first = nose_overlap(design, line, t.centre_x, t.centre_z, R, rho_p);
   if (!(first.height > tolerance) || !std::isfinite(first.height)) return t;
+  // The drops reach 2R either side of the contact, each over R about itself. Where the
+  // section meets more creases there than a list holds, a narrower stretch: the drops
+  // beyond it are not made (drop_onto_section), and a gap wider than it is not held here.
   SectionCreases creases;
-  creases.find(design, line, rho_p - 3 * R, rho_p + 3 * R);
+  for (double reach = 3 * R;; reach *= 0.75) {
+    creases.find(design, line, rho_p - reach, rho_p + reach);
+    if (creases.covers(rho_p - reach, rho_p + reach) || reach < 1.2 * R) break;
+  }
   const double z_ref = t.centre_z;
   // The drop at x: its touch, and the height it lifts the nose by from z_ref.
   const auto drop = [&](double x, NoseOverlap& o, bool& at_crease) {
@@ -1158,8 +1174,11 @@ NoseTouch place_nose(const Surface& design, const RadialLine& line, double nose_
   SectionCreases creases;
   // Every crease within 2R: those under the nose may be overhung, and the ones beyond bound
   // the flanks the held nose is solved on (a flank ends at the next crease).
-  creases.find(design, line, std::min(rho_p, t.centre_x) - 2 * R,
-               std::max(rho_p, t.centre_x) + 2 * R);
+  const double lo = std::min(rho_p, t.centre_x) - 2 * R, hi = std::max(rho_p, t.centre_x) + 2 * R;
+  creases.find(design, line, lo, hi);
+  // More creases within reach than a list holds: the offset, which the chord's measure
+  // (nose_overlap) sees into the design wherever it overhangs a crease.
+  if (!creases.covers(lo, hi)) return t;
   const auto own_placement = [&](const NoseTouch& offset, double contact) {
     return hold ? offset_or_hold(design, section, line, creases, offset, contact, R, nose_radius,
                                  tolerance)
@@ -1197,8 +1216,10 @@ NoseTouch place_nose(const Surface& design, const RadialLine& line, double nose_
     side.centre_x = rho - R * side.slope / l;
     side.centre_z = side.z + R / l;
     SectionCreases near;
-    near.find(design, line, std::min(rho, side.centre_x) - 2 * R,
-              std::max(rho, side.centre_x) + 2 * R);
+    const double lo = std::min(rho, side.centre_x) - 2 * R,
+                 hi = std::max(rho, side.centre_x) + 2 * R;
+    near.find(design, line, lo, hi);
+    if (!near.covers(lo, hi)) return;
     const NoseTouch h =
         offset_or_hold(design, section, line, near, side, rho, R, nose_radius, tolerance);
     if (h.held) x = h.centre_x;

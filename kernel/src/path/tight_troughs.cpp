@@ -1,5 +1,7 @@
 #include "freeturn/path/tight_troughs.hpp"
 
+#include "freeturn/surface/crease_sink.hpp"
+
 #include <algorithm>
 #include <array>
 #include <cmath>
@@ -150,11 +152,12 @@ void TightTroughs::sample(double x0, double y0, const RadialLine& line, long fir
 
 int TightTroughs::line_creases(double x0, double y0, const RadialLine& line, double lo, double hi,
                                std::span<double> out) const {
-  std::array<double, 256> found;
-  int count = 0;
+  // The design's own creases, the lowest of them where there are more than this holds.
+  std::array<double, 256> own;
+  int own_count = 0;
   if (s_.has_creases()) {
-    count = s_.line_creases(x0, y0, line, lo, hi, std::span<double>(found.data(), 32));
-    if (count < 0) return -1;
+    own_count = s_.line_creases(x0, y0, line, lo, hi, own);
+    if (own_count < 0) return -1;
   }
   const long first = static_cast<long>(std::floor(lo / step_));
   const long last = static_cast<long>(std::ceil(hi / step_));
@@ -180,17 +183,19 @@ int TightTroughs::line_creases(double x0, double y0, const RadialLine& line, dou
       troughs = &narrow;
     }
   }
-  const int listed = std::max(troughs->count, 0);
-  for (int i = 0; i < listed && count < static_cast<int>(found.size()); ++i) {
-    const double crease = troughs->rho[static_cast<std::size_t>(i)];
-    if (crease >= lo && crease <= hi) found[static_cast<std::size_t>(count++)] = crease;
-  }
-  std::sort(found.begin(), found.begin() + count);
-  int written = 0;
-  for (int i = 0; i < count && written < static_cast<int>(out.size()); ++i)
-    if (written == 0 || found[static_cast<std::size_t>(i)] > out[written - 1] + 1e-9)
-      out[static_cast<std::size_t>(written++)] = found[static_cast<std::size_t>(i)];
-  return written;
+  // More troughs than a line's record holds: not known (listing none had placed the nose as
+  // if the troughs were not there).
+  if (troughs->count < 0) return -1;
+  // Where the design listed only its lowest creases, the merged list is complete only up
+  // to the last of them.
+  const bool own_cut = own_count > static_cast<int>(own.size());
+  const double top = own_cut ? own.back() : hi;
+  CreaseSink merged(out, lo, top, 1e-9);
+  for (int i = 0; i < std::min(own_count, static_cast<int>(own.size())); ++i)
+    merged.add(own[static_cast<std::size_t>(i)]);
+  for (int i = 0; i < troughs->count; ++i) merged.add(troughs->rho[static_cast<std::size_t>(i)]);
+  const int found = merged.finish();
+  return own_cut ? std::max(found, static_cast<int>(out.size()) + 1) : found;
 }
 
 }  // namespace freeturn

@@ -1,5 +1,7 @@
 #include "freeturn/surface/lenslet_array.hpp"
 
+#include "freeturn/surface/crease_sink.hpp"
+
 #include <algorithm>
 #include <cmath>
 #include <cstdint>
@@ -394,13 +396,8 @@ int LensletArray::line_creases(double ox, double oy, const RadialLine& line, dou
     std::sort(c.lenslets.begin(), c.lenslets.end());
     c.lenslets.erase(std::unique(c.lenslets.begin(), c.lenslets.end()), c.lenslets.end());
   }
-  int count = 0;
-  const auto add = [&](double rho) {
-    if (!(rho >= rho_lo && rho <= rho_hi)) return;
-    for (int k = 0; k < count; ++k)
-      if (std::abs(out[k] - rho) <= 1e-12) return;  // two rims through one point
-    if (count < static_cast<int>(out.size())) out[count++] = rho;
-  };
+  CreaseSink found(out, rho_lo, rho_hi);
+  const auto add = [&](double rho) { found.add(rho); };
   for (const int i : c.lenslets) {
     const LookupEntry& l = by_lenslet_[static_cast<std::size_t>(i)];
     // The base point from the line's origin (the axis but for a decentred array).
@@ -436,8 +433,7 @@ int LensletArray::line_creases(double ox, double oy, const RadialLine& line, dou
     if (root * cos_beta + q * sin_beta >= 0) add(rb * (q * cos_beta - root * sin_beta));
     if (q * sin_beta - root * cos_beta >= 0) add(rb * (q * cos_beta + root * sin_beta));
   }
-  std::sort(out.begin(), out.begin() + count);
-  return count;
+  return found.finish();
 }
 
 bool LensletArray::crease_circles(std::vector<CreaseCircle>& out) const {

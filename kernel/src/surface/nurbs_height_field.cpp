@@ -1,5 +1,7 @@
 #include "freeturn/surface/nurbs_height_field.hpp"
 
+#include "freeturn/surface/crease_sink.hpp"
+
 #include <Eigen/LU>
 #include <algorithm>
 #include <cmath>
@@ -138,11 +140,11 @@ int NurbsHeightField::section_creases(const RadialLine& line, double rho_lo, dou
   if (!has_creases() || !(rho_lo <= rho_hi) || !std::isfinite(rho_lo) || !std::isfinite(rho_hi))
     return 0;
   const double ct = line.cos, st = line.sin;
-  int count = 0;
+  CreaseSink found(out, rho_lo, rho_hi);
   const auto add = [&](double rho) {
     double u, v;
     if (!(rho >= rho_lo && rho <= rho_hi) || !parameters_at(rho * ct, rho * st, u, v)) return;
-    if (count < static_cast<int>(out.size())) out[count++] = rho;
+    found.add(rho);
   };
   if (affine_) {
     // x = x0 + sx·u: the knot line u = u* is the line x = x0 + sx·u*, met at ρ = x/cos θ.
@@ -198,8 +200,7 @@ int NurbsHeightField::section_creases(const RadialLine& line, double rho_lo, dou
       has_previous = true;
     }
   }
-  std::sort(out.begin(), out.begin() + count);
-  return count;
+  return found.finish();
 }
 
 double NurbsHeightField::boundary_distance() const {

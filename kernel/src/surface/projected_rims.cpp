@@ -1,5 +1,7 @@
 #include "freeturn/surface/projected_rims.hpp"
 
+#include "freeturn/surface/crease_sink.hpp"
+
 #include <algorithm>
 #include <cmath>
 
@@ -83,13 +85,9 @@ int ProjectedRims::crossings(double x0, double y0, const RadialLine& line, doubl
             a_hi = cell(std::max(ax, bx), x0_, per_side_x_);
   const int b_lo = cell(std::min(ay, by), y0_, per_side_y_),
             b_hi = cell(std::max(ay, by), y0_, per_side_y_);
-  int count = 0;
-  const auto add = [&](double t) {
-    if (!(t >= t_lo && t <= t_hi)) return;
-    for (int k = 0; k < count; ++k)
-      if (std::abs(out[k] - t) <= 1e-12) return;  // one rim listed in two cells, or two rims
-    if (count < static_cast<int>(out.size())) out[count++] = t;
-  };
+  // One rim listed in two cells, or two rims through one point, is one crease.
+  CreaseSink found(out, t_lo, t_hi);
+  const auto add = [&](double t) { found.add(t); };
   for (int b = b_lo; b <= b_hi; ++b)
     for (int a = a_lo; a <= a_hi; ++a) {
       const int k = b * per_side_x_ + a;
@@ -109,8 +107,7 @@ int ProjectedRims::crossings(double x0, double y0, const RadialLine& line, doubl
         if (q != 0) add(C / q);
       }
     }
-  std::sort(out.begin(), out.begin() + count);
-  return count;
+  return found.finish();
 }
 
 }  // namespace freeturn

@@ -15,6 +15,7 @@
 // from one offset to the other through that point, never below the design, and the
 // material between the two touches is left (the uncut residual).
 
+#include <algorithm>
 #include <array>
 
 #include "freeturn/surface/surface.hpp"
@@ -22,16 +23,30 @@
 namespace freeturn {
 
 // Creases along one radial section (Surface::section_creases), in a fixed buffer. Only the
-// first `count` are ever read, and the buffer is left unfilled: zeroing its 256 bytes was
-// 7 to 10 % of the nose searches' own time (every sample near a rim makes one).
+// first `count` are ever read, and the buffer is left unfilled: zeroing it was 7 to 10 % of
+// the nose searches' own time (every sample near a rim makes one). Where the section meets
+// more creases than the buffer holds (a nose many lenslets wide), the list holds the lowest
+// and says how far it is whole: a placement or a measure that needs a crease beyond it is
+// not made from it (path/section_envelope.cpp).
 struct SectionCreases {
-  static constexpr int kCapacity = 32;
+  static constexpr int kCapacity = 64;
   std::array<double, kCapacity> rho;
   int count = 0;
-  // Those in [lo, hi] on the radial line at θ.
-  void find(const Surface& design, const RadialLine& line, double lo, double hi) {
-    count = design.section_creases(line, lo, hi, rho);
+  // The list holds every crease in [lo, hi]: the stretch asked for, or, where the section
+  // met more creases there than the buffer holds, up to the last one listed. Empty (lo >
+  // hi) where the surface could not say.
+  double lo = 0, hi = -1;
+
+  // Those in [lo_asked, hi_asked] on the radial line at θ.
+  void find(const Surface& design, const RadialLine& line, double lo_asked, double hi_asked) {
+    const int found = design.section_creases(line, lo_asked, hi_asked, rho);
+    count = std::clamp(found, 0, kCapacity);
+    lo = lo_asked;
+    hi = found < 0 ? lo_asked - 1 : found > kCapacity ? rho[kCapacity - 1] : hi_asked;
   }
+
+  // Whether the list holds every crease in [a, b].
+  bool covers(double a, double b) const { return a >= lo && b <= hi; }
 };
 
 // How strongly h(ρ) = g(ρ) − z_c + √(R² − (ρ − x_c)²), the section's height over the lower

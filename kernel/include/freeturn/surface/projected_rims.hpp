@@ -30,8 +30,8 @@ class ProjectedRims {
   bool empty() const { return rims_.empty(); }
 
   // The crossings of the line through (x0, y0) along `line`'s direction, at signed
-  // distances t ∈ [t_lo, t_hi], ascending, two within 1e-12 mm counted once; writes at
-  // most out.size() and returns how many it wrote.
+  // distances t ∈ [t_lo, t_hi], ascending, two within 1e-12 mm counted once; returns how
+  // many there are and writes the lowest out.size() of them (surface/crease_sink.hpp).
   int crossings(double x0, double y0, const RadialLine& line, double t_lo, double t_hi,
                 std::span<double> out) const;
 
