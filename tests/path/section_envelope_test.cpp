@@ -5,7 +5,9 @@
 
 #include <doctest/doctest.h>
 
+#include <array>
 #include <cmath>
+#include <limits>
 #include <numbers>
 #include <random>
 #include <span>
@@ -1203,6 +1205,41 @@ TEST_SUITE("path") {
             " nm");
     CHECK(f.gouge <= 10e-6);
     CHECK(f.worst <= 2e-4 * 1.02);
+  }
+
+  TEST_CASE(
+      "a nose over more creases than a list holds: measured where whole, else in the design") {
+    // Domes 18 µm across at a 20 µm pitch (radius 0.6 mm) under a 0.5 mm nose: along the
+    // row θ = 0 about a hundred rims lie under it, within the 256 a list holds, and the
+    // overlap is brute force's. At a 6 µm pitch about 330 do: no overlap is measured from a
+    // list that leaves some out, and the nose is taken to be in the design (+∞), so that
+    // no chord is measured clear there. The placement there is the contact's own offset.
+    const double R = 0.5;
+    for (const double pitch : {0.02, 0.006}) {
+      CAPTURE(pitch);
+      const LensletArray domes({.lens_radius = -0.6,
+                                .lens_diameter = 0.9 * pitch,
+                                .pitch = pitch,
+                                .pattern = LensletArrayOptions::Pattern::kSquare,
+                                .extent = 1.0});
+      std::array<double, 512> all;
+      const int under = domes.section_creases(RadialLine(0.0), -0.499, 0.499, all);
+      const double x = 0.0013, z = domes.sag(x, 0) + R;
+      const NoseOverlap o = nose_overlap(domes, RadialLine(0.0), x, z, R, x);
+      if (pitch > 0.01) {
+        REQUIRE(under > 32);
+        REQUIRE(under <= SectionCreases::kCapacity);
+        CHECK(std::abs(o.height - brute_overlap(domes, x, z, R, 0.0, 200000)) < 1e-10);
+      } else {
+        REQUIRE(under > SectionCreases::kCapacity);
+        CHECK(o.height == std::numeric_limits<double>::infinity());
+        double g, gx, gy;
+        domes.sag_gradient(x, 0, g, gx, gy);
+        const NoseTouch t = nose_touch(domes, RadialLine(0.0), R, x, g, gx);
+        CHECK(std::abs(t.centre_x - (x - R * gx / std::sqrt(1 + gx * gx))) < 1e-15);
+        CHECK(!t.held);
+      }
+    }
   }
 }
 

@@ -87,6 +87,23 @@ class NoseSection {
            instead + ")";
   }
 
+  // Where the nose, at its reach about the contact, spans more creases of the section than
+  // a crease list holds (a lenslet array whose pitch is a small part of the nose): the
+  // envelope makes no placement or measure from a list that is not whole, and takes the
+  // nose to be in the design there (path/section_envelope.hpp). "" where it does not.
+  std::string creases_past_the_list(const RadialLine& c, double contact_r) const {
+    const double reach = R_ + stand_off_;
+    if (!(reach > 0) || !design_.has_creases()) return "";
+    SectionCreases creases;
+    creases.find(design_, c, contact_r - 2 * reach, contact_r + 2 * reach);
+    if (creases.covers(contact_r - 2 * reach, contact_r + 2 * reach)) return "";
+    return "the section meets more than " + std::to_string(SectionCreases::kCapacity) +
+           " creases of the design within two nose radii of r = " +
+           fixed_text(std::abs(contact_r), 4) +
+           " mm, more than the nose's envelope follows (use a nose radius that spans fewer "
+           "of them)";
+  }
+
   // Why no step of a path through contact_r on the line c holds the chord tolerance, as far
   // as the nose can tell: a section tighter than the nose (above), or, with B following
   // the normal on a creased design, a valley: the nose is held at no crease then (one edge
@@ -94,6 +111,7 @@ class NoseSection {
   // its offset overhangs the far flank. "" where neither explains it.
   std::string why_not_smooth(const RadialLine& c, double contact_r) const {
     std::string why = nose_larger_than_section(c, contact_r);
+    if (why.empty()) why = creases_past_the_list(c, contact_r);
     // A fixed B rests the nose on both sides of a trough tighter than itself
     // (path/tight_troughs.hpp); a following one holds it nowhere.
     if (!why.empty() && b_follows_ && why.back() == ')')

@@ -29,7 +29,7 @@ namespace freeturn {
 // and says how far it is whole: a placement or a measure that needs a crease beyond it is
 // not made from it (path/section_envelope.cpp).
 struct SectionCreases {
-  static constexpr int kCapacity = 64;
+  static constexpr int kCapacity = 256;
   std::array<double, kCapacity> rho;
   int count = 0;
   // The list holds every crease in [lo, hi]: the stretch asked for, or, where the section
