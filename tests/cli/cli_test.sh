@@ -302,6 +302,7 @@ sed -e "s|^machine: .*|machine: $tmp/bowl-pvt.yaml|" -e 's/outer_radius: 0.4 /ou
 timeout 300 "$freeturn" run "$tmp/bowls_pvt.yaml" -o "$tmp/bowls_pvt" > /dev/null 2> "$tmp/err"; expect "bowls tighter than the nose, PVT" 0 $?
 below_at_most "the PVT nose over the tight bowls" 1 nc_rake_gouge.py \
   "$tmp/bowls_pvt/microlens_mold.bowl-pvt.nc" microlens_array:0.15:0.2:0.25:0.3 0.2 0 60 0 0.3
+# Lenslet arrays fine beside the nose.
 # Sections that meet more creases within the nose's reach than a crease list held
 # (docs/tool.md, "Sections that meet more creases than a list holds"): domes 18 µm across
 # at a 20 µm pitch under a 0.5 mm nose, about a hundred rims under it, and narrow bowls
@@ -330,6 +331,10 @@ JOB
 }
 fine_job fine_domes -0.6 0.018 0.02 0.5 0.25 0.0031
 fine_job narrow_bowls 0.2563 0.0896 0.1296 0.2711 0.52 0.0031
+# Domes 0.18 mm across at a 0.2 mm pitch under a 3 mm nose: held between two domes, the
+# nose reached 84 nm into a third's crest, and the chord rule stopped (docs/tool.md, "A
+# nose wider than the lenslets"); now it rests on the crests either side of the gap.
+fine_job wide_nose_domes -1 0.18 0.2 3 1 0.01
 # Troughs 10 µm apart (concave radius 1/(Aω²) = 2.5 µm) under the same nose bend faster than the view
 # of tight troughs samples them (path/tight_troughs.hpp): no step meets the tolerance. In
 # PVT mode (this machine's) the planner once took slivers of no length there without end;

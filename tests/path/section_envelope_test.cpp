@@ -1241,6 +1241,35 @@ TEST_SUITE("path") {
       }
     }
   }
+
+  TEST_CASE("a nose wider than the lenslets rests on the crests either side of its gap") {
+    // Domes of radius 1 mm, 0.18 mm across at a 0.2 mm pitch, under a 3 mm nose, on the
+    // section θ = 0.711742 (a spiral's, where the chord rule had stopped): the contacts
+    // between the domes' crests at 0.6032 and 0.8149 lie in one gap of the envelope, and
+    // the nose rests on both crests, one centre for all, no point of it in the design
+    // (brute force). The hold at a valley between two domes reached 84 nm into a third's
+    // crest, and was kept: it overhung one flank alone, and was not checked against the rest.
+    const LensletArray domes({.lens_radius = -1.0,
+                              .lens_diameter = 0.18,
+                              .pitch = 0.2,
+                              .pattern = LensletArrayOptions::Pattern::kSquare,
+                              .extent = 1.0});
+    const double R = 3.0, stand_off = 1e-4, placed = R + stand_off;
+    const RadialLine line(0.711742);
+    double first_x = std::numeric_limits<double>::quiet_NaN();
+    for (double rho = 0.70; rho <= 0.74; rho += 0.0025) {
+      CAPTURE(rho);
+      double z, zx, zy;
+      domes.sag_gradient(rho * line.cos, rho * line.sin, z, zx, zy);
+      const NoseTouch t =
+          nose_touch(domes, line, R, rho, z, zx * line.cos + zy * line.sin, stand_off);
+      CHECK(std::abs(brute_overlap(domes, t.centre_x, t.centre_z, placed, line.theta, 400000)) <
+            1e-9);
+      CHECK(t.held);
+      if (std::isnan(first_x)) first_x = t.centre_x;
+      CHECK(std::abs(t.centre_x - first_x) < 1e-9);
+    }
+  }
 }
 
 }  // namespace freeturn

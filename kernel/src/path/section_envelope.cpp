@@ -1135,11 +1135,20 @@ NoseTouch offset_or_hold(const Surface& design, const Section& section, const Ra
     }
     return false;
   };
-  // A nose that overhung one flank alone is held clear of the rest (the trough on its own
-  // side is checked in hold_at_crease); checking every hold cost 7 % of the compound eye's
-  // chord cut, whose holds never needed another crease.
+  // A nose that overhung one flank alone, with no more than one other crease under it, is
+  // held clear of the rest (the trough on its own side is checked in hold_at_crease);
+  // checking every hold cost 7 % of the compound eye's chord cut, whose holds never needed
+  // another crease. A nose wider than the lenslets is not: held between two, it reached
+  // into a third's crest (84 nm into domes 0.2 mm apart under a 3 mm nose), and the chord
+  // rule stopped there.
   if (unbounded) return overhangs(held) ? by_overhang(held) : held;
-  if (count < 2 || !overhangs(held)) return held;
+  const auto creases_under = [&](const NoseTouch& h) {
+    int under = 0;
+    for (int k = 0; k < creases.count; ++k) under += std::abs(creases.rho[k] - h.centre_x) < reach;
+    return under;
+  };
+  if (count < 2 && creases_under(held) <= 2) return held;
+  if (!overhangs(held)) return held;
   std::sort(overhung.begin(), overhung.begin() + count,
             [](const Candidate& a, const Candidate& b) { return a.height > b.height; });
   for (int i = 0; i < count; ++i) {
@@ -1149,7 +1158,10 @@ NoseTouch offset_or_hold(const Surface& design, const Section& section, const Ra
                                            c.crease, c.side, c.rho);
     if (other.held && !overhangs(other)) return other;
   }
-  return held;  // none overhangs nothing: the global gouge check reports what is left
+  // None overhangs nothing: the whole section's overhang finds the gap the contact lies in
+  // (its nose rests on the pieces either side of it, whichever they are); where it finds
+  // none, the chord's measure sees the hold in the design, and the planner says so.
+  return by_overhang(held);
 }
 
 }  // namespace
