@@ -24,6 +24,14 @@
 
 namespace freeturn::detail {
 
+// Why the nose's envelope is not followed at signed radius r: the section meets more
+// creases under the nose than a crease list holds (path/section_envelope.hpp).
+inline std::string too_many_creases_under_nose(double r) {
+  return "the section meets more than " + std::to_string(SectionCreases::kCapacity) +
+         " creases of the design under the nose near r = " + fixed_text(std::abs(r), 4) +
+         " mm, more than its envelope follows (use a nose radius that spans fewer of them)";
+}
+
 class NoseSection {
  public:
   // stand_off: how far the programmed nose stands off the design along the section normal
@@ -97,11 +105,7 @@ class NoseSection {
     SectionCreases creases;
     creases.find(design_, c, contact_r - 2 * reach, contact_r + 2 * reach);
     if (creases.covers(contact_r - 2 * reach, contact_r + 2 * reach)) return "";
-    return "the section meets more than " + std::to_string(SectionCreases::kCapacity) +
-           " creases of the design within two nose radii of r = " +
-           fixed_text(std::abs(contact_r), 4) +
-           " mm, more than the nose's envelope follows (use a nose radius that spans fewer "
-           "of them)";
+    return too_many_creases_under_nose(contact_r);
   }
 
   // Why no step of a path through contact_r on the line c holds the chord tolerance, as far

@@ -429,6 +429,28 @@ NoseOverlap nose_overlap_near(const Surface& design, const RadialLine& line, dou
   return best;
 }
 
+bool crease_lists_whole_under_nose(const Surface& design, double R, double inner, double outer,
+                                   double& r, double& theta) {
+  if (!(R > 0) || !design.has_creases() || !(outer >= inner)) return true;
+  constexpr int kLines = 32, kMostRadii = 512;
+  const int radii =
+      std::clamp(static_cast<int>(std::ceil((outer - inner) / (0.5 * R))), 1, kMostRadii);
+  const double reach = 0.999 * R;  // nose_overlap's
+  SectionCreases creases;
+  for (int j = 0; j < kLines; ++j) {
+    const RadialLine line(2 * std::numbers::pi * j / kLines);
+    for (int i = 0; i <= radii; ++i) {
+      const double at = inner + (outer - inner) * i / radii;
+      creases.find(design, line, at - reach, at + reach);
+      if (creases.covers(at - reach, at + reach)) continue;
+      r = at;
+      theta = line.theta;
+      return false;
+    }
+  }
+  return true;
+}
+
 bool touch_clear_of_creases(const Surface& design, double x, double y, double R, double margin) {
   const double reach = 2 * R;  // the arc's footprint, from any touch under it
   std::array<NearbyCrease, 16> near;

@@ -290,6 +290,13 @@ PathSummary plan_spiral(const Surface& design, const BaseSurface& base,
                      "aperture.outer_radius");
   if (o.points.rule == CutterPointRule::kEqualAngle && o.points.points_per_revolution < 3)
     throw InputError("points_per_revolution", "must be at least 3");
+  // A design whose sections meet more creases under the nose than its envelope follows
+  // stops here, not after the revolutions outside that radius.
+  double many_r = 0, many_theta = 0;
+  if (!crease_lists_whole_under_nose(design, o.tool.nose_radius, o.inner_radius, o.outer_radius,
+                                     many_r, many_theta))
+    throw InputError(where(many_theta, many_r), detail::too_many_creases_under_nose(many_r),
+                     "tool.nose_radius");
   forget_thread_warm_starts();
   const SpiralPath path(design, base, o);
   std::vector<double> bounds = band_bounds(path.tau_end(), o.points);

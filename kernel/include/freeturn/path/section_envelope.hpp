@@ -100,6 +100,15 @@ NoseOverlap nose_overlap_near(const Surface& design, const RadialLine& line, dou
 // (nose_touch). False where the surface cannot say.
 bool touch_clear_of_creases(const Surface& design, double x, double y, double R, double margin);
 
+// Whether every section the nose of radius R measures over the annulus [inner, outer] meets
+// no more creases under it than a list holds (SectionCreases::kCapacity): nose_overlap
+// takes the nose to be in the design where it does, and the chord rule stops there, after
+// planning everything before it (minutes on a fine array). Sampled on 32 radial lines,
+// radii R/2 apart (at most 512 of them); false, and (r, θ) where, at the first such
+// section found.
+bool crease_lists_whole_under_nose(const Surface& design, double R, double inner, double outer,
+                                   double& r, double& theta);
+
 // Where the nose touches the section for the contact at signed radius rho_p.
 struct NoseTouch {
   double rho = 0, z = 0, slope = 0;   // the touch on the contact's own flank, and dg/dρ there
