@@ -99,7 +99,9 @@ void read_points(MapReader& s, JobPlan& plan, const Aperture& aperture, StepEsti
     const double n = m.positive("per_rev");
     if (n != std::floor(n) || n < 3 || n > 1e7) m.fail("per_rev", "per_rev must be an integer from 3 to 10000000");
     p.points_per_revolution = static_cast<int>(n);
-    estimate = {turns * n, location_of(m.node()["per_rev"], s.file()), "equal_angle.per_rev"};
+    estimate.per_pass = turns * n;
+    estimate.place = location_of(m.node()["per_rev"], s.file());
+    estimate.key = "equal_angle.per_rev";
     m.finish();
     ++rules;
   }
@@ -109,7 +111,9 @@ void read_points(MapReader& s, JobPlan& plan, const Aperture& aperture, StepEsti
     // From 10 nm (far below any chord tolerance) to 10 mm.
     p.arc_length = m.in_range("length", 1e-5, 10, false, " mm");
     const double length = spiral ? std::numbers::pi * (ro * ro - ri * ri) / plan.strategy.pitch : ro - ri;
-    estimate = {length / p.arc_length, location_of(m.node()["length"], s.file()), "equal_arc.length"};
+    estimate.per_pass = length / p.arc_length;
+    estimate.place = location_of(m.node()["length"], s.file());
+    estimate.key = "equal_arc.length";
     m.finish();
     ++rules;
   }

@@ -38,8 +38,8 @@ class CreaseSink {
   // Sorts the kept creases; how many were found (more than out.size() where some were left
   // out: those above the last one kept).
   int finish() {
-    // By insertion: the lists are short (std::sort's guard on short arrays also trips
-    // GCC 12's array-bounds warning).
+    // By insertion: a line meets a lenslet array's rims nearly in order, and std::sort's
+    // guard on short arrays trips GCC 12's array-bounds warning.
     for (int i = 1; i < kept_; ++i) {
       const double v = out_[static_cast<std::size_t>(i)];
       int j = i;

@@ -103,9 +103,10 @@ class Surface {
   // The creases met along the radial section at angle θ, as signed radii ρ in [rho_lo,
   // rho_hi] (ρ < 0 lies at θ + π), ascending; returns how many lie there and writes the
   // lowest out.size() of them (surface/crease_sink.hpp): a return above out.size() says
-  // the list is complete only up to its last entry. The nose's envelope (path/section_envelope.hpp)
-  // is exact only at creases it is told of. The default, for a surface with creases, is the vertex
-  // (ρ = 0): where a cone's section folds; a lenslet array finds its rims.
+  // the list is whole only up to its last entry. The nose's envelope
+  // (path/section_envelope.hpp) is exact only at creases it is told of. The default, for a
+  // surface with creases, is the vertex (ρ = 0): where a cone's section folds; a lenslet
+  // array finds its rims.
   virtual int section_creases(const RadialLine& line, double rho_lo, double rho_hi,
                               std::span<double> out) const;
 
