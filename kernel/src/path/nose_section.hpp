@@ -103,8 +103,7 @@ class NoseSection {
     const double reach = R_ + stand_off_;
     if (!(reach > 0) || !design_.has_creases()) return "";
     SectionCreases creases;
-    creases.find(design_, c, contact_r - 2 * reach, contact_r + 2 * reach);
-    if (creases.covers(contact_r - 2 * reach, contact_r + 2 * reach)) return "";
+    if (creases.find(design_, c, contact_r - 2 * reach, contact_r + 2 * reach)) return "";
     return too_many_creases_under_nose(contact_r);
   }
 

@@ -362,10 +362,9 @@ NoseOverlap nose_overlap(const Surface& design, const RadialLine& line, double x
   const double reach = 0.999 * R, lo = x_c - reach, hi = x_c + reach;
   NoseOverlap best;
   SectionCreases creases;
-  creases.find(design, line, lo, hi);
   // More creases under the nose than the list holds: the nose is taken to be in the
   // design, so that no step is measured clear from a list that leaves some out.
-  if (!creases.covers(lo, hi)) {
+  if (!creases.find(design, line, lo, hi)) {
     best.height = std::numeric_limits<double>::infinity();
     best.rho = x_c;
     return best;
@@ -441,8 +440,7 @@ bool crease_lists_whole_under_nose(const Surface& design, double R, double inner
     const RadialLine line(2 * std::numbers::pi * j / kLines);
     for (int i = 0; i <= radii; ++i) {
       const double at = inner + (outer - inner) * i / radii;
-      creases.find(design, line, at - reach, at + reach);
-      if (creases.covers(at - reach, at + reach)) continue;
+      if (creases.find(design, line, at - reach, at + reach)) continue;
       r = at;
       theta = line.theta;
       return false;
@@ -848,11 +846,11 @@ RidgeWindows ridge_windows(const Section& section, const SectionCreases& creases
 NoseOverlap drop_onto_section(const Surface& design, const Section& section,
                               const SectionCreases& creases, const RadialLine& line, double x_c,
                               double z_ref, double R, double hint, bool& at_crease) {
-  NoseOverlap o = nose_overlap(design, line, x_c, z_ref, R, hint);
   at_crease = false;
   // More creases than a list holds, under the nose or about it: no drop is made.
-  if (o.height == std::numeric_limits<double>::infinity() || !creases.covers(x_c - R, x_c + R))
-    return NoseOverlap{};
+  if (!creases.covers(x_c - R, x_c + R)) return NoseOverlap{};
+  NoseOverlap o = nose_overlap(design, line, x_c, z_ref, R, hint);
+  if (o.height == std::numeric_limits<double>::infinity()) return NoseOverlap{};
   for (int k = 0; k < creases.count; ++k) {
     const double d = creases.rho[k] - x_c;
     double g, s;
@@ -947,10 +945,8 @@ NoseTouch hold_by_overhang(const Surface& design, const Section& section, const 
   // section meets more creases there than a list holds, a narrower stretch: the drops
   // beyond it are not made (drop_onto_section), and a gap wider than it is not held here.
   SectionCreases creases;
-  for (double reach = 3 * R;; reach *= 0.75) {
-    creases.find(design, line, rho_p - reach, rho_p + reach);
-    if (creases.covers(rho_p - reach, rho_p + reach) || reach < 1.2 * R) break;
-  }
+  for (double reach = 3 * R;; reach *= 0.75)
+    if (creases.find(design, line, rho_p - reach, rho_p + reach) || reach < 1.2 * R) break;
   const double z_ref = t.centre_z;
   // The drop at x: its touch, and the height it lifts the nose by from z_ref.
   const auto drop = [&](double x, NoseOverlap& o, bool& at_crease) {
@@ -1209,10 +1205,9 @@ NoseTouch place_nose(const Surface& design, const RadialLine& line, double nose_
   // Every crease within 2R: those under the nose may be overhung, and the ones beyond bound
   // the flanks the held nose is solved on (a flank ends at the next crease).
   const double lo = std::min(rho_p, t.centre_x) - 2 * R, hi = std::max(rho_p, t.centre_x) + 2 * R;
-  creases.find(design, line, lo, hi);
   // More creases within reach than a list holds: the offset, which the chord's measure
   // (nose_overlap) sees into the design wherever it overhangs a crease.
-  if (!creases.covers(lo, hi)) return t;
+  if (!creases.find(design, line, lo, hi)) return t;
   const auto own_placement = [&](const NoseTouch& offset, double contact) {
     return hold ? offset_or_hold(design, section, line, creases, offset, contact, R, nose_radius,
                                  tolerance)
@@ -1252,8 +1247,7 @@ NoseTouch place_nose(const Surface& design, const RadialLine& line, double nose_
     SectionCreases near;
     const double lo = std::min(rho, side.centre_x) - 2 * R,
                  hi = std::max(rho, side.centre_x) + 2 * R;
-    near.find(design, line, lo, hi);
-    if (!near.covers(lo, hi)) return;
+    if (!near.find(design, line, lo, hi)) return;
     const NoseTouch h =
         offset_or_hold(design, section, line, near, side, rho, R, nose_radius, tolerance);
     if (h.held) x = h.centre_x;

@@ -397,7 +397,6 @@ int LensletArray::line_creases(double ox, double oy, const RadialLine& line, dou
     c.lenslets.erase(std::unique(c.lenslets.begin(), c.lenslets.end()), c.lenslets.end());
   }
   CreaseSink found(out, rho_lo, rho_hi);
-  const auto add = [&](double rho) { found.add(rho); };
   for (const int i : c.lenslets) {
     const LookupEntry& l = by_lenslet_[static_cast<std::size_t>(i)];
     // The base point from the line's origin (the axis but for a decentred array).
@@ -413,8 +412,8 @@ int LensletArray::line_creases(double ox, double oy, const RadialLine& line, dou
       // |ρ e_r − c|² = (D/2)²: ρ² − 2ρ·along + |c|² − (D/2)² = 0.
       const double disc = along * along - (cx * cx + cy * cy) + half * half;
       if (disc < 0) continue;
-      add(along - std::sqrt(disc));
-      add(along + std::sqrt(disc));
+      found.add(along - std::sqrt(disc));
+      found.add(along + std::sqrt(disc));
       continue;
     }
     // On the sphere (centre O on the axis, radius R_b) the rim is where the angle at O
@@ -430,8 +429,8 @@ int LensletArray::line_creases(double ox, double oy, const RadialLine& line, dou
     // trigonometric function (three of them per lenslet were a tenth of the planner).
     const double cos_beta = along / m, sin_beta = bc / m;
     const double root = std::sqrt(std::max(0.0, 1 - q * q));  // cos(asin q)
-    if (root * cos_beta + q * sin_beta >= 0) add(rb * (q * cos_beta - root * sin_beta));
-    if (q * sin_beta - root * cos_beta >= 0) add(rb * (q * cos_beta + root * sin_beta));
+    if (root * cos_beta + q * sin_beta >= 0) found.add(rb * (q * cos_beta - root * sin_beta));
+    if (q * sin_beta - root * cos_beta >= 0) found.add(rb * (q * cos_beta + root * sin_beta));
   }
   return found.finish();
 }

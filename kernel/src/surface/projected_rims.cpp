@@ -87,7 +87,6 @@ int ProjectedRims::crossings(double x0, double y0, const RadialLine& line, doubl
             b_hi = cell(std::max(ay, by), y0_, per_side_y_);
   // One rim listed in two cells, or two rims through one point, is one crease.
   CreaseSink found(out, t_lo, t_hi);
-  const auto add = [&](double t) { found.add(t); };
   for (int b = b_lo; b <= b_hi; ++b)
     for (int a = a_lo; a <= a_hi; ++a) {
       const int k = b * per_side_x_ + a;
@@ -103,8 +102,8 @@ int ProjectedRims::crossings(double x0, double y0, const RadialLine& line, doubl
         if (!(disc >= 0) || !(A > 0)) continue;
         // The roots without cancellation: q = −(B + sgn(B)√disc), t = q/A and C/q.
         const double q = -(B + std::copysign(std::sqrt(disc), B));
-        add(q / A);
-        if (q != 0) add(C / q);
+        found.add(q / A);
+        if (q != 0) found.add(C / q);
       }
     }
   return found.finish();

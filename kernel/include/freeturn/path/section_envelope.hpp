@@ -37,12 +37,13 @@ struct SectionCreases {
   // hi) where the surface could not say.
   double lo = 0, hi = -1;
 
-  // Those in [lo_asked, hi_asked] on the radial line at θ.
-  void find(const Surface& design, const RadialLine& line, double lo_asked, double hi_asked) {
+  // Those in [lo_asked, hi_asked] on the radial line at θ; whether the list holds them all.
+  bool find(const Surface& design, const RadialLine& line, double lo_asked, double hi_asked) {
     const int found = design.section_creases(line, lo_asked, hi_asked, rho);
     count = std::clamp(found, 0, kCapacity);
     lo = lo_asked;
     hi = found < 0 ? lo_asked - 1 : found > kCapacity ? rho[kCapacity - 1] : hi_asked;
+    return covers(lo_asked, hi_asked);
   }
 
   // Whether the list holds every crease in [a, b].
