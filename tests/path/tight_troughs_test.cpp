@@ -5,6 +5,7 @@
 
 #include <doctest/doctest.h>
 
+#include <algorithm>
 #include <array>
 #include <cmath>
 #include <numbers>
@@ -293,6 +294,112 @@ TEST_SUITE("path") {
       }
       MESSAGE("the centre's widest move ", widest, " mm per radian of θ");
       CHECK(widest < 2.0);
+    }
+  }
+
+  // The grid z = A sin(2πx/λx) sin(2πy/λy), A = 5 µm, λ = 0.3 × 0.4 mm: at its troughs the
+  // sections bend to 1/(A (kx² cos²θ + ky² sin²θ)), 0.456 mm along x, barely tighter than a
+  // 0.5 mm nose; their tight stretches are mostly narrower than the view's samples (R'/16).
+  struct GridSection {
+    double a = 0.005, kx = 2 * std::numbers::pi / 0.3, ky = 2 * std::numbers::pi / 0.4;
+    double cos, sin;
+    // g''/(1 + g'²)^{3/2} of g(ρ) = A sin(kx ρ cosθ) sin(ky ρ sinθ), in closed form.
+    double curvature(double rho) const {
+      const double p = kx * cos, q = ky * sin, u = p * rho, v = q * rho;
+      const double slope = a * (p * std::cos(u) * std::sin(v) + q * std::sin(u) * std::cos(v));
+      const double bend = a * (-(p * p + q * q) * std::sin(u) * std::sin(v) +
+                               2 * p * q * std::cos(u) * std::cos(v));
+      return bend / std::pow(1 + slope * slope, 1.5);
+    }
+  };
+
+  TEST_CASE("tight troughs: stretches narrower than a sample, found between the samples") {
+    const SinusoidalGrid grid(0.005, 0.3, 0.4);
+    const double placed = 0.5 + kStandOff, step = placed / 16;
+    const TightTroughs view(grid, placed, 1.5);
+    // The library before saw no stretch on most sections (every sample under 1/R') and left
+    // the view unused: the job failed the local gouge check at once (concave radius 0.4956
+    // mm under the 0.5 mm nose).
+    REQUIRE(view.any());
+    int stretches = 0, between = 0;
+    std::array<double, 256> creases;
+    for (int j = 0; j < 96; ++j) {
+      const double theta = 2 * std::numbers::pi * (j + 0.37) / 96;
+      CAPTURE(theta);
+      const GridSection section{.cos = std::cos(theta), .sin = std::sin(theta)};
+      const int n = view.section_creases(RadialLine(theta), 0.0, 1.5, creases);
+      REQUIRE(n >= 0);
+      REQUIRE(n <= static_cast<int>(creases.size()));
+      const auto listed = [&](double from, double to) {
+        return std::any_of(creases.begin(), creases.begin() + n,
+                           [&](double c) { return c >= from && c <= to; });
+      };
+      // The tight stretches on a 0.1 µm grid, each bracketed by a crease within two samples
+      // before it and after it, with one inside.
+      const double fine = 1e-4;
+      for (double rho = 2 * step; rho < 1.5 - 2 * step; rho += fine) {
+        if (!(section.curvature(rho) * placed > 1) || section.curvature(rho - fine) * placed > 1)
+          continue;
+        double end = rho;
+        while (section.curvature(end + fine) * placed > 1) end += fine;
+        CAPTURE(rho);
+        CAPTURE(end);
+        ++stretches;
+        CHECK(listed(rho - 2 * step, rho - fine));
+        CHECK(listed(rho - fine, end + fine));
+        CHECK(listed(end + fine, end + 2 * step));
+        if (std::floor(rho / step) == std::floor(end / step)) ++between;
+        rho = end;
+      }
+    }
+    MESSAGE(stretches, " tight stretches, ", between, " of them between two samples");
+    CHECK(between > 0);
+  }
+
+  TEST_CASE("tight troughs: a nose across a stretch narrower than a sample rests on both sides") {
+    // Along θ = 0.1484 the section crosses a trough whose tight stretch (0.8191 to 0.8380
+    // mm, 1.02/R' at most) lies between two samples: every contact about it places a nose that
+    // touches the section and overhangs it nowhere (R' about its centre), by brute force; without
+    // the view the nose at the trough's tightest point sinks into it.
+    const SinusoidalGrid grid(0.005, 0.3, 0.4);
+    const double placed = 0.5 + kStandOff, step = placed / 16, theta = 0.1484;
+    const TightTroughs view(grid, placed, 1.5);
+    const GridSection section{.cos = std::cos(theta), .sin = std::sin(theta)};
+    // The tightest point of the section between 0.79 and 0.87 mm, on a 0.1 µm grid.
+    double tightest = 0.79;
+    for (double rho = 0.79; rho < 0.87; rho += 1e-4)
+      if (section.curvature(rho) > section.curvature(tightest)) tightest = rho;
+    REQUIRE(section.curvature(tightest) * placed > 1);
+    const double below = step * std::floor(tightest / step);
+    REQUIRE(section.curvature(below) * placed < 1);
+    REQUIRE(section.curvature(below + step) * placed < 1);
+    const RadialLine line(theta);
+    int held = 0;
+    for (double rho = tightest - 2 * step; rho <= tightest + 2 * step; rho += step / 8) {
+      CAPTURE(rho);
+      double z, zx, zy;
+      grid.sag_gradient(rho * line.cos, rho * line.sin, z, zx, zy);
+      const double slope = zx * line.cos + zy * line.sin;
+      const NoseTouch t = nose_touch(view, line, 0.5, rho, z, slope, kStandOff);
+      CHECK(std::abs(test::brute_overlap(grid, t.centre_x, t.centre_z, placed, theta)) < 1e-9);
+      held += t.held;
+    }
+    CHECK(held > 0);
+    double z, zx, zy;
+    grid.sag_gradient(tightest * line.cos, tightest * line.sin, z, zx, zy);
+    const NoseTouch free =
+        nose_touch(grid, line, 0.5, tightest, z, zx * line.cos + zy * line.sin, kStandOff);
+    CHECK(test::brute_overlap(grid, free.centre_x, free.centre_z, placed, theta) > 1e-9);
+  }
+
+  TEST_CASE("tight troughs: a period the samples alias into a slow wave leaves the view unused") {
+    // z = 0.5 sin(2πr/0.017) under a 0.5 mm nose: the samples, 31.25 µm apart, see a wave 8
+    // samples long, whose one-sample stretches look like bumps; the curvature between them
+    // peaks at A ω² = 6.8e4 /mm, far above them. A 10 µm period likewise.
+    for (const double period : {0.017, 0.01}) {
+      CAPTURE(period);
+      const SinusoidalRing ring(0.5, 2 * std::numbers::pi / period, 0.0);
+      CHECK_FALSE(TightTroughs(ring, 0.5 + 5e-4, 1.5).any());
     }
   }
 

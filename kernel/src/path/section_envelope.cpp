@@ -1064,6 +1064,18 @@ NoseTouch hold_by_overhang(const Surface& design, const Section& section, const 
 
 // The contact's own placement (nose_touch without the ridges): its offset t, or the nose
 // held at a concave crease where that would overhang one.
+// Without a concavity bound (m ≤ 0) a piece may bend more tightly than the nose over part of
+// it (a trough barely tighter than the nose, whose stretch path/tight_troughs.hpp lists with
+// its ends where the section is not tight): the nose's height over it is then convex there,
+// and a search from the crease at that end can start at its least value, take it for a
+// peak, and miss the peak beyond (a nose 2.3 µm into a sinusoidal grid's far flank). The
+// piece [a, b] searched from the crease on `side` of it is searched from its other end too.
+void search_from_far_end(const Section& section, double x_c, double z_c, double R, double a,
+                         double b, int side, double m, double tolerance, NoseOverlap& best) {
+  if (m > 0) return;
+  search(section, x_c, z_c, R, side > 0 ? b : a, a, b, 4, best, -side, m, tolerance);
+}
+
 NoseTouch offset_or_hold(const Surface& design, const Section& section, const RadialLine& line,
                          const SectionCreases& creases, NoseTouch t, double rho_p, double R,
                          double nose_radius, double tolerance) {
@@ -1098,6 +1110,7 @@ NoseTouch offset_or_hold(const Surface& design, const Section& section, const Ra
       // to check the hold against and to hold at instead (below).
       search(section, t.centre_x, t.centre_z, R, creases.rho[k] + side * kOffCrease, a, b, 4, o,
              side, m, tolerance);
+      search_from_far_end(section, t.centre_x, t.centre_z, R, a, b, side, m, tolerance, o);
       if (o.height > tolerance)
         overhung[static_cast<std::size_t>(count++)] = {k, side, o.height, o.rho};
       if (o.height > worst.height) {
@@ -1148,6 +1161,7 @@ NoseTouch offset_or_hold(const Surface& design, const Section& section, const Ra
         NoseOverlap o;
         search(section, h.centre_x, h.centre_z, R, creases.rho[k] + side * kOffCrease, a, b, 4, o,
                side, m, tolerance);
+        search_from_far_end(section, h.centre_x, h.centre_z, R, a, b, side, m, tolerance, o);
         if (o.height > tolerance) return true;
       }
     }

@@ -9,6 +9,7 @@
 #include <limits>
 #include <memory>
 #include <numbers>
+#include <vector>
 
 #include "freeturn/surface/section_curvature.hpp"
 
@@ -18,6 +19,55 @@ namespace {
 // Samples a tight stretch is looked for at, per placed radius: a stretch narrower than
 // this may be missed, and the chord search then refuses the trough as before (path.md).
 constexpr int kSamplesPerRadius = 16;
+
+// A sampled curvature's local maximum below 1/R is searched between its neighbours only
+// from this share of 1/R up: a bump that rises from under half of 1/R at a sample to over
+// 1/R between samples is narrower than the samples resolve.
+constexpr double kSearchedFrom = 0.5;
+
+// The section's curvature at ρ along the line through (x0, y0); −∞ past `limit` or where
+// the design is not defined, so that no comparison finds a stretch there.
+double curvature_or_none(const Surface& s, double x0, double y0, const RadialLine& line, double rho,
+                         double limit) {
+  if (!(std::abs(rho) <= limit)) return -std::numeric_limits<double>::infinity();
+  const double kappa = line_section_curvature(s, x0, y0, line, rho);
+  return std::isnan(kappa) ? -std::numeric_limits<double>::infinity() : kappa;
+}
+
+// Where a sample's curvature is a local maximum of the samples but not above 1/R, the
+// section's may still rise above 1/R between its neighbours (a trough barely tighter than
+// the nose, whose tight stretch is narrower than a sample): the largest curvature over
+// [a, b] by golden-section search (Kiefer 1953) to a millionth of the bracket, and where
+// it lies. The bracket holds one maximum: the middle sample is above both ends.
+struct CurvaturePeak {
+  double kappa, rho;
+};
+CurvaturePeak peak_curvature_between(const Surface& s, double x0, double y0, const RadialLine& line,
+                                     double a, double b, double limit) {
+  constexpr double kInverseGolden = 0.6180339887498949;
+  const double tolerance = 1e-6 * (b - a);
+  double c = b - kInverseGolden * (b - a), d = a + kInverseGolden * (b - a);
+  double kc = curvature_or_none(s, x0, y0, line, c, limit);
+  double kd = curvature_or_none(s, x0, y0, line, d, limit);
+  while (b - a > tolerance) {
+    if (kc >= kd) {
+      b = d, d = c, kd = kc;
+      c = b - kInverseGolden * (b - a);
+      kc = curvature_or_none(s, x0, y0, line, c, limit);
+    } else {
+      a = c, c = d, kc = kd;
+      d = a + kInverseGolden * (b - a);
+      kd = curvature_or_none(s, x0, y0, line, d, limit);
+    }
+  }
+  return kc >= kd ? CurvaturePeak{kc, c} : CurvaturePeak{kd, d};
+}
+
+// Whether the curvature at sample `at`, a local maximum of its neighbours `before` and
+// `after` and not above 1/R, is worth the search between them.
+bool may_peak_between(double before, double at, double after, double R) {
+  return before < at && at >= after && at * R <= 1 && at * R > kSearchedFrom;
+}
 
 }  // namespace
 
@@ -32,27 +82,55 @@ TightTroughs::TightTroughs(const Surface& design, double placed_radius, double o
   // evaluations, about 2 % of the demo.
   if (s_.max_bend(limit_) * R_ <= 1) return;
   // The polar grid: radial steps those of the sections' own samples, 256 lines. Where most
-  // tight stretches on it are one sample wide, the design bends faster than the samples
-  // resolve (a 10 µm period under a 0.5 mm nose): their creases would fall anywhere, and
-  // the view is not used; the planner then stops at the chord tolerance, naming the
-  // radius. (A section crossing a trough near its tight stretch's edge is one sample wide
-  // too, on a freeform: a few such are the design's, not the samples'.)
+  // tight stretches on it are narrow (one sample wide, or between two samples) and the
+  // samples do not show their bump, the design bends faster than the samples resolve (a
+  // 10 µm period under a 0.5 mm nose): their creases would fall anywhere, and the view is
+  // not used; the planner then stops at the chord tolerance, naming the radius. A narrow
+  // stretch is the design's (a trough barely tighter than the nose, or a section crossing a
+  // trough near its tight stretch's edge) where the samples rise over the two before it
+  // and fall over the two after, and the curvature between its neighbours peaks no further
+  // above the middle sample than that sample stands above them: a period that the samples
+  // alias into a slow wave peaks far above its samples between them.
   const int circles = std::clamp(static_cast<int>(std::ceil(limit_ / step_)), 2, 4096);
+  // The grid's own samples reach the limit and are not cut at it.
+  const double unlimited = std::numeric_limits<double>::infinity();
   long runs = 0, narrow = 0;
+  std::vector<double> kappa(static_cast<std::size_t>(circles) + 1);
   for (int j = 0; j < 256; ++j) {
     const RadialLine line(2 * std::numbers::pi * j / 256);
+    for (int i = 0; i <= circles; ++i)
+      kappa[static_cast<std::size_t>(i)] =
+          curvature_or_none(s_, 0, 0, line, limit_ * i / circles, unlimited);
+    const auto at = [&](int i) {
+      return i >= 0 && i <= circles ? kappa[static_cast<std::size_t>(i)]
+                                    : -std::numeric_limits<double>::infinity();
+    };
+    const auto peak_about = [&](int i) {
+      return peak_curvature_between(s_, 0, 0, line, limit_ * (i - 1) / circles,
+                                    limit_ * (i + 1) / circles, unlimited)
+          .kappa;
+    };
+    const auto resolved = [&](int i, double peak) {
+      return at(i - 2) < at(i - 1) && at(i + 1) > at(i + 2) &&
+             peak - at(i) <= at(i) - std::min(at(i - 1), at(i + 1));
+    };
     int run = 0;
     for (int i = 0; i <= circles + 1; ++i) {
-      const bool tight =
-          i <= circles && line_section_curvature(s_, 0, 0, line, limit_ * i / circles) * R_ > 1;
-      if (tight) {
+      if (at(i) * R_ > 1) {
         ++run;
         continue;
       }
       if (run > 0) ++runs;
       // One sample wide inside the grid (a stretch cut by its ends may be wider).
-      if (run == 1 && i > 1 && i <= circles) ++narrow;
+      if (run == 1 && i > 1 && i <= circles && !resolved(i - 1, peak_about(i - 1))) ++narrow;
       run = 0;
+      if (i >= 1 && i < circles && may_peak_between(at(i - 1), at(i), at(i + 1), R_)) {
+        const double peak = peak_about(i);
+        if (peak * R_ > 1) {
+          ++runs;
+          if (!resolved(i, peak)) ++narrow;
+        }
+      }
     }
   }
   any_ = runs > 0 && 2 * narrow <= runs;
@@ -113,11 +191,33 @@ void TightTroughs::sample(double x0, double y0, const RadialLine& line, long fir
     s_.sag_gradient(x0 + rho * line.cos, y0 + rho * line.sin, z, zx, zy);
     return zx * line.cos + zy * line.sin;
   };
-  for (long k = first; k <= last + 1; ++k) {
+  const auto add = [&](double crease) {
+    if (out.count + 1 > static_cast<int>(out.rho.size())) return false;
+    out.rho[static_cast<std::size_t>(out.count++)] = crease;
+    return true;
+  };
+  // The curvature at the two samples before the one the loop is at: a local maximum there
+  // that is not tight may hide a stretch between its neighbours. Samples from two before
+  // the first to two past the last are looked at, so that every stretch with a crease in
+  // [first, last] is found, as by a query asking more.
+  double before = curvature_or_none(s_, x0, y0, line, (first - 2) * step_, limit_);
+  double previous = curvature_or_none(s_, x0, y0, line, (first - 1) * step_, limit_);
+  for (long k = first; k <= last + 2; ++k) {
     const double rho = k * step_;
-    double kappa = 0;
-    const bool here = k <= last && std::abs(rho) <= limit_ &&
-                      (kappa = line_section_curvature(s_, x0, y0, line, rho)) * R_ > 1;
+    const double kappa = curvature_or_none(s_, x0, y0, line, rho, limit_);
+    if (may_peak_between(before, previous, kappa, R_)) {
+      // A stretch narrower than a sample: its ends the two samples about it, its middle
+      // where the curvature peaks.
+      const CurvaturePeak peak =
+          peak_curvature_between(s_, x0, y0, line, (k - 2) * step_, rho, limit_);
+      if (peak.kappa * R_ > 1 && !(add((k - 2) * step_) && add(peak.rho) && add(rho))) {
+        out.count = -1;
+        return;
+      }
+    }
+    before = previous, previous = kappa;
+    if (k > last + 1) continue;
+    const bool here = k <= last && kappa * R_ > 1;
     if (here) {
       const double slope = slope_at(rho);
       if (!in_run) {
@@ -140,11 +240,10 @@ void TightTroughs::sample(double x0, double y0, const RadialLine& line, long fir
       // tightest sample.
       const double middle = std::isnan(bottom) ? peak_rho : bottom;
       for (const double crease : {(run_start - 1) * step_, middle, k * step_}) {
-        if (out.count + 1 > static_cast<int>(out.rho.size())) {
+        if (!add(crease)) {
           out.count = -1;
           return;
         }
-        out.rho[static_cast<std::size_t>(out.count++)] = crease;
       }
     }
   }
