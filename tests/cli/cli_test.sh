@@ -335,6 +335,31 @@ fine_job narrow_bowls 0.2563 0.0896 0.1296 0.2711 0.52 0.0031
 # nose reached 84 nm into a third's crest, and the chord rule stopped (docs/tool.md, "A
 # nose wider than the lenslets"); now it rests on the crests either side of the gap.
 fine_job wide_nose_domes -1 0.18 0.2 3 1 0.01
+# A sinusoidal grid (A 5 µm, λ 0.3 × 0.4 mm) whose troughs bend to 1/(A kx²) = 0.456 mm, barely
+# tighter than the 0.5 mm nose: their tight stretches are mostly narrower than the view's
+# samples (docs/tool.md, "Stretches between two samples"). The local gouge check failed the
+# first touch in one (exit 1, nothing written); now the nose rests on both sides, and the
+# report names what is left.
+cat > "$tmp/grid_troughs.yaml" <<JOB
+name: grid_troughs
+aperture: {outer_radius: 1.0}
+surface: {type: sinusoidal_grid, amplitude: 0.005, wavelength_x: 0.3, wavelength_y: 0.4}
+tool: {nose_radius: 0.5, included_angle_deg: 90, clearance_angle_deg: 12}
+strategy:
+  mode: spiral
+  spiral: planar
+  pitch: 0.02
+  points: {chord: {tolerance: 0.0002, max_angle_deg: 4}}
+cutting: {spindle_rpm: 20}
+machine: moore-nanotech-250upl
+outputs: {nc: true, report: true}
+JOB
+timeout 300 "$freeturn" run "$tmp/grid_troughs.yaml" -o "$tmp/grid_troughs" > /dev/null 2> "$tmp/err"
+expect "grid_troughs: written" 0 $?
+below_at_most "grid_troughs: the edge" 1 nc_rake_gouge.py \
+  "$tmp/grid_troughs/grid_troughs.moore-nanotech-250upl.nc" "sinusoidal_grid:0.005:0.3:0.4" 0.5 0 45 0 1.0
+contains "grid_troughs: the report names the material left" "$tmp/grid_troughs/grid_troughs.report.json" \
+  "the design is unreachable there; the program does not gouge"
 # Troughs 10 µm apart (concave radius 1/(Aω²) = 2.5 µm) under the same nose bend faster than the view
 # of tight troughs samples them (path/tight_troughs.hpp): no step meets the tolerance. In
 # PVT mode (this machine's) the planner once took slivers of no length there without end;
