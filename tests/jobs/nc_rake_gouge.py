@@ -11,7 +11,8 @@ block); the arc every 0.25 degrees; the designs are written here from their defi
 usage: nc_rake_gouge.py PROGRAM.nc DESIGN R H HALF_ANGLE_DEG R_MIN R_MAX [WAVINESS]
 DESIGN: decentred_sphere:RADIUS:DX, compound_eye:BASE:LENS:DIAMETER:PITCH:EXTENT (rings),
         microlens_array:LENS:DIAMETER:PITCH:EXTENT[:hexagonal] (square unless hexagonal),
-        sinusoidal_ring:AMPLITUDE:PERIOD, or sinusoidal_grid:AMPLITUDE:LX:LY
+        sinusoidal_ring:AMPLITUDE:PERIOD, sinusoidal_grid:AMPLITUDE:LX:LY, or
+        xy_polynomial:NORMALIZATION:I=A,I=A,... (no base conic; term I as in docs/surfaces.md)
 WAVINESS: the edge's radius error, DEG:MM,DEG:MM,... (linear between, the ends held): the
 edge's point at phi lies R + delta(phi) from the centre.
 Prints the deepest point (nm, > 0 below the design).
@@ -122,6 +123,18 @@ def sinusoidal_grid(amplitude, wavelength_x, wavelength_y):
     return lambda x, y: amplitude * np.sin(2 * np.pi * x / wavelength_x) * np.sin(2 * np.pi * y / wavelength_y)
 
 
+def xy_polynomial(normalization, terms):
+    """z = sum A_i x^a y^b / Rn^(a+b), i = (n - 1)(n + 2)/2 + b + 1 with n = a + b
+    (docs/surfaces.md), no base conic."""
+    powers = {}
+    for n in range(1, 21):
+        for b in range(n + 1):
+            powers[(n - 1) * (n + 2) // 2 + b + 1] = (n - b, b)
+    pairs = [(powers[int(i)], float(a)) for i, a in (t.split("=") for t in terms.split(","))]
+    return lambda x, y: sum(a * (x / normalization) ** px * (y / normalization) ** py
+                            for (px, py), a in pairs)
+
+
 def main():
     path, design, R, h, half, r_min, r_max = sys.argv[1:8]
     R, h, half, r_min, r_max = map(float, (R, h, half, r_min, r_max))
@@ -129,8 +142,11 @@ def main():
     designs = {"decentred_sphere": decentred_sphere, "compound_eye": compound_eye,
                "microlens_array": microlens_array, "sinusoidal_ring": sinusoidal_ring,
                "sinusoidal_grid": sinusoidal_grid}
-    numbers = [float(v) for v in p if v not in ("square", "hexagonal")]
-    z_of = designs[kind](*numbers, *[v for v in p if v in ("square", "hexagonal")])
+    if kind == "xy_polynomial":
+        z_of = xy_polynomial(float(p[0]), p[1])
+    else:
+        numbers = [float(v) for v in p if v not in ("square", "hexagonal")]
+        z_of = designs[kind](*numbers, *[v for v in p if v in ("square", "hexagonal")])
     b = np.array(read(path, [], {"X": None, "Z": None, "C": 0.0}))
     X, Z, C = b[:, 0], b[:, 1], np.unwrap(np.radians(b[:, 2]))
     if len(b) > 2 and not np.isnan(b[1:, 3]).any():

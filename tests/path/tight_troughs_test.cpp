@@ -392,6 +392,44 @@ TEST_SUITE("path") {
     CHECK(test::brute_overlap(grid, free.centre_x, free.centre_z, placed, theta) > 1e-9);
   }
 
+  TEST_CASE("tight troughs: a nose held on the axis while C turns: every block kept") {
+    // A sinusoidal grid (A 15.33 µm, λ 0.7042 × 0.5232 mm) under a 1.5 mm nose: about the
+    // axis, where the grid is a saddle tighter than the nose along the first quadrant, the
+    // nose is held with its centre on the axis (X = 0) for several blocks while C turns.
+    // Such a block moves Z by under the program's resolution and was dropped as a block of
+    // no move, which left a segment of twice the angle cap whose middle went 7 nm into the
+    // design (read from the NC). Every step now stays within the cap, and the motion,
+    // sampled densely by the tests' own nose sampler, stays above the design.
+    const SinusoidalGrid grid(0.01533, 0.7042, 0.5232);
+    const double nose = 1.5, tolerance = 2e-4, outer = 0.2;
+    const TightTroughs view(grid, nose + 0.5 * tolerance, outer);
+    REQUIRE(view.any());
+    SpiralOptions o;
+    o.outer_radius = outer;
+    o.pitch = 0.02;
+    o.points.tolerance = tolerance;
+    o.points.max_angle_step = 4 * std::numbers::pi / 180;
+    o.tool.nose_radius = nose;
+    ContactCollector out;
+    plan_spiral(view, BaseSurface::plane(outer), o, out);
+    CompensationOptions c;
+    c.tool.nose_radius = nose;
+    std::vector<CutterLocation> cls;
+    int on_axis = 0;
+    double widest = 0;
+    for (const ContactPoint& p : out.points) {
+      cls.push_back(compensate(p, c));
+      on_axis += std::hypot(cls.back().nose_centre.x(), cls.back().nose_centre.y()) < 1e-9;
+      if (cls.size() > 1) widest = std::max(widest, cls.back().c - cls[cls.size() - 2].c);
+    }
+    const test::DenseNoseFigures f = test::dense_nose_figures(grid, cls, nose, 24, 2000);
+    MESSAGE("points ", cls.size(), ", on the axis ", on_axis, ", deepest ", f.gouge * 1e6,
+            " nm, widest step ", widest * 180 / std::numbers::pi, "°");
+    CHECK(on_axis > 2);
+    CHECK(widest <= o.points.max_angle_step * (1 + 1e-9));
+    CHECK(f.gouge <= 1e-6);
+  }
+
   TEST_CASE("tight troughs: a period the samples alias into a slow wave leaves the view unused") {
     // z = 0.5 sin(2πr/0.017) under a 0.5 mm nose: the samples, 31.25 µm apart, see a wave 8
     // samples long, whose one-sample stretches look like bumps; the curvature between them

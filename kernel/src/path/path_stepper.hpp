@@ -1519,13 +1519,17 @@ void distribute(Path& path, const CutterPointOptions& o, Emit&& emit, double beg
     // judged again, once the next block is known, over the block's own stretch of τ
     // (`block_tau`): over the still state's, the path's nose would stand at the block's
     // place while the motion is still on its way there.
-    const bool still = !apart(current, trial);
+    // Only where the path holds still: on the spiral C advances with τ, and a nose held on
+    // the axis (X = 0, so no arc of C counts in `apart`) still turns the part under its
+    // edge. Dropped as still, such a block had left a segment twice the cap whose middle
+    // went 7 nm into a sinusoidal grid (docs/path.md, "Blocks that do not move").
+    const bool still = path.holds_still() && !apart(current, trial);
     if (!pvt) {
       current = trial;
       if (!still) emit(current, new_error, jump);
       continue;
     }
-    if (still && path.holds_still()) {
+    if (still) {
       current = trial;
       // The program's last block, the one it repeats: the segment to it was judged with
       // the velocity this still block gives, the one-sided one of the end.
