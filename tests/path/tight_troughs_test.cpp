@@ -392,6 +392,41 @@ TEST_SUITE("path") {
     CHECK(test::brute_overlap(grid, free.centre_x, free.centre_z, placed, theta) > 1e-9);
   }
 
+  TEST_CASE("tight troughs: a contact on a stretch whose overhang is under the tolerance is held") {
+    // A grid (A 3.98 µm, λ 0.5477 × 0.3970 mm) under a 1.5 mm nose: along θ = 146.64° the
+    // section bends to 1.49987 mm about ρ = 0.1718, tighter than the nose by 0.02 % over
+    // 3 µm, and the nose at a contact there overhangs the far side by far less than the
+    // envelope's tolerance (1e-10 mm). It was placed at the contact, and the local gouge
+    // check refused the job. Every contact on that stretch now holds the nose at the
+    // stretch's crease: touching the section and overhanging it nowhere (brute force),
+    // its touches where the section bends less than the nose.
+    const SinusoidalGrid grid(0.00398, 0.5477, 0.3970);
+    const double nose = 1.5, placed = nose + 1e-4;
+    const TightTroughs view(grid, placed, 0.979);
+    REQUIRE(view.any());
+    const double theta = std::atan2(0.093951, -0.142703);
+    const GridSection section{.a = 0.00398,
+                              .kx = 2 * std::numbers::pi / 0.5477,
+                              .ky = 2 * std::numbers::pi / 0.3970,
+                              .cos = std::cos(theta),
+                              .sin = std::sin(theta)};
+    const RadialLine line(theta);
+    int tight = 0;
+    for (double rho = 0.165; rho <= 0.178; rho += 2e-5) {
+      if (!(section.curvature(rho) * placed > 1)) continue;
+      CAPTURE(rho);
+      ++tight;
+      double z, zx, zy;
+      grid.sag_gradient(rho * line.cos, rho * line.sin, z, zx, zy);
+      const NoseTouch t = nose_touch(view, line, nose, rho, z, zx * line.cos + zy * line.sin, 1e-4);
+      CHECK(t.held);
+      CHECK(std::abs(test::brute_overlap(grid, t.centre_x, t.centre_z, placed, theta)) < 1e-9);
+      CHECK(section.curvature(t.rho) * placed <= 1);
+    }
+    MESSAGE(tight, " contacts on the tight stretch");
+    CHECK(tight > 10);
+  }
+
   TEST_CASE("tight troughs: a nose held on the axis while C turns: every block kept") {
     // A sinusoidal grid (A 15.33 µm, λ 0.7042 × 0.5232 mm) under a 1.5 mm nose: about the
     // axis, where the grid is a saddle tighter than the nose along the first quadrant, the

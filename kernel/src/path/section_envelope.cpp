@@ -1064,6 +1064,14 @@ NoseTouch hold_by_overhang(const Surface& design, const Section& section, const 
 
 // The contact's own placement (nose_touch without the ridges): its offset t, or the nose
 // held at a concave crease where that would overhang one.
+// Whether the section bends more tightly than a nose of radius R at ρ (its curvature
+// g''/(1 + g'²)^{3/2} above 1/R): no nose of that radius touches it there without cutting in.
+bool contact_tighter_than_nose(const Section& section, double rho, double R) {
+  double g, slope, bend;
+  if (!section.at(rho, g, slope, bend)) return false;
+  return bend * R > std::pow(1 + slope * slope, 1.5);
+}
+
 // Without a concavity bound (m ≤ 0) a piece may bend more tightly than the nose over part of
 // it (a trough barely tighter than the nose, whose stretch path/tight_troughs.hpp lists with
 // its ends where the section is not tight): the nose's height over it is then convex there,
@@ -1120,7 +1128,23 @@ NoseTouch offset_or_hold(const Surface& design, const Section& section, const Ra
       }
     }
   }
-  if (held_at < 0) return t;
+  if (held_at < 0) {
+    // Nothing overhung by the tolerance. Without a concavity bound the contact itself may
+    // lie where the section bends more tightly than the nose, on a stretch barely tighter
+    // (path/tight_troughs.hpp) whose overhang stays under the tolerance: no nose touches
+    // there without cutting into the design, and the local gouge check refused such a job
+    // (a sinusoidal grid bending to 1.49987 mm under a 1.5 mm nose). The nose is held at
+    // the crease nearest the contact instead, across it from the contact.
+    if (m > 0 || !contact_tighter_than_nose(section, rho_p, R)) return t;
+    double nearest = std::numeric_limits<double>::infinity();
+    for (int k = 0; k < creases.count; ++k) {
+      const double d = std::abs(creases.rho[k] - rho_p);
+      if (d < nearest && d < reach) nearest = d, held_at = k;
+    }
+    if (held_at < 0) return t;
+    far = creases.rho[held_at] > rho_p ? 1 : -1;
+    worst.rho = creases.rho[held_at] + far * kOffCrease;
+  }
   const NoseTouch held = hold_at_crease(section, creases, t, rho_p, R, nose_radius, m, tolerance,
                                         held_at, far, worst.rho);
   // Without a concavity bound the pieces between creases may bend more than the nose (a

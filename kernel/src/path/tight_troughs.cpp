@@ -16,9 +16,11 @@
 namespace freeturn {
 namespace {
 
-// Samples a tight stretch is looked for at, per placed radius: a stretch narrower than
-// this may be missed, and the chord search then refuses the trough as before (path.md).
-constexpr int kSamplesPerRadius = 16;
+// Samples a tight stretch is looked for at, per placed radius: the first of these that
+// resolves the design's tight stretches (TightTroughs' constructor). A stretch narrower
+// than a sample that the samples do not resolve may be missed, and the chord search then
+// refuses the trough as before (tool.md).
+constexpr std::array<int, 3> kSamplesPerRadius = {16, 32, 64};
 
 // The section's curvature at ρ along the line through (x0, y0); −∞ past `limit` or where
 // the design is not defined, so that no comparison finds a stretch there.
@@ -110,8 +112,9 @@ bool may_peak_between(double before, double at, double after, double R) {
 TightTroughs::TightTroughs(const Surface& design, double placed_radius, double outer_radius)
     : s_(design),
       R_(placed_radius),
-      step_(placed_radius / kSamplesPerRadius),
-      limit_(outer_radius + 2 * placed_radius) {
+      step_(placed_radius / kSamplesPerRadius[0]),
+      limit_(outer_radius + 2 * placed_radius),
+      per_radius_(kSamplesPerRadius[0]) {
   if (!(R_ > 0) || !(outer_radius > 0)) return;
   // A design that bounds its bend under 1/R' has no section tighter than the nose (the
   // curvature g''/(1 + g'²)^{3/2} ≤ g''): the compound eye's scan below cost 90 000
@@ -127,10 +130,26 @@ TightTroughs::TightTroughs(const Surface& design, double placed_radius, double o
   // and fall over the two after, and the curvature between its neighbours peaks no further
   // above the middle sample than that sample stands above them: a period that the samples
   // alias into a slow wave peaks far above its samples between them.
+  // Where the samples at one step find tight stretches but do not resolve them, the next,
+  // finer step is tried: a sinusoidal grid of 0.4 to 0.55 mm wavelengths under a 1.5 mm
+  // nose has 4 to 6 samples a wavelength at R'/16, and its stretches' bumps are too
+  // narrow to show; at R'/32 they show. A design that no step resolves (the 10 µm
+  // period) is left as before, and one with no tight stretch at the first step is not
+  // scanned again.
+  for (const int per_radius : kSamplesPerRadius) {
+    per_radius_ = per_radius;
+    step_ = R_ / per_radius;
+    long runs = 0, narrow = 0;
+    count_tight_stretches(runs, narrow);
+    any_ = runs > 0 && 2 * narrow <= runs;
+    if (any_ || runs == 0) return;
+  }
+}
+
+void TightTroughs::count_tight_stretches(long& runs, long& narrow) const {
   const int circles = std::clamp(static_cast<int>(std::ceil(limit_ / step_)), 2, 4096);
   // The grid's own samples reach the limit and are not cut at it.
   const double unlimited = std::numeric_limits<double>::infinity();
-  long runs = 0, narrow = 0;
   std::vector<double> kappa(static_cast<std::size_t>(circles) + 1);
   for (int j = 0; j < 256; ++j) {
     const RadialLine line(2 * std::numbers::pi * j / 256);
@@ -170,7 +189,6 @@ TightTroughs::TightTroughs(const Surface& design, double placed_radius, double o
       }
     }
   }
-  any_ = runs > 0 && 2 * narrow <= runs;
 }
 
 int TightTroughs::section_creases(const RadialLine& line, double lo, double hi,
@@ -316,7 +334,7 @@ int TightTroughs::line_creases(double x0, double y0, const RadialLine& line, dou
     // own) is sampled where asked: the margins had been two thirds of an equal-angle
     // plan's samples. The creases in [lo, hi] are the same either way: every stretch is
     // followed to its ends.
-    const long margin = same_line ? 2 * kSamplesPerRadius : 0;
+    const long margin = same_line ? 2 * per_radius_ : 0;
     sample(x0, y0, line, first - margin, last + margin, line_troughs);
     if (line_troughs.count < 0) {
       sample(x0, y0, line, first, last, narrow);

@@ -57,9 +57,13 @@ class TightTroughs final : public Surface {
   // samples [first, last] (whole steps of ρ), into a LineTroughs (tight_troughs.cpp).
   void sample(double x0, double y0, const RadialLine& line, long first, long last,
               detail::LineTroughs& out) const;
+  // Over the polar grid at the current step (256 radial lines): the tight stretches
+  // found, and how many of them are narrow ones the samples do not resolve.
+  void count_tight_stretches(long& runs, long& narrow) const;
 
   const Surface& s_;
   double R_, step_, limit_;
+  int per_radius_;  // samples per R', step_ = R_ / per_radius_
   bool any_ = false;
   InstanceId id_;  // keys each thread's cache of its last line
 };
