@@ -1062,8 +1062,6 @@ NoseTouch hold_by_overhang(const Surface& design, const Section& section, const 
   return held;
 }
 
-// The contact's own placement (nose_touch without the ridges): its offset t, or the nose
-// held at a concave crease where that would overhang one.
 // Whether the section bends more tightly than a nose of radius R at ρ (its curvature
 // g''/(1 + g'²)^{3/2} above 1/R): no nose of that radius touches it there without cutting in.
 bool contact_tighter_than_nose(const Section& section, double rho, double R) {
@@ -1084,6 +1082,8 @@ void search_from_far_end(const Section& section, double x_c, double z_c, double 
   search(section, x_c, z_c, R, side > 0 ? b : a, a, b, 4, best, -side, m, tolerance);
 }
 
+// The contact's own placement (nose_touch without the ridges): its offset t, or the nose
+// held at a concave crease where that would overhang one.
 NoseTouch offset_or_hold(const Surface& design, const Section& section, const RadialLine& line,
                          const SectionCreases& creases, NoseTouch t, double rho_p, double R,
                          double nose_radius, double tolerance) {

@@ -130,6 +130,7 @@ TightTroughs::TightTroughs(const Surface& design, double placed_radius, double o
   // and fall over the two after, and the curvature between its neighbours peaks no further
   // above the middle sample than that sample stands above them: a period that the samples
   // alias into a slow wave peaks far above its samples between them.
+  //
   // Where the samples at one step find tight stretches but do not resolve them, the next,
   // finer step is tried: a sinusoidal grid of 0.4 to 0.55 mm wavelengths under a 1.5 mm
   // nose has 4 to 6 samples a wavelength at R'/16, and its stretches' bumps are too
