@@ -309,25 +309,30 @@ below_at_most "the PVT nose over the tight bowls" 1 nc_rake_gouge.py \
 # barely tighter than a 0.271 mm nose, 38 creases within the hold's reach. The lists kept
 # the creases in the order found, not the lowest, and both stopped at the chord tolerance
 # until December 2026; now both are written and read back above the design.
-fine_job() {  # name, lens radius, diameter, pitch, nose, aperture, spiral pitch
+# A planar spiral on the Moore by the chord rule (0.2 µm, 4° cap), written, and its edge read
+# back from the NC no more than 1 nm below the design.
+spiral_written() {  # name, surface (a flow map), nose, aperture, spiral pitch, reader's design, report
   cat > "$tmp/$1.yaml" <<JOB
 name: $1
-aperture: {outer_radius: $6}
-surface: {type: microlens_array, lens_radius: $2, lens_diameter: $3, pitch: $4, lattice: square}
-tool: {nose_radius: $5, included_angle_deg: 90, clearance_angle_deg: 45}
+aperture: {outer_radius: $4}
+surface: $2
+tool: {nose_radius: $3, included_angle_deg: 90, clearance_angle_deg: 45}
 strategy:
   mode: spiral
   spiral: planar
-  pitch: $7
+  pitch: $5
   points: {chord: {tolerance: 0.0002, max_angle_deg: 4}}
 cutting: {spindle_rpm: 20}
 machine: moore-nanotech-250upl
-outputs: {nc: true, report: false}
+outputs: {nc: true, report: $7}
 JOB
   timeout 300 "$freeturn" run "$tmp/$1.yaml" -o "$tmp/$1" > /dev/null 2> "$tmp/err"
   expect "$1: written" 0 $?
-  below_at_most "$1: the edge" 1 nc_rake_gouge.py "$tmp/$1/$1.moore-nanotech-250upl.nc" \
-    "microlens_array:$2:$3:$4:$6" "$5" 0 45 0 "$6"
+  below_at_most "$1: the edge" 1 nc_rake_gouge.py "$tmp/$1/$1.moore-nanotech-250upl.nc" "$6" "$3" 0 45 0 "$4"
+}
+fine_job() {  # name, lens radius, diameter, pitch, nose, aperture, spiral pitch
+  spiral_written "$1" "{type: microlens_array, lens_radius: $2, lens_diameter: $3, pitch: $4, lattice: square}" \
+    "$5" "$6" "$7" "microlens_array:$2:$3:$4:$6" false
 }
 fine_job fine_domes -0.6 0.018 0.02 0.5 0.25 0.0031
 fine_job narrow_bowls 0.2563 0.0896 0.1296 0.2711 0.52 0.0031
@@ -340,24 +345,8 @@ fine_job wide_nose_domes -1 0.18 0.2 3 1 0.01
 # samples (docs/tool.md, "Stretches between two samples"). The local gouge check failed the
 # first touch in one (exit 1, nothing written); now the nose rests on both sides, and the
 # report names what is left.
-cat > "$tmp/grid_troughs.yaml" <<JOB
-name: grid_troughs
-aperture: {outer_radius: 1.0}
-surface: {type: sinusoidal_grid, amplitude: 0.005, wavelength_x: 0.3, wavelength_y: 0.4}
-tool: {nose_radius: 0.5, included_angle_deg: 90, clearance_angle_deg: 12}
-strategy:
-  mode: spiral
-  spiral: planar
-  pitch: 0.02
-  points: {chord: {tolerance: 0.0002, max_angle_deg: 4}}
-cutting: {spindle_rpm: 20}
-machine: moore-nanotech-250upl
-outputs: {nc: true, report: true}
-JOB
-timeout 300 "$freeturn" run "$tmp/grid_troughs.yaml" -o "$tmp/grid_troughs" > /dev/null 2> "$tmp/err"
-expect "grid_troughs: written" 0 $?
-below_at_most "grid_troughs: the edge" 1 nc_rake_gouge.py \
-  "$tmp/grid_troughs/grid_troughs.moore-nanotech-250upl.nc" "sinusoidal_grid:0.005:0.3:0.4" 0.5 0 45 0 1.0
+spiral_written grid_troughs "{type: sinusoidal_grid, amplitude: 0.005, wavelength_x: 0.3, wavelength_y: 0.4}" \
+  0.5 1.0 0.02 "sinusoidal_grid:0.005:0.3:0.4" true
 contains "grid_troughs: the report names the material left" "$tmp/grid_troughs/grid_troughs.report.json" \
   "the design is unreachable there; the program does not gouge"
 # Troughs 10 µm apart (concave radius 1/(Aω²) = 2.5 µm) under the same nose bend faster than the view

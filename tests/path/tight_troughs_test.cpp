@@ -9,6 +9,7 @@
 #include <array>
 #include <cmath>
 #include <numbers>
+#include <vector>
 
 #include "dense_check.hpp"
 #include "freeturn/path/base_surface.hpp"
@@ -26,12 +27,39 @@ namespace {
 // 1/(Aω²) = 0.3242 mm, tighter than a 0.5 mm nose.
 constexpr double kA = 0.05, kPeriod = 0.8, kR = 0.5, kStandOff = 5e-5;
 const double kOmega = 2 * std::numbers::pi / kPeriod;
+const double kAngleCap = 4 * std::numbers::pi / 180;  // the spirals' angle cap (rad)
 
 // The section's curvature in closed form, g''/(1 + g'²)^{3/2}, > 0 concave.
 double curvature(double r) {
   const double slope = kA * kOmega * std::cos(kOmega * r);
   const double bend = -kA * kOmega * kOmega * std::sin(kOmega * r);
   return bend / std::pow(1 + slope * slope, 1.5);
+}
+
+// The chord rule's spiral over [0, outer] at `pitch` (mm/rev), angle cap 4°, planned on
+// `view` as the run plans it, with a nose of radius `nose` (mm).
+std::vector<ContactPoint> chord_spiral(const Surface& view, double outer, double pitch,
+                                       double tolerance, double nose,
+                                       PathSummary* summary = nullptr) {
+  SpiralOptions o;
+  o.outer_radius = outer;
+  o.pitch = pitch;
+  o.points.tolerance = tolerance;
+  o.points.max_angle_step = kAngleCap;
+  o.tool.nose_radius = nose;
+  ContactCollector out;
+  const PathSummary s = plan_spiral(view, BaseSurface::plane(outer), o, out);
+  if (summary) *summary = s;
+  return out.points;
+}
+
+// The cutter locations of a nose of radius `nose` (mm) at the contacts.
+std::vector<CutterLocation> compensated(const std::vector<ContactPoint>& points, double nose) {
+  CompensationOptions c;
+  c.tool.nose_radius = nose;
+  std::vector<CutterLocation> cls;
+  for (const ContactPoint& p : points) cls.push_back(compensate(p, c));
+  return cls;
 }
 
 TEST_SUITE("path") {
@@ -230,21 +258,13 @@ TEST_SUITE("path") {
     const double nose = 0.2, tolerance = 2e-4;
     const TightTroughs view(bowls, nose + 0.5 * tolerance, 0.4);
     REQUIRE(view.any());
-    SpiralOptions o;
-    o.outer_radius = 0.4;
-    o.pitch = 0.005;
-    o.points.tolerance = tolerance;
-    o.points.max_angle_step = 4 * std::numbers::pi / 180;
-    o.tool.nose_radius = nose;
-    ContactCollector out;
-    const PathSummary summary = plan_spiral(view, BaseSurface::plane(o.outer_radius), o, out);
-    CompensationOptions c;
-    c.tool.nose_radius = nose;
-    std::vector<CutterLocation> cls;
+    PathSummary summary;
+    const std::vector<ContactPoint> points =
+        chord_spiral(view, 0.4, 0.005, tolerance, nose, &summary);
+    const std::vector<CutterLocation> cls = compensated(points, nose);
     long held = 0;
     double uncut = 0;
-    for (const ContactPoint& p : out.points) {
-      cls.push_back(compensate(p, c));
+    for (const ContactPoint& p : points) {
       held += p.uncut_residual > 0;
       uncut = std::max(uncut, p.uncut_residual);
     }
@@ -439,29 +459,19 @@ TEST_SUITE("path") {
     const double nose = 1.5, tolerance = 2e-4, outer = 0.2;
     const TightTroughs view(grid, nose + 0.5 * tolerance, outer);
     REQUIRE(view.any());
-    SpiralOptions o;
-    o.outer_radius = outer;
-    o.pitch = 0.02;
-    o.points.tolerance = tolerance;
-    o.points.max_angle_step = 4 * std::numbers::pi / 180;
-    o.tool.nose_radius = nose;
-    ContactCollector out;
-    plan_spiral(view, BaseSurface::plane(outer), o, out);
-    CompensationOptions c;
-    c.tool.nose_radius = nose;
-    std::vector<CutterLocation> cls;
+    const std::vector<CutterLocation> cls =
+        compensated(chord_spiral(view, outer, 0.02, tolerance, nose), nose);
     int on_axis = 0;
     double widest = 0;
-    for (const ContactPoint& p : out.points) {
-      cls.push_back(compensate(p, c));
-      on_axis += std::hypot(cls.back().nose_centre.x(), cls.back().nose_centre.y()) < 1e-9;
-      if (cls.size() > 1) widest = std::max(widest, cls.back().c - cls[cls.size() - 2].c);
+    for (std::size_t k = 0; k < cls.size(); ++k) {
+      on_axis += std::hypot(cls[k].nose_centre.x(), cls[k].nose_centre.y()) < 1e-9;
+      if (k > 0) widest = std::max(widest, cls[k].c - cls[k - 1].c);
     }
     const test::DenseNoseFigures f = test::dense_nose_figures(grid, cls, nose, 24, 2000);
     MESSAGE("points ", cls.size(), ", on the axis ", on_axis, ", deepest ", f.gouge * 1e6,
             " nm, widest step ", widest * 180 / std::numbers::pi, "°");
     CHECK(on_axis > 2);
-    CHECK(widest <= o.points.max_angle_step * (1 + 1e-9));
+    CHECK(widest <= kAngleCap * (1 + 1e-9));
     CHECK(f.gouge <= 1e-6);
   }
 

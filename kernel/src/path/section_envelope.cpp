@@ -6,6 +6,8 @@
 #include <limits>
 #include <numbers>
 
+#include "freeturn/surface/section_curvature.hpp"
+
 namespace freeturn {
 namespace {
 
@@ -1062,14 +1064,6 @@ NoseTouch hold_by_overhang(const Surface& design, const Section& section, const 
   return held;
 }
 
-// Whether the section bends more tightly than a nose of radius R at ρ (its curvature
-// g''/(1 + g'²)^{3/2} above 1/R): no nose of that radius touches it there without cutting in.
-bool contact_tighter_than_nose(const Section& section, double rho, double R) {
-  double g, slope, bend;
-  if (!section.at(rho, g, slope, bend)) return false;
-  return bend * R > std::pow(1 + slope * slope, 1.5);
-}
-
 // Without a concavity bound (m ≤ 0) a piece may bend more tightly than the nose over part of
 // it (a trough barely tighter than the nose, whose stretch path/tight_troughs.hpp lists with
 // its ends where the section is not tight): the nose's height over it is then convex there,
@@ -1135,7 +1129,7 @@ NoseTouch offset_or_hold(const Surface& design, const Section& section, const Ra
     // there without cutting into the design, and the local gouge check refused such a job
     // (a sinusoidal grid bending to 1.49987 mm under a 1.5 mm nose). The nose is held at
     // the crease nearest the contact instead, across it from the contact.
-    if (m > 0 || !contact_tighter_than_nose(section, rho_p, R)) return t;
+    if (m > 0 || !(radial_section_curvature(design, line, rho_p) * R > 1)) return t;
     double nearest = std::numeric_limits<double>::infinity();
     for (int k = 0; k < creases.count; ++k) {
       const double d = std::abs(creases.rho[k] - rho_p);

@@ -224,7 +224,7 @@ thread_local std::unique_ptr<detail::LineTroughs> last_line;
 void TightTroughs::sample(double x0, double y0, const RadialLine& line, long first, long last,
                           detail::LineTroughs& out) const {
   const auto tight = [&](double rho) {
-    return std::abs(rho) <= limit_ && line_section_curvature(s_, x0, y0, line, rho) * R_ > 1;
+    return curvature_or_none(s_, x0, y0, line, rho, limit_) * R_ > 1;
   };
   // A stretch that runs past the samples asked for is followed to its end, so that every
   // query of a line finds the same creases.
