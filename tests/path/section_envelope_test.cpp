@@ -17,6 +17,7 @@
 #include "fixtures.hpp"
 #include "freeturn/path/base_surface_fit.hpp"
 #include "freeturn/path/spiral.hpp"
+#include "freeturn/path/tight_troughs.hpp"
 #include "freeturn/surface/lenslet_array.hpp"
 #include "freeturn/surface/nurbs_height_field.hpp"
 #include "freeturn/surface/sinusoidal.hpp"
@@ -407,6 +408,121 @@ TEST_SUITE("path") {
       previous_z = t.centre_z;
     }
     CHECK(held > 100);  // about R·tan(δ/2) on each side, 0.1 µm apart
+  }
+
+  TEST_CASE(
+      "bowls bending a little more than the nose: pieces left on the parabola bound, the same "
+      "answers") {
+    // Bowls whose walls bend more than the nose along a section (g'' = 1/(r cos³ψ) at the
+    // rim's slope; 3 % more under a 0.107 mm nose) give no concavity bound, and each piece the nose
+    // may overhang is searched from both its ends. A piece whose first value's parabola (h'' ≤
+    // max_bend − 1/R) stays under the tolerance, or under the largest height found, is left after
+    // that value (section_envelope.cpp, search). The same contacts and noses on a view of the array
+    // that gives no bound (every piece searched from both ends) must give the same placements and
+    // the same overlaps, and no placed nose may overhang the section (brute force, 4 001 values
+    // across the nose, then ternary search).
+    struct Unbounded final : SurfaceView {
+      using SurfaceView::SurfaceView;
+    };
+    LensletArrayOptions options;
+    options.lens_radius = 0.1466;  // bowls
+    options.lens_diameter = 0.1335;
+    options.pitch = 0.1697;
+    options.pattern = LensletArrayOptions::Pattern::kHexagonal;
+    options.extent = 0.5;
+    const LensletArray bowls(options);
+    const Unbounded plain(bowls);
+    // Noses of 0.107 to 0.3 mm: the walls' g'' exceeds 1/R by 0.3 to 6.4 /mm, so a piece's
+    // parabola rises 2.6 to 56 µm above its tangent over a bowl's width. (On these bowls no
+    // far end rises above what the near search found: taking the parabola as its tangent
+    // changes none of these answers. The grid's case below does.)
+    for (const double R : {0.1067, 0.14, 0.2, 0.3}) {
+      const double up = bowls.max_bend(0.5) - 1 / R;
+      REQUIRE(up > 0);  // no concavity bound, but a finite rise bound: what the parabola serves
+      REQUIRE(std::isinf(plain.max_bend(0.5)));
+      std::mt19937 rng(7);
+      std::uniform_real_distribution<double> unit(0, 1);
+      int differ = 0, overhung = 0, brute = 0;
+      double deepest = -1;
+      for (int k = 0; k < 6000; ++k) {
+        const double theta = 2 * std::numbers::pi * unit(rng), rho = 0.02 + 0.36 * unit(rng);
+        const RadialLine line(theta);
+        double z, zx, zy;
+        bowls.sag_gradient(rho * line.cos, rho * line.sin, z, zx, zy);
+        const double slope = zx * line.cos + zy * line.sin, l = std::sqrt(1 + slope * slope);
+        const NoseTouch a = nose_touch(bowls, line, R, rho, z, slope);
+        const NoseTouch b = nose_touch(plain, line, R, rho, z, slope);
+        differ += a.held != b.held || a.centre_x != b.centre_x || a.centre_z != b.centre_z ||
+                  a.uncut != b.uncut;
+        const double x_c = rho - R * slope / l + 4e-3 * (unit(rng) - 0.5);
+        const double z_c = z + R / l + 4e-3 * (unit(rng) - 0.5);
+        const NoseOverlap o = nose_overlap(bowls, line, x_c, z_c, R, rho);
+        const NoseOverlap p = nose_overlap(plain, line, x_c, z_c, R, rho);
+        differ += std::abs(o.height - p.height) > 1e-15;
+        if (k % 6 == 0) {
+          const double depth = brute_overlap(bowls, a.centre_x, a.centre_z, R, theta, 4000);
+          ++brute;
+          overhung += depth > 1e-9;
+          deepest = std::max(deepest, depth);
+        }
+      }
+      MESSAGE("nose ", R, " mm: ", differ, " answers differ; of ", brute,
+              " placements against brute force the deepest ", deepest * 1e6, " nm");
+      CHECK(differ == 0);
+      CHECK(overhung == 0);
+    }
+  }
+
+  TEST_CASE(
+      "a grid's troughs barely tighter than the nose: pieces left on the parabola bound, the "
+      "same answers") {
+    // The grid A 5 µm, λ 0.3 × 0.4 mm bends to 1/(A k²) = 0.456 mm at most (max_bend) under a
+    // 0.5 mm nose, so the troughs' view lists creases and the pieces between them have no
+    // concavity bound, but h'' ≤ 0.19 /mm on them. Contacts on 48 lines, each placed through
+    // the view of the grid and through the view of a copy that gives no bound (every piece
+    // searched from both its ends): the same placements and, for noses moved about them, the
+    // same overlaps; and no placed nose overhangs the grid (brute force about R').
+    struct Unbounded final : SurfaceView {
+      using SurfaceView::SurfaceView;
+    };
+    const SinusoidalGrid grid(0.005, 0.3, 0.4);
+    const Unbounded plain(grid);
+    const double R = 0.5, stand_off = 5e-5, placed = R + stand_off;
+    REQUIRE(grid.max_bend(1.5) * placed > 1);
+    REQUIRE(grid.max_bend(1.5) - 1 / R < 0.2);
+    const TightTroughs bounded(grid, placed, 1.5), unbounded(plain, placed, 1.5);
+    REQUIRE(bounded.any());
+    REQUIRE(unbounded.any());
+    std::mt19937 rng(11);
+    std::uniform_real_distribution<double> unit(0, 1);
+    int differ = 0, held = 0, overhung = 0, contacts = 0;
+    double deepest = -1;
+    for (int k = 0; k < 48; ++k) {
+      const RadialLine line(0.013 + k * 2 * std::numbers::pi / 48);
+      for (int i = 0; i < 60; ++i, ++contacts) {
+        const double rho = 0.05 + 1.35 * unit(rng);
+        double z, zx, zy;
+        grid.sag_gradient(rho * line.cos, rho * line.sin, z, zx, zy);
+        const double slope = zx * line.cos + zy * line.sin, l = std::sqrt(1 + slope * slope);
+        const NoseTouch a = nose_touch(bounded, line, R, rho, z, slope, stand_off);
+        const NoseTouch b = nose_touch(unbounded, line, R, rho, z, slope, stand_off);
+        differ += a.held != b.held || a.centre_x != b.centre_x || a.centre_z != b.centre_z;
+        held += a.held;
+        const double depth = brute_overlap(grid, a.centre_x, a.centre_z, placed, line.theta, 4000);
+        overhung += depth > 1e-9;
+        deepest = std::max(deepest, depth);
+        const double x_c = rho - placed * slope / l + 4e-3 * (unit(rng) - 0.5);
+        const double z_c = z + placed / l + 4e-3 * (unit(rng) - 0.5);
+        const NoseOverlap o = nose_overlap(bounded, line, x_c, z_c, placed, rho);
+        const NoseOverlap p = nose_overlap(unbounded, line, x_c, z_c, placed, rho);
+        differ += std::abs(o.height - p.height) > 1e-15;
+      }
+    }
+    MESSAGE(contacts, " contacts, ", held, " held, ", differ, " answers differ; the deepest nose ",
+            deepest * 1e6, " nm");
+    CHECK(differ == 0);
+    CHECK(held > 20);
+    CHECK(overhung == 0);
   }
 
   TEST_CASE("a nose that just fits the design's concavity: the overlap searched to its peak") {

@@ -1,6 +1,8 @@
 #pragma once
 // The papers' test parts and classic freeform test pieces (shared/notes/optical-surfaces.md).
 
+#include <algorithm>
+#include <cmath>
 #include <numbers>
 
 #include "freeturn/surface/jet_surface.hpp"
@@ -44,6 +46,12 @@ class SinusoidalGrid final : public JetSurface<SinusoidalGrid> {
         kx_(2 * std::numbers::pi / wavelength_x),
         ky_(2 * std::numbers::pi / wavelength_y) {}
   const char* type() const override { return "sinusoidal_grid"; }
+
+  // Along a unit direction (c, s) the second derivative is
+  //   −A(kx²c² + ky²s²)·sin(kx x) sin(ky y) + 2A kx ky c s·cos(kx x) cos(ky y),
+  // and |sin sin| + |cos cos| ≤ 1 (Cauchy–Schwarz), so it is at most |A| times the larger of
+  // kx²c² + ky²s² and kx ky|2cs|, both ≤ max(kx, ky)²; reached at a crest or a trough.
+  double max_bend(double) const override { return std::abs(a_) * std::max(kx_ * kx_, ky_ * ky_); }
 
   template <typename T>
   T sag(const T& x, const T& y) const {

@@ -24,6 +24,9 @@ class XyPolynomial final : public JetSurface<XyPolynomial> {
                const std::vector<double>& coefficients);
   const char* type() const override { return "xy_polynomial"; }
   double defined_radius() const override { return conic_defined_radius(c_, k_); }
+  // The conic's largest eigenvalue within `radius` plus a bound of every term's second
+  // derivative along any direction there (xy_polynomial.cpp).
+  double max_bend(double radius) const override;
 
   template <typename T>
   T sag(const T& x, const T& y) const {

@@ -1,0 +1,83 @@
+// Surface::max_bend against the Hessian's largest eigenvalue sampled at random points within
+// the radius (each from the surface's own second derivatives, by jets): never below it, and
+// for the sinusoidal grid and the bare conic, reached.
+#include <doctest/doctest.h>
+
+#include <algorithm>
+#include <cmath>
+#include <numbers>
+#include <random>
+#include <vector>
+
+#include "freeturn/surface/sinusoidal.hpp"
+#include "freeturn/surface/xy_polynomial.hpp"
+
+using namespace freeturn;
+
+namespace {
+
+// The largest second derivative along a unit direction at (x, y): the Hessian's largest
+// eigenvalue, in closed form for a symmetric 2 × 2.
+double largest_bend(const Surface& s, double x, double y) {
+  const HeightDerivatives d = s.height_derivatives(x, y);
+  const double mean = 0.5 * (d.zxx + d.zyy), half = 0.5 * (d.zxx - d.zyy);
+  return mean + std::hypot(half, d.zxy);
+}
+
+// The largest of largest_bend over n random points within `radius` of the axis.
+double sampled_max_bend(const Surface& s, double radius, int n, unsigned seed) {
+  std::mt19937 rng(seed);
+  std::uniform_real_distribution<double> unit(0, 1);
+  double most = -1e300;
+  for (int k = 0; k < n; ++k) {
+    const double r = radius * std::sqrt(unit(rng)), phi = 2 * std::numbers::pi * unit(rng);
+    most = std::max(most, largest_bend(s, r * std::cos(phi), r * std::sin(phi)));
+  }
+  return most;
+}
+
+}  // namespace
+
+TEST_SUITE("surface") {
+  TEST_CASE("max_bend of a sinusoidal grid: |A| max(kx, ky)², never exceeded and reached") {
+    for (const auto& [a, lx, ly] : {std::array{0.005, 0.3, 0.4}, std::array{-0.02, 0.9, 0.25},
+                                    std::array{0.001, 0.5, 0.5}}) {
+      const SinusoidalGrid grid(a, lx, ly);
+      const double k = 2 * std::numbers::pi / std::min(lx, ly);
+      CHECK(grid.max_bend(1.0) == doctest::Approx(std::abs(a) * k * k).epsilon(1e-15));
+      const double sampled = sampled_max_bend(grid, 2.0, 200000, 3);
+      CHECK(sampled <= grid.max_bend(2.0) * (1 + 1e-12));
+      CHECK(sampled >= 0.99 * grid.max_bend(2.0));  // at a crest or a trough
+    }
+  }
+
+  TEST_CASE("max_bend of an XY polynomial: never below the bend anywhere within the radius") {
+    // A conic base of each kind (a bowl, a dome, a hyperboloid, an oblate ellipsoid) with
+    // terms to order 6, coefficients of a few micrometres over a 2 mm normalization.
+    std::mt19937 rng(17);
+    std::uniform_real_distribution<double> coefficient(-4e-3, 4e-3);
+    std::vector<double> terms(27);
+    for (double& v : terms) v = coefficient(rng);
+    for (const auto& [c, kappa] : {std::array{0.05, 0.0}, std::array{-0.05, -0.5},
+                                   std::array{0.1, -3.0}, std::array{-0.1, -2.0},
+                                   std::array{0.08, 2.0}}) {
+      CAPTURE(c);
+      CAPTURE(kappa);
+      const XyPolynomial s(c, kappa, 2.0, terms);
+      for (const double radius : {0.5, 1.5, 2.5}) {
+        CAPTURE(radius);
+        CHECK(std::isfinite(s.max_bend(radius)));
+        CHECK(sampled_max_bend(s, radius, 20000, 5) <= s.max_bend(radius));
+      }
+      // The conic alone: its bound is the largest eigenvalue, reached at the axis or the rim.
+      const XyPolynomial conic(c, kappa, 2.0, {});
+      const double bound = conic.max_bend(1.5);
+      const double reached =
+          std::max({largest_bend(conic, 0, 0), largest_bend(conic, 1.5, 0),
+                    largest_bend(conic, 0, -1.5)});
+      CHECK(reached == doctest::Approx(bound).epsilon(1e-12));
+    }
+    // Past the conic's defined radius: no bound.
+    CHECK(std::isinf(XyPolynomial(0.1, 0.0, 2.0, terms).max_bend(10.5)));
+  }
+}
