@@ -2,7 +2,6 @@
 
 #include <algorithm>
 #include <cmath>
-#include <limits>
 #include <string>
 
 #include "freeturn/core/error.hpp"
@@ -34,16 +33,7 @@ XyPolynomial::XyPolynomial(double curvature, double conic, double normalization_
 }
 
 double XyPolynomial::max_bend(double radius) const {
-  if (!(radius >= 0) || !std::isfinite(radius)) return std::numeric_limits<double>::infinity();
-  // The conic z = c r²/(1 + √q), q = 1 − (1 + k)c²r², bends c/q^{3/2} along the radius and
-  // c/√q along the circle. Where (1 + k) > 0, q falls with r: for c > 0 the larger, c/q^{3/2},
-  // is largest at the rim of the disc, and for c < 0 both are at most c (at the axis). Where
-  // (1 + k) ≤ 0, q ≥ 1 grows with r: for c > 0 both are at most c, and for c < 0 the larger,
-  // c/q^{3/2}, is largest at the rim.
-  const double q = 1 - (1 + k_) * c_ * c_ * radius * radius;
-  if (!(q > 0)) return std::numeric_limits<double>::infinity();
-  const double rim = c_ / (q * std::sqrt(q));
-  double bend = (1 + k_ > 0) == (c_ > 0) ? rim : c_;
+  double bend = conic_max_bend(c_, k_, radius);
   // A term A (x/R_n)^a (y/R_n)^b, n = a + b, along a unit direction u: its second derivative
   // is A/R_nⁿ (a(a−1)x^{a−2}y^b u_x² + 2ab x^{a−1}y^{b−1}u_x u_y + b(b−1)x^a y^{b−2}u_y²),
   // at most |A|/R_nⁿ · n(n−1) r^{n−2} where |x|, |y| ≤ r: the bracket is at most a(a−1) for
