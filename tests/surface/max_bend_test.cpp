@@ -13,6 +13,7 @@
 #include "freeturn/surface/even_asphere.hpp"
 #include "freeturn/surface/sinusoidal.hpp"
 #include "freeturn/surface/xy_polynomial.hpp"
+#include "freeturn/surface/zernike.hpp"
 
 using namespace freeturn;
 
@@ -103,5 +104,31 @@ TEST_SUITE("surface") {
           {largest_bend(conic, 0, 0), largest_bend(conic, 3.0, 0), largest_bend(conic, 0, -3.0)});
       CHECK(reached == doctest::Approx(bound).epsilon(1e-12));
     }
+  }
+  TEST_CASE("max_bend of a Zernike sag: never below the bend anywhere within the radius") {
+    // Noll terms 1 to 45 (to n = 8) of a few micrometres over a 2.5 mm normalization, with
+    // asphere terms, on each kind of conic.
+    std::mt19937 rng(23);
+    std::uniform_real_distribution<double> coefficient(-2e-3, 2e-3);
+    std::vector<double> terms(45);
+    for (double& v : terms) v = coefficient(rng);
+    const std::array<double, 9> asphere{1e-5, -2e-7};
+    for (const auto& [c, kappa] : {std::array{0.05, 0.0}, std::array{-0.05, -0.5},
+                                   std::array{0.1, -3.0}, std::array{0.0, 0.0}}) {
+      CAPTURE(c);
+      const Zernike s(c, kappa, asphere, 2.5, terms);
+      for (const double radius : {0.5, 1.5, 2.5}) {
+        CAPTURE(radius);
+        CHECK(std::isfinite(s.max_bend(radius)));
+        CHECK(sampled_max_bend(s, radius, 20000, 13) <= s.max_bend(radius));
+      }
+    }
+    // A single astigmatism term, Z6 = √6 ρ² cos 2φ = √6 (X² − Y²): it bends 2√6 A/R_n² along
+    // x, and the bound, 2·(√6 + √6)·A/R_n², counts both powers' coefficients.
+    std::vector<double> z6(6, 0.0);
+    z6[5] = 1e-3;
+    const Zernike astigmatism(0, 0, {}, 2.0, z6);
+    CHECK(largest_bend(astigmatism, 0.3, -0.7) == doctest::Approx(2 * std::sqrt(6.0) * 1e-3 / 4));
+    CHECK(astigmatism.max_bend(1.0) == doctest::Approx(4 * std::sqrt(6.0) * 1e-3 / 4));
   }
 }

@@ -1,5 +1,6 @@
 #include "freeturn/surface/even_asphere.hpp"
 
+#include "freeturn/surface/bend_bounds.hpp"
 #include "freeturn/surface/conic.hpp"
 
 #include <cmath>
@@ -15,15 +16,7 @@ double EvenAsphere::defined_radius() const {
 }
 
 double EvenAsphere::max_bend(double radius) const {
-  // A surface of revolution bends z'' along the radius and z'/r along the circle, and the
-  // Hessians of the conic and of the polynomial share those directions. A term A r^{2i}
-  // bends A·2i(2i − 1)r^{2i−2} and A·2i·r^{2i−2} along them, both at most
-  // |A|·2i(2i − 1)·radius^{2i−2} within the radius.
-  double bend = conic_max_bend(c_, k_, radius);
-  for (int i = 2; i <= 10; ++i)
-    bend += std::abs(a_[static_cast<std::size_t>(i - 2)]) * (2 * i) * (2 * i - 1) *
-            std::pow(radius, 2 * i - 2);
-  return bend;
+  return conic_max_bend(c_, k_, radius) + even_terms_max_bend(a_, radius);
 }
 
 void EvenAsphere::sag_in_s(double s, double& f, double& df, double& d2f) const {

@@ -5,6 +5,7 @@
 #include <string>
 
 #include "freeturn/core/error.hpp"
+#include "freeturn/surface/bend_bounds.hpp"
 
 namespace freeturn {
 
@@ -29,21 +30,12 @@ XyPolynomial::XyPolynomial(double curvature, double conic, double normalization_
     const Monomial m = xy_polynomial_term(static_cast<int>(i) + 1);
     terms_.push_back({m.a, m.b, coefficients[i]});
     order_ = std::max(order_, m.a + m.b);
+    abs_by_order_[static_cast<std::size_t>(m.a + m.b)] += std::abs(coefficients[i]);
   }
 }
 
 double XyPolynomial::max_bend(double radius) const {
-  double bend = conic_max_bend(c_, k_, radius);
-  // A term A (x/R_n)^a (y/R_n)^b, n = a + b, along a unit direction u: its second derivative
-  // is A/R_nⁿ (a(a−1)x^{a−2}y^b u_x² + 2ab x^{a−1}y^{b−1}u_x u_y + b(b−1)x^a y^{b−2}u_y²),
-  // at most |A|/R_nⁿ · n(n−1) r^{n−2} where |x|, |y| ≤ r: the bracket is at most a(a−1) for
-  // b = 0, and (a|u_x| + b|u_y|)² − a u_x² − b u_y² ≤ a² + b² − min(a, b) ≤ n(n−1) otherwise.
-  for (const Term& t : terms_) {
-    const int n = t.a + t.b;
-    if (n < 2) continue;
-    bend += std::abs(t.coefficient) * n * (n - 1) * std::pow(radius / rn_, n - 2) / (rn_ * rn_);
-  }
-  return bend;
+  return conic_max_bend(c_, k_, radius) + power_terms_max_bend(abs_by_order_, rn_, radius);
 }
 
 }  // namespace freeturn

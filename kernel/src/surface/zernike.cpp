@@ -5,6 +5,7 @@
 #include <string>
 
 #include "freeturn/core/error.hpp"
+#include "freeturn/surface/bend_bounds.hpp"
 
 namespace freeturn {
 namespace {
@@ -108,6 +109,18 @@ Zernike::Zernike(double curvature, double conic, const std::array<double, 9>& as
     (z.m < 0 ? it->sin_coefficient : it->cos_coefficient)[k] += c;
     max_m_ = std::max(max_m_, am);
   }
+  int degree = 0;
+  const std::vector<double> powers = zernike_power_coefficients(coefficients, degree);
+  abs_by_order_.assign(static_cast<std::size_t>(degree) + 1, 0.0);
+  for (int a = 0; a <= degree; ++a)
+    for (int b = 0; a + b <= degree; ++b)
+      abs_by_order_[static_cast<std::size_t>(a + b)] +=
+          std::abs(powers[static_cast<std::size_t>(a * (degree + 1) + b)]);
+}
+
+double Zernike::max_bend(double radius) const {
+  return conic_max_bend(c_, k_, radius) + even_terms_max_bend(asphere_, radius) +
+         power_terms_max_bend(abs_by_order_, rn_, radius);
 }
 
 }  // namespace freeturn

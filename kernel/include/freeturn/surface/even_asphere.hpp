@@ -21,8 +21,8 @@ class EvenAsphere final : public Surface {
 
   // Largest radius at which the conic's square root stays real (infinity if none).
   double defined_radius() const override;
-  // The conic's largest eigenvalue within `radius` plus Σ |A_2i|·2i(2i − 1)·r^(2i−2)
-  // (even_asphere.cpp).
+  // The conic's largest eigenvalue within `radius` plus a bound of the terms' bend there
+  // (surface/bend_bounds.hpp).
   double max_bend(double radius) const override;
 
   double curvature() const { return c_; }

@@ -3,6 +3,7 @@
 // ordered x, y, x², xy, y², x³, …; for x^a y^b with n = a + b the 1-based index is
 // i = (n−1)(n+2)/2 + b + 1 (x²y² is term 12). Up to 230 terms (order 20).
 
+#include <array>
 #include <vector>
 
 #include "freeturn/surface/conic.hpp"
@@ -24,8 +25,8 @@ class XyPolynomial final : public JetSurface<XyPolynomial> {
                const std::vector<double>& coefficients);
   const char* type() const override { return "xy_polynomial"; }
   double defined_radius() const override { return conic_defined_radius(c_, k_); }
-  // The conic's largest eigenvalue within `radius` plus a bound of every term's second
-  // derivative along any direction there (xy_polynomial.cpp).
+  // The conic's largest eigenvalue within `radius` plus a bound of the terms' bend there
+  // (surface/bend_bounds.hpp).
   double max_bend(double radius) const override;
 
   template <typename T>
@@ -53,6 +54,7 @@ class XyPolynomial final : public JetSurface<XyPolynomial> {
   double c_, k_, rn_;
   int order_ = 0;
   std::vector<Term> terms_;  // the non-zero ones
+  std::array<double, kMaxOrder + 1> abs_by_order_{};  // Σ |coefficient| of each order (max_bend)
 };
 
 }  // namespace freeturn

@@ -42,6 +42,10 @@ class Zernike final : public JetSurface<Zernike> {
           double normalization_radius, const std::vector<double>& coefficients);
   const char* type() const override { return "zernike"; }
   double defined_radius() const override { return conic_defined_radius(c_, k_); }
+  // The conic's largest eigenvalue within `radius` plus bounds of the asphere terms' and the
+  // Zernike terms' bend there, the latter from their expansion in powers of x and y
+  // (surface/bend_bounds.hpp; loose at high orders, where the powers' coefficients cancel).
+  double max_bend(double radius) const override;
 
   template <typename T>
   T sag(const T& x, const T& y) const {
@@ -101,6 +105,7 @@ class Zernike final : public JetSurface<Zernike> {
   std::array<double, 9> asphere_;
   int max_m_ = 0;
   std::vector<Order> orders_;
+  std::vector<double> abs_by_order_;  // Σ |power coefficient| of each order n (max_bend)
 };
 
 }  // namespace freeturn
