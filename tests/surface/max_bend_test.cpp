@@ -43,8 +43,8 @@ double sampled_max_bend(const Surface& s, double radius, int n, unsigned seed) {
 
 TEST_SUITE("surface") {
   TEST_CASE("max_bend of a sinusoidal grid: |A| max(kx, ky)², never exceeded and reached") {
-    for (const auto& [a, lx, ly] : {std::array{0.005, 0.3, 0.4}, std::array{-0.02, 0.9, 0.25},
-                                    std::array{0.001, 0.5, 0.5}}) {
+    for (const auto& [a, lx, ly] :
+         {std::array{0.005, 0.3, 0.4}, std::array{-0.02, 0.9, 0.25}, std::array{0.001, 0.5, 0.5}}) {
       const SinusoidalGrid grid(a, lx, ly);
       const double k = 2 * std::numbers::pi / std::min(lx, ly);
       CHECK(grid.max_bend(1.0) == doctest::Approx(std::abs(a) * k * k).epsilon(1e-15));
@@ -61,9 +61,9 @@ TEST_SUITE("surface") {
     std::uniform_real_distribution<double> coefficient(-4e-3, 4e-3);
     std::vector<double> terms(27);
     for (double& v : terms) v = coefficient(rng);
-    for (const auto& [c, kappa] : {std::array{0.05, 0.0}, std::array{-0.05, -0.5},
-                                   std::array{0.1, -3.0}, std::array{-0.1, -2.0},
-                                   std::array{0.08, 2.0}}) {
+    for (const auto& [c, kappa] :
+         {std::array{0.05, 0.0}, std::array{-0.05, -0.5}, std::array{0.1, -3.0},
+          std::array{-0.1, -2.0}, std::array{0.08, 2.0}}) {
       CAPTURE(c);
       CAPTURE(kappa);
       const XyPolynomial s(c, kappa, 2.0, terms);
@@ -75,9 +75,8 @@ TEST_SUITE("surface") {
       // The conic alone: its bound is the largest eigenvalue, reached at the axis or the rim.
       const XyPolynomial conic(c, kappa, 2.0, {});
       const double bound = conic.max_bend(1.5);
-      const double reached =
-          std::max({largest_bend(conic, 0, 0), largest_bend(conic, 1.5, 0),
-                    largest_bend(conic, 0, -1.5)});
+      const double reached = std::max(
+          {largest_bend(conic, 0, 0), largest_bend(conic, 1.5, 0), largest_bend(conic, 0, -1.5)});
       CHECK(reached == doctest::Approx(bound).epsilon(1e-12));
     }
     // Past the conic's defined radius: no bound.

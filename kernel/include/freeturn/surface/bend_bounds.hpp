@@ -20,7 +20,8 @@ inline double even_terms_max_bend(const std::array<double, 9>& a, double radius)
   if (!(radius >= 0) || !std::isfinite(radius)) return std::numeric_limits<double>::infinity();
   double bend = 0;
   for (int i = 10; i >= 2; --i)  // Horner in radius²
-    bend = bend * radius * radius + std::abs(a[static_cast<std::size_t>(i - 2)]) * (2 * i) * (2 * i - 1);
+    bend = bend * radius * radius +
+           std::abs(a[static_cast<std::size_t>(i - 2)]) * (2 * i) * (2 * i - 1);
   return bend * radius * radius;
 }
 
@@ -29,8 +30,8 @@ inline double even_terms_max_bend(const std::array<double, 9>& a, double radius)
 //   c/R_nⁿ (a(a−1)x^{a−2}y^b u_x² + 2ab x^{a−1}y^{b−1}u_x u_y + b(b−1)x^a y^{b−2}u_y²),
 // at most |c|/R_nⁿ · n(n−1) r^{n−2} where |x|, |y| ≤ r: the bracket is at most a(a−1) for
 // b = 0, and (a|u_x| + b|u_y|)² − a u_x² − b u_y² ≤ a² + b² − min(a, b) ≤ n(n−1) otherwise.
-inline double power_terms_max_bend(std::span<const double> abs_by_order, double normalization_radius,
-                                   double radius) {
+inline double power_terms_max_bend(std::span<const double> abs_by_order,
+                                   double normalization_radius, double radius) {
   if (!(radius >= 0) || !std::isfinite(radius)) return std::numeric_limits<double>::infinity();
   const double t = radius / normalization_radius;
   double bend = 0;
