@@ -104,6 +104,23 @@ struct SurfaceView : Surface {
   }
 };
 
+// A view that gives no bound of the design's bend (SurfaceView's max_bend, +∞): every crease
+// search runs in full, the reference the bounded searches are compared with.
+struct Unbounded final : SurfaceView {
+  using SurfaceView::SurfaceView;
+};
+
+// The section along `line` at ρ: the design's height, its slope dz/dρ, and √(1 + slope²).
+struct SectionPoint {
+  double z, slope, l;
+};
+SectionPoint section_point(const Surface& s, const RadialLine& line, double rho) {
+  double z, zx, zy;
+  s.sag_gradient(rho * line.cos, rho * line.sin, z, zx, zy);
+  const double slope = zx * line.cos + zy * line.sin;
+  return {z, slope, std::sqrt(1 + slope * slope)};
+}
+
 SpiralOptions spiral_options(double outer, double pitch, double tolerance, double nose_radius) {
   SpiralOptions o;
   o.outer_radius = outer;
@@ -334,9 +351,6 @@ TEST_SUITE("path") {
     // within kSettled (1 pm) of the best found, so the two agree to that 1 pm, not to 1e-13
     // mm; the view's crease searches (no bound to settle by) still fall short of brute force
     // by the fourth-order term of a search's last step (up to 3.7 pm here).
-    struct Unbounded final : SurfaceView {
-      using SurfaceView::SurfaceView;
-    };
     for (const double lens_radius : {-5.0, 1.5}) {
       LensletArrayOptions options = test::compound_eye_options(3.0);
       options.lens_radius = lens_radius;
@@ -352,9 +366,7 @@ TEST_SUITE("path") {
       for (int k = 0; k < 20000; ++k) {
         const double theta = 2 * std::numbers::pi * unit(rng), rho = 0.1 + 2.6 * unit(rng);
         const RadialLine line(theta);
-        double z, zx, zy;
-        eye.sag_gradient(rho * line.cos, rho * line.sin, z, zx, zy);
-        const double slope = zx * line.cos + zy * line.sin, l = std::sqrt(1 + slope * slope);
+        const auto [z, slope, l] = section_point(eye, line, rho);
         const NoseTouch a = nose_touch(eye, line, R, rho, z, slope);
         const NoseTouch b = nose_touch(plain, line, R, rho, z, slope);
         differ += a.held != b.held || std::abs(a.centre_x - b.centre_x) > 1e-9 ||
@@ -421,9 +433,6 @@ TEST_SUITE("path") {
     // that gives no bound (every piece searched from both ends) must give the same placements and
     // the same overlaps, and no placed nose may overhang the section (brute force, 4 001 values
     // across the nose, then ternary search).
-    struct Unbounded final : SurfaceView {
-      using SurfaceView::SurfaceView;
-    };
     LensletArrayOptions options;
     options.lens_radius = 0.1466;  // bowls
     options.lens_diameter = 0.1335;
@@ -447,9 +456,7 @@ TEST_SUITE("path") {
       for (int k = 0; k < 6000; ++k) {
         const double theta = 2 * std::numbers::pi * unit(rng), rho = 0.02 + 0.36 * unit(rng);
         const RadialLine line(theta);
-        double z, zx, zy;
-        bowls.sag_gradient(rho * line.cos, rho * line.sin, z, zx, zy);
-        const double slope = zx * line.cos + zy * line.sin, l = std::sqrt(1 + slope * slope);
+        const auto [z, slope, l] = section_point(bowls, line, rho);
         const NoseTouch a = nose_touch(bowls, line, R, rho, z, slope);
         const NoseTouch b = nose_touch(plain, line, R, rho, z, slope);
         differ += a.held != b.held || a.centre_x != b.centre_x || a.centre_z != b.centre_z ||
@@ -482,9 +489,6 @@ TEST_SUITE("path") {
     // the view of the grid and through the view of a copy that gives no bound (every piece
     // searched from both its ends): the same placements and, for noses moved about them, the
     // same overlaps; and no placed nose overhangs the grid (brute force about R').
-    struct Unbounded final : SurfaceView {
-      using SurfaceView::SurfaceView;
-    };
     const SinusoidalGrid grid(0.005, 0.3, 0.4);
     const Unbounded plain(grid);
     const double R = 0.5, stand_off = 5e-5, placed = R + stand_off;
@@ -501,9 +505,7 @@ TEST_SUITE("path") {
       const RadialLine line(0.013 + k * 2 * std::numbers::pi / 48);
       for (int i = 0; i < 60; ++i, ++contacts) {
         const double rho = 0.05 + 1.35 * unit(rng);
-        double z, zx, zy;
-        grid.sag_gradient(rho * line.cos, rho * line.sin, z, zx, zy);
-        const double slope = zx * line.cos + zy * line.sin, l = std::sqrt(1 + slope * slope);
+        const auto [z, slope, l] = section_point(grid, line, rho);
         const NoseTouch a = nose_touch(bounded, line, R, rho, z, slope, stand_off);
         const NoseTouch b = nose_touch(unbounded, line, R, rho, z, slope, stand_off);
         differ += a.held != b.held || a.centre_x != b.centre_x || a.centre_z != b.centre_z;

@@ -159,7 +159,7 @@ void settle_by_secant(const Section& section, double x_c, double z_c, double R, 
 // answer (a margin of 1e-12 mm covers the rounding of both).
 //
 // `up` (with m ≤ 0): a bound of h'' on the piece, h'' = g'' − R²/s³ ≤ max_bend − 1/R
-// (piece_rise_bound). A piece that bends more than the nose somewhere has no concavity
+// (piece_bend). A piece that bends more than the nose somewhere has no concavity
 // bound, but h still lies under the parabola h₀ + h'₀(ρ − ρ₀) + up(ρ − ρ₀)²/2 from any
 // value, whose largest value on [lo, hi] is at an end: a search from a crease whose
 // parabola stays below `floor` stops after its first value there too.
@@ -242,11 +242,16 @@ bool search(const Section& section, double x_c, double z_c, double R, double sta
   return false;
 }
 
-// The most the nose's height over a section piece within `radius` of the axis can curve
-// upward: h'' = g'' − R²/s³ ≤ max_bend − 1/R, since s ≤ R (search's `up`). +∞ where the
-// design gives no bound.
-double piece_rise_bound(const Surface& design, double R, double radius) {
-  return design.max_bend(radius) - 1 / R;
+// How the nose's height over a section piece within `radius` of the axis can curve, from one
+// bound of the design's bend: h'' = g'' − R²/s³ ≤ max_bend − 1/R = up, since s ≤ R. Where up
+// is negative, h is m-strongly concave with m = −up (section_concavity); otherwise m is 0
+// and up (+∞ where the design gives no bound) is search's parabola.
+struct PieceBend {
+  double m, up;
+};
+PieceBend piece_bend(const Surface& design, double R, double radius) {
+  const double up = design.max_bend(radius) - 1 / R;
+  return {up < 0 ? -up : 0.0, up};
 }
 
 // The pieces between creases: the bounds of the piece on `side` (±1) of crease k, within
@@ -378,8 +383,7 @@ bool directed_envelope_below_zero(const NearbyCrease* near, const EnvelopeTerm* 
 }  // namespace
 
 double section_concavity(const Surface& design, double R, double radius) {
-  const double m = 1 / R - design.max_bend(radius);
-  return m > 0 ? m : 0.0;
+  return piece_bend(design, R, radius).m;
 }
 
 NoseOverlap nose_overlap(const Surface& design, const RadialLine& line, double x_c, double z_c, double R,
@@ -413,8 +417,7 @@ NoseOverlap nose_overlap(const Surface& design, const RadialLine& line, double x
     return best;
   }
   const double radius = std::max(std::abs(lo), std::abs(hi));
-  const double m = section_concavity(design, R, radius);
-  const double up = m > 0 ? 0.0 : piece_rise_bound(design, R, radius);
+  const auto [m, up] = piece_bend(design, R, radius);
   // Each piece's ceiling (search): a piece searched before is searched again from a crease
   // only if it may still rise more than kUnsought above the largest height found. Most
   // often the hint's search has found its own piece's top to well under that, and the
@@ -1132,8 +1135,7 @@ NoseTouch offset_or_hold(const Surface& design, const Section& section, const Ra
   NoseOverlap worst;
   worst.height = tolerance;
   const double radius = std::max(std::abs(t.centre_x - reach), std::abs(t.centre_x + reach));
-  const double m = section_concavity(design, R, radius);
-  const double up = m > 0 ? 0.0 : piece_rise_bound(design, R, radius);
+  const auto [m, up] = piece_bend(design, R, radius);
   for (int k = 0; k < creases.count; ++k) {
     if (!(std::abs(creases.rho[k] - t.centre_x) < reach) &&
         !(std::abs(creases.rho[k] - rho_p) <= kOffCrease))
@@ -1207,8 +1209,7 @@ NoseTouch offset_or_hold(const Surface& design, const Section& section, const Ra
     // The bounds over the held nose's reach as well as the contact's.
     const double radius_h =
         std::max({radius, std::abs(h.centre_x - reach), std::abs(h.centre_x + reach)});
-    const double m_h = radius_h > radius ? section_concavity(design, R, radius_h) : m;
-    const double up_h = m_h > 0 ? 0.0 : piece_rise_bound(design, R, radius_h);
+    const auto [m_h, up_h] = radius_h > radius ? piece_bend(design, R, radius_h) : PieceBend{m, up};
     for (int k = 0; k < creases.count; ++k) {
       if (!(std::abs(creases.rho[k] - h.centre_x) < reach)) continue;
       for (const int side : {-1, 1}) {
