@@ -417,7 +417,8 @@ NoseOverlap nose_overlap(const Surface& design, const RadialLine& line, double x
     return best;
   }
   const double radius = std::max(std::abs(lo), std::abs(hi));
-  const auto [m, up] = piece_bend(design, R, radius);
+  const PieceBend bend = piece_bend(design, R, radius);
+  const double m = bend.m, up = bend.up;
   // Each piece's ceiling (search): a piece searched before is searched again from a crease
   // only if it may still rise more than kUnsought above the largest height found. Most
   // often the hint's search has found its own piece's top to well under that, and the
@@ -1135,7 +1136,10 @@ NoseTouch offset_or_hold(const Surface& design, const Section& section, const Ra
   NoseOverlap worst;
   worst.height = tolerance;
   const double radius = std::max(std::abs(t.centre_x - reach), std::abs(t.centre_x + reach));
-  const auto [m, up] = piece_bend(design, R, radius);
+  // Named, not bound by `auto [m, up]`: the lambdas below capture them, which Clang before
+  // 16 refuses for structured bindings.
+  const PieceBend bend = piece_bend(design, R, radius);
+  const double m = bend.m, up = bend.up;
   for (int k = 0; k < creases.count; ++k) {
     if (!(std::abs(creases.rho[k] - t.centre_x) < reach) &&
         !(std::abs(creases.rho[k] - rho_p) <= kOffCrease))
@@ -1209,7 +1213,7 @@ NoseTouch offset_or_hold(const Surface& design, const Section& section, const Ra
     // The bounds over the held nose's reach as well as the contact's.
     const double radius_h =
         std::max({radius, std::abs(h.centre_x - reach), std::abs(h.centre_x + reach)});
-    const auto [m_h, up_h] = radius_h > radius ? piece_bend(design, R, radius_h) : PieceBend{m, up};
+    const PieceBend bend_h = radius_h > radius ? piece_bend(design, R, radius_h) : bend;
     for (int k = 0; k < creases.count; ++k) {
       if (!(std::abs(creases.rho[k] - h.centre_x) < reach)) continue;
       for (const int side : {-1, 1}) {
@@ -1223,8 +1227,8 @@ NoseTouch offset_or_hold(const Surface& design, const Section& section, const Ra
         const auto holds = [&](double rho) { return rho > a && rho < b; };
         if (holds(h.rho)) continue;
         NoseOverlap o;
-        search_piece(section, h.centre_x, h.centre_z, R, creases.rho[k], a, b, side, m_h, up_h,
-                     tolerance, o);
+        search_piece(section, h.centre_x, h.centre_z, R, creases.rho[k], a, b, side, bend_h.m,
+                     bend_h.up, tolerance, o);
         if (o.height > tolerance) return true;
       }
     }
