@@ -11,6 +11,8 @@
 #include <vector>
 
 #include "freeturn/surface/even_asphere.hpp"
+#include "freeturn/surface/odd_asphere.hpp"
+#include "freeturn/surface/qbfs.hpp"
 #include "freeturn/surface/sinusoidal.hpp"
 #include "freeturn/surface/xy_polynomial.hpp"
 #include "freeturn/surface/zernike.hpp"
@@ -129,5 +131,71 @@ TEST_SUITE("surface") {
     const Zernike astigmatism(0, 0, {}, 2.0, z6);
     CHECK(largest_bend(astigmatism, 0.3, -0.7) == doctest::Approx(2 * std::sqrt(6.0) * 1e-3 / 4));
     CHECK(astigmatism.max_bend(1.0) == doctest::Approx(4 * std::sqrt(6.0) * 1e-3 / 4));
+  }
+
+  TEST_CASE(
+      "max_bend of an odd asphere: never below the bend, reached for one term, none for a cone") {
+    // β₂ … β₇ of either sign, sized to move the sag by micrometres at 5 mm, on each kind of
+    // conic; with β₁ < 0 (the tip of a cone pointing up, which bends no way but down).
+    const std::vector<double> terms{0.0, 3e-4, -2e-5, 1.5e-5, -4e-7, 2e-8, -1e-9};
+    std::vector<double> coned = terms;
+    coned[0] = -2e-3;
+    for (const auto& [c, kappa] :
+         {std::array{0.05, 0.0}, std::array{-0.05, -0.5}, std::array{0.1, -3.0},
+          std::array{-0.1, -2.0}, std::array{0.08, 2.0}}) {
+      CAPTURE(c);
+      CAPTURE(kappa);
+      for (const auto& beta : {terms, coned}) {
+        const OddAsphere s(c, kappa, beta);
+        for (const double radius : {1.0, 3.0, 5.0}) {
+          CAPTURE(radius);
+          CHECK(std::isfinite(s.max_bend(radius)));
+          CHECK(sampled_max_bend(s, radius, 20000, 11) <= s.max_bend(radius));
+        }
+      }
+    }
+    // β₃ r³ alone bends 6β₃r along the radius: reached at the rim.
+    const OddAsphere cubic(0.0, 0.0, {0.0, 0.0, 2e-4});
+    CHECK(cubic.max_bend(4.0) == doctest::Approx(6 * 2e-4 * 4.0).epsilon(1e-15));
+    CHECK(largest_bend(cubic, 0.0, 4.0) == doctest::Approx(cubic.max_bend(4.0)).epsilon(1e-12));
+    // A cone pointing down (β₁ > 0) bends β₁/r along the circle: no bound near the vertex.
+    CHECK(largest_bend(OddAsphere(0.0, 0.0, {1e-3}), 1e-6, 0.0) == doctest::Approx(1e3));
+    CHECK(std::isinf(OddAsphere(0.0, 0.0, {1e-3}).max_bend(1.0)));
+  }
+
+  TEST_CASE("max_bend of a Q-bfs asphere: never below the bend, within and past r_max") {
+    // a_0 … a_10 of a few micrometres over r_max 5 mm, on best-fit spheres of either sign
+    // and on a plane, out to 1.3 r_max (the nose's reach past a part cut to r_max).
+    std::mt19937 rng(29);
+    std::uniform_real_distribution<double> coefficient(-3e-3, 3e-3);
+    std::vector<double> terms(11);
+    for (double& v : terms) v = coefficient(rng);
+    for (const double c : {0.05, -0.05, 0.0, 0.12}) {
+      CAPTURE(c);
+      for (const std::size_t count : {std::size_t{1}, std::size_t{4}, terms.size()}) {
+        CAPTURE(count);
+        const Qbfs s(c, 5.0, std::vector<double>(terms.begin(), terms.begin() + count));
+        for (const double radius : {1.0, 3.0, 5.0, 6.5}) {
+          CAPTURE(radius);
+          const double bound = s.max_bend(radius);
+          CHECK(std::isfinite(bound));
+          CHECK(sampled_max_bend(s, radius, 20000, 17) <= bound);
+        }
+      }
+      // The best-fit sphere alone: c/(1 − c²r²)^{3/2} at the rim for a bowl, c for a dome.
+      const Qbfs sphere(c, 5.0, {});
+      const double reached = std::max(largest_bend(sphere, 0, 0), largest_bend(sphere, 0, 4.0));
+      CHECK(sphere.max_bend(4.0) == doctest::Approx(reached).epsilon(1e-12));
+    }
+    // A design of a few micrometres on a 20 mm sphere bends far less than a 0.5 mm nose, and
+    // the bound says so (the planner's searches and checks use it only under 1/R): within
+    // r_max it is under twice the sampled bend (0.104 against 0.054 /mm); 0.5 mm past r_max,
+    // where the Q_m grow fast, under a quarter of 1/R (0.30 against 0.075).
+    const Qbfs design(0.05, 5.0, {0.002, -0.001, 0.0005, 0.0003, -0.0002});
+    CHECK(design.max_bend(5.0) < 2 * sampled_max_bend(design, 5.0, 20000, 19));
+    CHECK(design.max_bend(5.5) < 0.5);
+    CHECK(design.max_bend(5.5) >= sampled_max_bend(design, 5.5, 20000, 19));
+    // Past the sphere's radius: no bound.
+    CHECK(std::isinf(Qbfs(0.1, 5.0, terms).max_bend(10.5)));
   }
 }

@@ -1,6 +1,8 @@
 #include "freeturn/surface/odd_asphere.hpp"
 
+#include <algorithm>
 #include <cmath>
+#include <limits>
 #include <string>
 
 #include "freeturn/core/error.hpp"
@@ -16,6 +18,24 @@ OddAsphere::OddAsphere(double curvature, double conic, std::vector<double> coeff
 }
 
 double OddAsphere::defined_radius() const { return conic_defined_radius(c_, k_); }
+
+// A surface of revolution z = p(r) bends p''(r) along the radius and p'(r)/r along the circle
+// (its Hessian's eigenvalues), and the largest eigenvalue of a sum is at most the sum of the
+// parts' largest (Weyl). β r^i bends β·i(i − 1)r^{i−2} and β·i·r^{i−2}: for i ≥ 2 at most
+// max(β, 0)·i(i − 1)·radius^{i−2} within the radius (both of β's sign, and growing with r);
+// for i = 1, 0 along the radius and β/r along the circle: no larger than 0 where β < 0 (a
+// cone pointing up, as a dome's tip), and without bound near the vertex where β > 0.
+double OddAsphere::max_bend(double radius) const {
+  double bend = conic_max_bend(c_, k_, radius);
+  if (!std::isfinite(bend) || (!beta_.empty() && beta_[0] > 0))
+    return std::numeric_limits<double>::infinity();
+  double power = 1.0;  // radius^{i−2}
+  for (std::size_t n = 1; n < beta_.size(); ++n, power *= radius) {
+    const double i = static_cast<double>(n + 1);
+    bend += std::max(beta_[n], 0.0) * i * (i - 1) * power;
+  }
+  return bend;
+}
 
 void OddAsphere::radial(double x, double y, double& z, double& g1, double& g2) const {
   const double s = x * x + y * y;

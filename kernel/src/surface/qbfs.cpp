@@ -6,6 +6,7 @@
 #include <string>
 
 #include "freeturn/core/error.hpp"
+#include "freeturn/surface/conic.hpp"
 
 namespace freeturn {
 
@@ -39,6 +40,68 @@ Qbfs::Qbfs(double curvature, double normalization_radius, std::vector<double> co
     throw InputError("coefficients", "has " + std::to_string(a_.size()) +
                                          " terms; Q-bfs takes at most 31 (a_0 … a_30)");
   recurrence(std::max<std::size_t>(a_.size(), 2), f_, g_, h_);
+  unit_series_bounds_ = series_bounds(1.0);
+}
+
+// Each Q_m's sup norm and its two derivatives' over [0, w_max], by the triangle inequality
+// through the recurrence of Q_m (series()) from those of the P_m:
+// - P_m = 2(U_m(x) + U_{m−1}(x)), x = 1 − 2w, U the Chebyshev polynomials of the second
+//   kind (P_0 = 2, P_1 = 2(2x + 1) = 6 − 8w, and P_m = 2x·P_{m−1} − P_{m−2} is U's
+//   recurrence). |U_k(x)| ≤ U_k(X) for |x| ≤ X = 2w_max − 1 ≥ 1 (|U_k| ≤ k + 1 = U_k(1)
+//   on [−1, 1], and |U_k(±y)| = U_k(y) grows on [1, ∞)).
+// - A polynomial of degree n on an interval of half-length L has |p'| ≤ n²/L·max|p| and
+//   |p''| ≤ n²(n² − 1)/(3L²)·max|p| (the Markov brothers' inequalities, T_n'(1) and
+//   T_n''(1) on [−1, 1]).
+std::array<double, 3> Qbfs::series_bounds(double w_max) const {
+  const double x = 2 * w_max - 1, half = 0.5 * w_max;
+  std::array<double, 3> sum{}, previous{}, before{}, q{1.0, 0.0, 0.0};  // Q_0 = 1
+  double u_before = 0, u = 1;                                           // U_{−1}(X), U_0(X)
+  for (std::size_t m = 0; m < a_.size(); ++m) {
+    if (m > 0) {
+      const double u_next = 2 * x * u - u_before;
+      u_before = u;
+      u = u_next;
+      const double n = static_cast<double>(m);
+      const double p = 2 * (u + u_before);
+      const std::array<double, 3> pm{p, n * n / half * p,
+                                     n * n * (n * n - 1) / (3 * half * half) * p};
+      before = previous;
+      previous = q;
+      for (int j = 0; j < 3; ++j) {
+        const double older = m >= 2 ? std::abs(h_[m - 2]) * before[j] : 0.0;
+        q[j] = (pm[j] + std::abs(g_[m - 1]) * previous[j] + older) / f_[m];
+      }
+    }
+    for (int j = 0; j < 3; ++j) sum[j] += std::abs(a_[m]) * q[j];
+  }
+  return sum;
+}
+
+// p(r) = F(s), s = r², bends p'' = 2F' + 4sF'' along the radius and p'/r = 2F' along the
+// circle; the sphere's part is conic_max_bend's. The departure D(s) = P(w)·γ(s), with
+// P = w(1 − w)S(w), w = s/r_max² and γ = (1 − c²s)^{−1/2}, whose γ, γ' = c²γ³/2 and
+// γ'' = 3c⁴γ⁵/4 are positive and grow with s: |D'| ≤ |P'|γ/r_max² + |P|γ' and
+// |D''| ≤ |P''|γ/r_max⁴ + 2|P'|γ'/r_max² + |P|γ'' at s = radius², with |P|, |P'|, |P''|
+// from w(1 − w)'s (at most max(1/4, w(w − 1)), 2w − 1 and 2 on [0, w ≥ 1]) and S's.
+// The departure bends at most 2|D'| + 4s|D''| either way.
+double Qbfs::max_bend(double radius) const {
+  constexpr double kInfinity = std::numeric_limits<double>::infinity();
+  const double sphere = conic_max_bend(c_, 0.0, radius);
+  if (!std::isfinite(sphere)) return kInfinity;
+  if (a_.empty()) return sphere;
+  const double s = radius * radius, w = std::max(1.0, s * inv_r2_);
+  const std::array<double, 3> series = w <= 1 ? unit_series_bounds_ : series_bounds(w);
+  const double e0 = std::max(0.25, w * (w - 1)), e1 = 2 * w - 1;
+  const double p0 = e0 * series[0], p1 = e1 * series[0] + e0 * series[1],
+               p2 = 2 * series[0] + 2 * e1 * series[1] + e0 * series[2];
+  const double gamma = 1 / std::sqrt(1 - c_ * c_ * s), c2 = c_ * c_;
+  const double gamma1 = 0.5 * c2 * gamma * gamma * gamma,
+               gamma2 = 0.75 * c2 * c2 * gamma * gamma * gamma * gamma * gamma;
+  const double d1 = p1 * inv_r2_ * gamma + p0 * gamma1;
+  const double d2 = p2 * inv_r2_ * inv_r2_ * gamma + 2 * p1 * inv_r2_ * gamma1 + p0 * gamma2;
+  // The sums above round by parts in 10¹⁵ of terms all positive.
+  const double bend = sphere + (2 * d1 + 4 * s * d2) * (1 + 1e-12);
+  return std::isfinite(bend) ? bend : kInfinity;
 }
 
 double Qbfs::defined_radius() const {

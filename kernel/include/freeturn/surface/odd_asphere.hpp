@@ -21,6 +21,7 @@ class OddAsphere final : public Surface {
   void sag_gradient(double x, double y, double& z, double& zx, double& zy) const override;
   HeightDerivatives height_derivatives(double x, double y) const override;
   double defined_radius() const override;
+  double max_bend(double radius) const override;
   bool has_creases() const override { return !beta_.empty() && beta_[0] != 0; }
 
  private:

@@ -7,6 +7,7 @@
 // the r.m.s. slope contributions of each term. Q_m by the three-term recurrence of
 // Forbes's Appendix A (f_m, g_m, h_m), evaluated in x = u² on jets.
 
+#include <array>
 #include <vector>
 
 #include "freeturn/surface/jet_surface.hpp"
@@ -21,6 +22,7 @@ class Qbfs final : public JetSurface<Qbfs> {
 
   const char* type() const override { return "qbfs"; }
   double defined_radius() const override;
+  double max_bend(double radius) const override;
 
   // Q_m(x) for m = 0 … count−1 (the polynomials themselves, for tests).
   static std::vector<double> polynomials(double x, int count);
@@ -59,6 +61,10 @@ class Qbfs final : public JetSurface<Qbfs> {
     return sum;
   }
 
+  // Bounds of |S|, |S'| and |S''| over w ∈ [0, w_max] (w_max ≥ 1), S(w) = Σ a_m Q_m(w)
+  // (max_bend).
+  std::array<double, 3> series_bounds(double w_max) const;
+
   // f_m, g_m, h_m for m < n (Forbes 2007, Appendix A).
   static void recurrence(std::size_t n, std::vector<double>& f, std::vector<double>& g,
                          std::vector<double>& h);
@@ -66,6 +72,7 @@ class Qbfs final : public JetSurface<Qbfs> {
   double c_, inv_r2_;
   std::vector<double> a_;
   std::vector<double> f_, g_, h_;  // recurrence coefficients
+  std::array<double, 3> unit_series_bounds_{};  // series_bounds(1): within r_max
 };
 
 }  // namespace freeturn
