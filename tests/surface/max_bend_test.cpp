@@ -10,6 +10,7 @@
 #include <random>
 #include <vector>
 
+#include "freeturn/surface/biconic.hpp"
 #include "freeturn/surface/even_asphere.hpp"
 #include "freeturn/surface/odd_asphere.hpp"
 #include "freeturn/surface/qbfs.hpp"
@@ -197,5 +198,30 @@ TEST_SUITE("surface") {
     CHECK(design.max_bend(5.5) >= sampled_max_bend(design, 5.5, 20000, 19));
     // Past the sphere's radius: no bound.
     CHECK(std::isinf(Qbfs(0.1, 5.0, terms).max_bend(10.5)));
+  }
+
+  TEST_CASE("max_bend of a biconic: never below the bend, near it on a gentle part") {
+    // Each pairing of bowl, dome and plane across the two sections, with conics of each kind.
+    for (const auto& [cx, cy, kx, ky] :
+         {std::array{0.05, 0.02, 0.0, -1.5}, std::array{-0.08, 0.03, -0.5, 2.0},
+          std::array{-0.05, -0.1, 1.0, -3.0}, std::array{0.0, 0.12, 0.0, -0.8},
+          std::array{0.1, 0.1, -0.6, -0.6}}) {
+      CAPTURE(cx);
+      CAPTURE(cy);
+      const Biconic s(cx, cy, kx, ky);
+      for (const double radius : {1.0, 3.0, 5.0}) {
+        CAPTURE(radius);
+        const double bound = s.max_bend(radius);
+        CHECK(std::isfinite(bound));
+        CHECK(sampled_max_bend(s, radius, 20000, 23) <= bound);
+      }
+    }
+    // At the vertex a biconic bends c_x along x and c_y along y: the bound at radius 0.
+    CHECK(Biconic(0.05, 0.02, 0.0, -1.5).max_bend(0.0) == doctest::Approx(0.05).epsilon(1e-15));
+    // An anamorphic part of R 20 and 50 mm over 5 mm: within 15 % of its sampled bend.
+    const Biconic part(0.05, 0.02, -0.5, 0.0);
+    CHECK(part.max_bend(5.0) < 1.15 * sampled_max_bend(part, 5.0, 20000, 29));
+    // Past the defined radius: no bound.
+    CHECK(std::isinf(Biconic(0.1, 0.05, 0.0, 0.0).max_bend(10.5)));
   }
 }

@@ -11,6 +11,7 @@ class Biconic final : public JetSurface<Biconic> {
   Biconic(double cx, double cy, double kx, double ky) : cx_(cx), cy_(cy), kx_(kx), ky_(ky) {}
   const char* type() const override { return "biconic"; }
   double defined_radius() const override;
+  double max_bend(double radius) const override;
 
   template <typename T>
   T sag(const T& x, const T& y) const {
