@@ -15,6 +15,7 @@
 #include "freeturn/surface/odd_asphere.hpp"
 #include "freeturn/surface/qbfs.hpp"
 #include "freeturn/surface/sinusoidal.hpp"
+#include "freeturn/surface/toroidal.hpp"
 #include "freeturn/surface/xy_polynomial.hpp"
 #include "freeturn/surface/zernike.hpp"
 
@@ -223,5 +224,33 @@ TEST_SUITE("surface") {
     CHECK(part.max_bend(5.0) < 1.15 * sampled_max_bend(part, 5.0, 20000, 29));
     // Past the defined radius: no bound.
     CHECK(std::isinf(Biconic(0.1, 0.05, 0.0, 0.0).max_bend(10.5)));
+  }
+
+  TEST_CASE("max_bend of a toroidal surface: never below the bend, near it on a gentle part") {
+    // Profiles of each kind (bowl, dome, with and without α terms) turned about axes on
+    // either side, and a cylinder (R_rot = 0).
+    const std::array<double, 8> alpha{2e-4, -3e-6, 4e-8};
+    for (const auto& [c, k, r_rot] :
+         {std::array{0.05, 0.0, 30.0}, std::array{-0.05, -0.5, -25.0}, std::array{0.1, -3.0, -12.0},
+          std::array{-0.02, 1.0, 15.0}, std::array{0.08, 0.0, 0.0}}) {
+      CAPTURE(c);
+      CAPTURE(r_rot);
+      for (const auto& terms : {std::array<double, 8>{}, alpha}) {
+        const Toroidal s(c, k, r_rot, terms);
+        for (const double radius : {1.0, 3.0, 5.0}) {
+          CAPTURE(radius);
+          const double bound = s.max_bend(radius);
+          CHECK(std::isfinite(bound));
+          CHECK(sampled_max_bend(s, radius, 20000, 31) <= bound);
+        }
+      }
+    }
+    // A cylinder's profile bends c at its vertex line: the bound at radius 0.
+    CHECK(Toroidal(0.08, 0.0, 0.0, {}).max_bend(0.0) == doctest::Approx(0.08).epsilon(1e-11));
+    // A toric lens, profile R 40 mm turned at 25 mm, over 5 mm: within 25 % of its sampled bend.
+    const Toroidal part(0.025, 0.0, 25.0, {});
+    CHECK(part.max_bend(5.0) < 1.25 * sampled_max_bend(part, 5.0, 20000, 37));
+    // The axis inside the reach of the radius (|R_rot| − max|z| ≤ r): no bound.
+    CHECK(std::isinf(Toroidal(0.05, 0.0, 4.0, {}).max_bend(5.0)));
   }
 }

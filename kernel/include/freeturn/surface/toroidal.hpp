@@ -18,6 +18,7 @@ class Toroidal final : public JetSurface<Toroidal> {
            const std::array<double, 8>& alpha)
       : c_(curvature), k_(conic), r_(rotation_radius), alpha_(alpha) {}
   const char* type() const override { return "toroidal"; }
+  double max_bend(double radius) const override;
 
   template <typename T>
   T sag(const T& x, const T& y) const {
