@@ -253,4 +253,18 @@ TEST_SUITE("surface") {
     // The axis inside the reach of the radius (|R_rot| − max|z| ≤ r): no bound.
     CHECK(std::isinf(Toroidal(0.05, 0.0, 4.0, {}).max_bend(5.0)));
   }
+
+  TEST_CASE("max_bend of an Alvarez surface: 2√2|A|r, never exceeded and reached") {
+    for (const auto& [a, d] : {std::array{0.002, 0.0}, std::array{-0.01, 0.3}}) {
+      CAPTURE(a);
+      const Alvarez s(a, d);
+      for (const double radius : {1.0, 4.0}) {
+        const double bound = s.max_bend(radius);
+        CHECK(sampled_max_bend(s, radius, 20000, 41) <= bound * (1 + 1e-12));
+        // On the rim at 45°, x of A's sign: 2A x + 2|A y| = 2√2|A| r.
+        const double x = (a > 0 ? 1 : -1) * radius / std::sqrt(2.0), y = radius / std::sqrt(2.0);
+        CHECK(largest_bend(s, x, y) == doctest::Approx(bound).epsilon(1e-12));
+      }
+    }
+  }
 }

@@ -3,6 +3,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <limits>
 #include <numbers>
 
 #include "freeturn/surface/jet_surface.hpp"
@@ -67,6 +68,13 @@ class Alvarez final : public JetSurface<Alvarez> {
  public:
   Alvarez(double a, double d) : a_(a), d_(d) {}
   const char* type() const override { return "alvarez"; }
+
+  // The Hessian is 2A[[x, y], [y, x]], of eigenvalues 2A x ± 2|A y|: the larger is at most
+  // 2|A|(|x| + |y|) ≤ 2√2|A|·r, reached on the disc's rim at 45° to the axes.
+  double max_bend(double radius) const override {
+    if (!(radius >= 0) || !std::isfinite(radius)) return std::numeric_limits<double>::infinity();
+    return 2 * std::numbers::sqrt2 * std::abs(a_) * radius;
+  }
 
   template <typename T>
   T sag(const T& x, const T& y) const {
