@@ -6,6 +6,7 @@
 #include <algorithm>
 #include <array>
 #include <cmath>
+#include <memory>
 #include <numbers>
 #include <random>
 #include <vector>
@@ -16,6 +17,7 @@
 #include "freeturn/surface/qbfs.hpp"
 #include "freeturn/surface/sinusoidal.hpp"
 #include "freeturn/surface/toroidal.hpp"
+#include "freeturn/surface/transformed_surface.hpp"
 #include "freeturn/surface/xy_polynomial.hpp"
 #include "freeturn/surface/zernike.hpp"
 
@@ -29,6 +31,20 @@ double largest_bend(const Surface& s, double x, double y) {
   const HeightDerivatives d = s.height_derivatives(x, y);
   const double mean = 0.5 * (d.zxx + d.zyy), half = 0.5 * (d.zxx - d.zyy);
   return mean + std::hypot(half, d.zxy);
+}
+
+// The largest |∇z| over n random points within `radius` of the axis.
+double sampled_max_slope(const Surface& s, double radius, int n, unsigned seed) {
+  std::mt19937 rng(seed);
+  std::uniform_real_distribution<double> unit(0, 1);
+  double most = 0;
+  for (int k = 0; k < n; ++k) {
+    const double r = radius * std::sqrt(unit(rng)), phi = 2 * std::numbers::pi * unit(rng);
+    double z, zx, zy;
+    s.sag_gradient(r * std::cos(phi), r * std::sin(phi), z, zx, zy);
+    most = std::max(most, std::hypot(zx, zy));
+  }
+  return most;
 }
 
 // The largest of largest_bend over n random points within `radius` of the axis.
@@ -266,5 +282,60 @@ TEST_SUITE("surface") {
         CHECK(largest_bend(s, x, y) == doctest::Approx(bound).epsilon(1e-12));
       }
     }
+  }
+
+  TEST_CASE("max_slope of an even asphere: never below the slope, the bare conic's reached") {
+    const std::array<double, 9> terms{2e-6, -4e-8, 3e-10, -1e-12};
+    for (const auto& [c, kappa] :
+         {std::array{0.05, 0.0}, std::array{-0.05, -0.5}, std::array{0.1, -3.0},
+          std::array{-0.1, -2.0}, std::array{0.08, 2.0}}) {
+      CAPTURE(c);
+      CAPTURE(kappa);
+      const EvenAsphere s(c, kappa, terms);
+      for (const double radius : {1.0, 3.0, 5.0})
+        CHECK(sampled_max_slope(s, radius, 20000, 43) <= s.max_slope(radius));
+      // The conic's slope c·r/q grows with r: at the rim it is the bound.
+      const EvenAsphere conic(c, kappa);
+      double z, zx, zy;
+      conic.sag_gradient(0.0, 3.0, z, zx, zy);
+      CHECK(std::hypot(zx, zy) == doctest::Approx(conic.max_slope(3.0)).epsilon(1e-12));
+    }
+  }
+
+  TEST_CASE("max_bend of a tilted segment: never below the bend, near it on an off-axis parabola") {
+    // Off-axis parabolas (R 200 mm and 60 mm, decentred 40 and 20 mm, each on its own axis)
+    // and two aspheres tilted by explicit angles, over 5 mm. The 20 mm bowl tilted 0.22 rad
+    // bends 0.07 mm⁻¹ where the world sees it steepest, more than the parent's own bound
+    // there (0.053): the tilt's 1/cos³θ is needed.
+    struct Segment {
+      double c, k, decentre;
+      bool align;
+    };
+    for (const Segment& g : {Segment{1 / 200.0, -1, 40, true}, Segment{1 / 60.0, -1, 20, true},
+                             Segment{-1 / 80.0, -0.5, 10, false}, Segment{0.05, 0.0, 0, false}}) {
+      CAPTURE(g.c);
+      auto parent = std::make_unique<EvenAsphere>(g.c, g.k, std::array<double, 9>{1e-7});
+      const Eigen::Matrix3d r =
+          g.align ? TransformedSurface::rotation_aligning_normal(*parent, g.decentre, 0)
+                  : TransformedSurface::rotation_from_tilts(0.1, -0.2);
+      const TransformedSurface s(std::move(parent), g.decentre, 0, r);
+      for (const double radius : {1.0, 5.0}) {
+        CAPTURE(radius);
+        const double bound = s.max_bend(radius);
+        CHECK(std::isfinite(bound));
+        const double sampled = sampled_max_bend(s, radius, 20000, 47);
+        CHECK(sampled <= bound);
+        // The 200 mm parabola with its A4 bends about 0.0067 mm⁻¹ on its 5 mm segment; the
+        // bound takes the parent's bend 45 mm out and its normal's angle there plus the
+        // tilt, 24° where the segment's own normal turns by a few, and is within twice that
+        // (0.0108), far under any nose's 1/R.
+        if (g.c == 1 / 200.0) CHECK(bound < 2 * sampled);
+      }
+    }
+    // A tilt that turns the parent's normal past 90° somewhere: no bound.
+    auto steep = std::make_unique<EvenAsphere>(0.1, 0.0);
+    const TransformedSurface tilted(std::move(steep), 0, 0,
+                                    TransformedSurface::rotation_from_tilts(1.2, 0.0));
+    CHECK(std::isinf(tilted.max_bend(5.0)));
   }
 }

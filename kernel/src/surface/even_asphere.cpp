@@ -19,6 +19,10 @@ double EvenAsphere::max_bend(double radius) const {
   return conic_max_bend(c_, k_, radius) + even_terms_max_bend(a_, radius);
 }
 
+double EvenAsphere::max_slope(double radius) const {
+  return conic_max_slope(c_, k_, radius) + even_terms_max_slope(a_, radius);
+}
+
 void EvenAsphere::sag_in_s(double s, double& f, double& df, double& d2f) const {
   // Conic: with q = √(1 − (1+k)c²s), F = c s/(1+q), F' = c/(2q), F'' = (1+k)c³/(4q³).
   // The form c s/(1+q) avoids the cancellation of (1 − q)/((1+k)c) near the vertex.

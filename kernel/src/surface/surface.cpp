@@ -36,6 +36,10 @@ int Surface::line_creases(double x0, double y0, const RadialLine& line, double r
 
 double Surface::max_bend(double) const { return std::numeric_limits<double>::infinity(); }
 
+double Surface::max_slope(double) const {
+  return std::numeric_limits<double>::infinity();
+}
+
 int Surface::creases_near(double, double, double, std::span<NearbyCrease>) const {
   return has_creases() ? -1 : 0;
 }

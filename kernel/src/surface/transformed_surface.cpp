@@ -1,7 +1,9 @@
 #include "freeturn/surface/transformed_surface.hpp"
 
+#include <algorithm>
 #include <cmath>
 #include <limits>
+#include <numbers>
 
 namespace freeturn {
 
@@ -37,9 +39,45 @@ int TransformedSurface::creases_near(double x, double y, double radius,
   return parent_->creases_near(x + origin_.x(), y + origin_.y(), radius, out);
 }
 
+double TransformedSurface::max_slope(double radius) const {
+  if (!untilted_) return Surface::max_slope(radius);
+  return parent_->max_slope(radius + std::hypot(origin_.x(), origin_.y()));
+}
+
+// Tilted, from the parent's slope and bend. A graph z(x, y) bends along a unit direction u
+// by uᵀHu = κ_n·√(1 + |∇z|²)·(1 + (∇z·u)²), κ_n the normal curvature along the surface's
+// tangent over u (the second fundamental form over the first). κ_n is the surface's own,
+// the same in either frame while both normals point up, and in the parent's frame
+// κ_n ≤ max(λ_max(H_parent), 0) (its denominators are at least 1). So the world bends at
+// most max(B_parent, 0)/cos³θ, θ the world normal's largest angle from z: at most the
+// parent normal's angle from its z, atan(S_parent), plus the tilt τ between the two z axes
+// (the angles of a triangle on the sphere).
+//
+// Where on the parent: a world point w = (x, y, z) within r of the axis lands at
+// Rᵀw + o, within |w| of the decentred point, and |z| ≤ r·tan θ (the sag is 0 at the
+// axis), so within ρ_o + r/cos θ of the parent's axis, ρ_o = |o_xy|. A reach ρ with
+// ρ_o + r/cos θ(ρ) < ρ holds the whole disc: a path out from the axis that first met ρ
+// would have met it within that sum. Such a reach is found by iterating the sum upward.
 double TransformedSurface::max_bend(double radius) const {
-  if (!untilted_) return Surface::max_bend(radius);
-  return parent_->max_bend(radius + std::hypot(origin_.x(), origin_.y()));
+  constexpr double kInfinity = std::numeric_limits<double>::infinity();
+  const double from_axis = std::hypot(origin_.x(), origin_.y());
+  if (untilted_) return parent_->max_bend(radius + from_axis);
+  if (!(radius >= 0) || !std::isfinite(radius)) return kInfinity;
+  const double tilt = std::acos(std::clamp(rt_(2, 2), -1.0, 1.0));
+  double reach = from_axis + radius;
+  for (int it = 0; it < 64; ++it) {
+    const double angle = tilt + std::atan(parent_->max_slope(reach));
+    if (!(angle < 0.49 * std::numbers::pi)) return kInfinity;
+    const double cos_angle = std::cos(angle);
+    const double needed = from_axis + radius / cos_angle;
+    if (needed < reach) {
+      const double bend = std::max(parent_->max_bend(reach), 0.0);
+      if (!(bend < kInfinity)) return kInfinity;
+      return bend / (cos_angle * cos_angle * cos_angle) * (1 + 1e-12);
+    }
+    reach = needed * (1 + 1e-3) + 1e-9;
+  }
+  return kInfinity;
 }
 
 Eigen::Matrix3d TransformedSurface::rotation_aligning_normal(const Surface& parent, double x,

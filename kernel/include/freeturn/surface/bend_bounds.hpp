@@ -25,6 +25,15 @@ inline double even_terms_max_bend(const std::array<double, 9>& a, double radius)
   return bend * radius * radius;
 }
 
+// The same terms' largest slope within the radius: |A|·2i·radius^{2i−1} each.
+inline double even_terms_max_slope(const std::array<double, 9>& a, double radius) {
+  if (!(radius >= 0) || !std::isfinite(radius)) return std::numeric_limits<double>::infinity();
+  double slope = 0;
+  for (int i = 10; i >= 2; --i)  // Horner in radius²
+    slope = slope * radius * radius + std::abs(a[static_cast<std::size_t>(i - 2)]) * (2 * i);
+  return slope * radius * radius * radius;
+}
+
 // The polynomial Σ c_ab (x/R_n)^a (y/R_n)^b, given Σ |c_ab| over each order n = a + b
 // (abs_by_order[n]). A term along a unit direction u bends
 //   c/R_nⁿ (a(a−1)x^{a−2}y^b u_x² + 2ab x^{a−1}y^{b−1}u_x u_y + b(b−1)x^a y^{b−2}u_y²),

@@ -36,4 +36,13 @@ inline double conic_max_bend(double c, double k, double radius) {
   return (1 + k > 0) == (c > 0) ? c / (q2 * std::sqrt(q2)) : c;
 }
 
+// The conic's largest slope within `radius` of its axis: |c|r/q, which grows with r whatever
+// the sign of (1 + k); +∞ where the conic is not defined out to `radius`.
+inline double conic_max_slope(double c, double k, double radius) {
+  if (!(radius >= 0) || !std::isfinite(radius)) return std::numeric_limits<double>::infinity();
+  const double q2 = 1 - (1 + k) * c * c * radius * radius;
+  if (!(q2 > 0)) return std::numeric_limits<double>::infinity();
+  return std::abs(c) * radius / std::sqrt(q2);
+}
+
 }  // namespace freeturn

@@ -24,6 +24,7 @@ class EvenAsphere final : public Surface {
   // The conic's largest eigenvalue within `radius` plus a bound of the terms' bend there
   // (surface/bend_bounds.hpp).
   double max_bend(double radius) const override;
+  double max_slope(double radius) const override;
 
   double curvature() const { return c_; }
   double conic() const { return k_; }

@@ -126,6 +126,11 @@ class Surface {
   // below the truth would hide an overlap, so it must hold everywhere it is asked.
   virtual double max_bend(double radius) const;
 
+  // An upper bound of the surface's slope |∇z| at the points within `radius` of the z axis,
+  // away from creases; +∞ when not known (the default). A tilted segment's bend is bounded
+  // from its parent's slope and bend (TransformedSurface::max_bend).
+  virtual double max_slope(double radius) const;
+
   // The creases within `radius` of (x, y) in (x, y), bounded (NearbyCrease): writes at most
   // out.size() of them and returns how many, or −1 when they are not known (the default for
   // a surface with creases) or do not fit: then nothing may be assumed of the creases

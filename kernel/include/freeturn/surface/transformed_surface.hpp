@@ -45,11 +45,13 @@ class TransformedSurface final : public Surface {
   // and seen along z as ellipses (ProjectedRims), and a section's crossings are found in
   // closed form. Otherwise no crease is reported: the planner neither holds nor rolls the
   // nose there, counts the jumps it finds (UNSAFE), and the global gouge check judges
-  // those places. Tilted, the creases near a point and the bend are not known.
+  // those places. Tilted, the creases near a point are not known, and the bend is bounded
+  // from the parent's slope and bend where the parent bounds both (max_bend).
   int section_creases(const RadialLine& line, double rho_lo, double rho_hi,
                       std::span<double> out) const override;
   int creases_near(double x, double y, double radius, std::span<NearbyCrease> out) const override;
   double max_bend(double radius) const override;
+  double max_slope(double radius) const override;
 
   const Surface& parent() const { return *parent_; }
   // The parent-frame point of world point w.
