@@ -338,4 +338,37 @@ TEST_SUITE("surface") {
                                     TransformedSurface::rotation_from_tilts(1.2, 0.0));
     CHECK(std::isinf(tilted.max_bend(5.0)));
   }
+
+  TEST_CASE("max_slope of the polynomial surfaces: never below the slope within the radius") {
+    std::mt19937 rng(53);
+    std::uniform_real_distribution<double> coefficient(-3e-3, 3e-3);
+    std::vector<double> xy(27), zernike(45), q(11);
+    for (auto* terms : {&xy, &zernike, &q})
+      for (double& v : *terms) v = coefficient(rng);
+    const std::vector<double> odd{-2e-3, 3e-4, -2e-5, 1.5e-5, -4e-7, 2e-8, -1e-9};
+    for (const auto& [c, kappa] : {std::array{0.05, 0.0}, std::array{-0.05, -0.5},
+                                   std::array{0.1, -3.0}, std::array{0.0, 0.0}}) {
+      CAPTURE(c);
+      const XyPolynomial s_xy(c, kappa, 2.0, xy);
+      const Zernike s_zernike(c, kappa, {1e-5, -2e-7}, 2.5, zernike);
+      const OddAsphere s_odd(c, kappa, odd);
+      const Qbfs s_q(c, 5.0, q);
+      for (const double radius : {0.5, 2.0, 4.0}) {
+        CAPTURE(radius);
+        for (const Surface* s : std::array<const Surface*, 4>{&s_xy, &s_zernike, &s_odd, &s_q}) {
+          CAPTURE(s->type());
+          const double bound = s->max_slope(radius);
+          CHECK(std::isfinite(bound));
+          CHECK(sampled_max_slope(*s, radius, 20000, 59) <= bound);
+        }
+      }
+    }
+    // X³ alone over R_n = 2 (coefficient 1e-3): slope 3·1e-3·x²/8, reached on the x axis.
+    std::vector<double> cubic(6, 0.0);
+    cubic[5] = 1e-3;  // term 6, x³ (x, y, x², xy, y², x³, …)
+    const XyPolynomial x3(0, 0, 2.0, cubic);
+    double z, zx, zy;
+    x3.sag_gradient(1.5, 0.0, z, zx, zy);
+    CHECK(std::hypot(zx, zy) == doctest::Approx(x3.max_slope(1.5)).epsilon(1e-12));
+  }
 }

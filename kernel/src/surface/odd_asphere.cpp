@@ -37,6 +37,16 @@ double OddAsphere::max_bend(double radius) const {
   return bend;
 }
 
+// β_i r^i rises β_i·i·r^{i−1}, at most |β_i|·i·radius^{i−1} steep within the radius.
+double OddAsphere::max_slope(double radius) const {
+  double slope = conic_max_slope(c_, k_, radius);
+  if (!std::isfinite(slope)) return std::numeric_limits<double>::infinity();
+  double power = 1.0;  // radius^{i−1}
+  for (std::size_t n = 0; n < beta_.size(); ++n, power *= radius)
+    slope += std::abs(beta_[n]) * static_cast<double>(n + 1) * power;
+  return slope;
+}
+
 void OddAsphere::radial(double x, double y, double& z, double& g1, double& g2) const {
   const double s = x * x + y * y;
   const double r = std::sqrt(s);

@@ -77,19 +77,17 @@ std::array<double, 3> Qbfs::series_bounds(double w_max) const {
   return sum;
 }
 
-// p(r) = F(s), s = r², bends p'' = 2F' + 4sF'' along the radius and p'/r = 2F' along the
-// circle; the sphere's part is conic_max_bend's. The departure D(s) = P(w)·γ(s), with
-// P = w(1 − w)S(w), w = s/r_max² and γ = (1 − c²s)^{−1/2}, whose γ, γ' = c²γ³/2 and
-// γ'' = 3c⁴γ⁵/4 are positive and grow with s: |D'| ≤ |P'|γ/r_max² + |P|γ' and
-// |D''| ≤ |P''|γ/r_max⁴ + 2|P'|γ'/r_max² + |P|γ'' at s = radius², with |P|, |P'|, |P''|
-// from w(1 − w)'s (at most max(1/4, w(w − 1)), 2w − 1 and 2 on [0, w ≥ 1]) and S's.
-// The departure bends at most 2|D'| + 4s|D''| either way.
-double Qbfs::max_bend(double radius) const {
-  constexpr double kInfinity = std::numeric_limits<double>::infinity();
-  const double sphere = conic_max_bend(c_, 0.0, radius);
-  if (!std::isfinite(sphere)) return kInfinity;
-  if (a_.empty()) return sphere;
-  const double s = radius * radius, w = std::max(1.0, s * inv_r2_);
+// The departure D(s) = P(w)·γ(s), with P = w(1 − w)S(w), w = s/r_max² and
+// γ = (1 − c²s)^{−1/2}, whose γ, γ' = c²γ³/2 and γ'' = 3c⁴γ⁵/4 are positive and grow with s:
+// |D'| ≤ |P'|γ/r_max² + |P|γ' and |D''| ≤ |P''|γ/r_max⁴ + 2|P'|γ'/r_max² + |P|γ'' at
+// s = radius², with |P|, |P'|, |P''| from w(1 − w)'s (at most max(1/4, w(w − 1)), 2w − 1 and
+// 2 on [0, w ≥ 1]) and S's. False where the sphere does not reach the radius.
+bool Qbfs::departure_bounds(double radius, double& d1, double& d2) const {
+  const double s = radius * radius;
+  if (!(radius >= 0) || !std::isfinite(radius) || !(c_ * c_ * s < 1)) return false;
+  d1 = d2 = 0;
+  if (a_.empty()) return true;
+  const double w = std::max(1.0, s * inv_r2_);
   const std::array<double, 3> series = w <= 1 ? unit_series_bounds_ : series_bounds(w);
   const double e0 = std::max(0.25, w * (w - 1)), e1 = 2 * w - 1;
   const double p0 = e0 * series[0], p1 = e1 * series[0] + e0 * series[1],
@@ -97,11 +95,25 @@ double Qbfs::max_bend(double radius) const {
   const double gamma = 1 / std::sqrt(1 - c_ * c_ * s), c2 = c_ * c_;
   const double gamma1 = 0.5 * c2 * gamma * gamma * gamma,
                gamma2 = 0.75 * c2 * c2 * gamma * gamma * gamma * gamma * gamma;
-  const double d1 = p1 * inv_r2_ * gamma + p0 * gamma1;
-  const double d2 = p2 * inv_r2_ * inv_r2_ * gamma + 2 * p1 * inv_r2_ * gamma1 + p0 * gamma2;
-  // The sums above round by parts in 10¹⁵ of terms all positive.
-  const double bend = sphere + (2 * d1 + 4 * s * d2) * (1 + 1e-12);
-  return std::isfinite(bend) ? bend : kInfinity;
+  // The sums round by parts in 10¹⁵ of terms all positive.
+  d1 = (p1 * inv_r2_ * gamma + p0 * gamma1) * (1 + 1e-12);
+  d2 = (p2 * inv_r2_ * inv_r2_ * gamma + 2 * p1 * inv_r2_ * gamma1 + p0 * gamma2) * (1 + 1e-12);
+  return std::isfinite(d1) && std::isfinite(d2);
+}
+
+// p(r) = F(s), s = r², bends p'' = 2F' + 4sF'' along the radius and p'/r = 2F' along the
+// circle: the departure at most 2|D'| + 4s|D''| either way, the sphere conic_max_bend's.
+double Qbfs::max_bend(double radius) const {
+  double d1, d2;
+  if (!departure_bounds(radius, d1, d2)) return std::numeric_limits<double>::infinity();
+  return conic_max_bend(c_, 0.0, radius) + 2 * d1 + 4 * radius * radius * d2;
+}
+
+// p'(r) = 2r F'(s): the departure at most 2r|D'| steep, the sphere conic_max_slope's.
+double Qbfs::max_slope(double radius) const {
+  double d1, d2;
+  if (!departure_bounds(radius, d1, d2)) return std::numeric_limits<double>::infinity();
+  return conic_max_slope(c_, 0.0, radius) + 2 * radius * d1;
 }
 
 double Qbfs::defined_radius() const {

@@ -38,4 +38,8 @@ double XyPolynomial::max_bend(double radius) const {
   return conic_max_bend(c_, k_, radius) + power_terms_max_bend(abs_by_order_, rn_, radius);
 }
 
+double XyPolynomial::max_slope(double radius) const {
+  return conic_max_slope(c_, k_, radius) + power_terms_max_slope(abs_by_order_, rn_, radius);
+}
+
 }  // namespace freeturn

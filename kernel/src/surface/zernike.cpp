@@ -123,4 +123,9 @@ double Zernike::max_bend(double radius) const {
          power_terms_max_bend(abs_by_order_, rn_, radius);
 }
 
+double Zernike::max_slope(double radius) const {
+  return conic_max_slope(c_, k_, radius) + even_terms_max_slope(asphere_, radius) +
+         power_terms_max_slope(abs_by_order_, rn_, radius);
+}
+
 }  // namespace freeturn

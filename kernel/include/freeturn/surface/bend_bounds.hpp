@@ -49,4 +49,16 @@ inline double power_terms_max_bend(std::span<const double> abs_by_order,
   return bend / (normalization_radius * normalization_radius);
 }
 
+// The same polynomial's largest slope: a term's gradient c/R_nⁿ (a x^{a−1}y^b, b x^a y^{b−1})
+// is at most |c|/R_nⁿ · n r^{n−1} long where |x|, |y| ≤ r.
+inline double power_terms_max_slope(std::span<const double> abs_by_order,
+                                    double normalization_radius, double radius) {
+  if (!(radius >= 0) || !std::isfinite(radius)) return std::numeric_limits<double>::infinity();
+  const double t = radius / normalization_radius;
+  double slope = 0;
+  for (std::size_t n = abs_by_order.size(); n-- > 1;)  // Horner in t
+    slope = slope * t + abs_by_order[n] * static_cast<double>(n);
+  return slope / normalization_radius;
+}
+
 }  // namespace freeturn

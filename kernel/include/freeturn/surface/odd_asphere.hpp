@@ -22,6 +22,7 @@ class OddAsphere final : public Surface {
   HeightDerivatives height_derivatives(double x, double y) const override;
   double defined_radius() const override;
   double max_bend(double radius) const override;
+  double max_slope(double radius) const override;
   bool has_creases() const override { return !beta_.empty() && beta_[0] != 0; }
 
  private:

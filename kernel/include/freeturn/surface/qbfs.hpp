@@ -23,6 +23,7 @@ class Qbfs final : public JetSurface<Qbfs> {
   const char* type() const override { return "qbfs"; }
   double defined_radius() const override;
   double max_bend(double radius) const override;
+  double max_slope(double radius) const override;
 
   // Q_m(x) for m = 0 … count−1 (the polynomials themselves, for tests).
   static std::vector<double> polynomials(double x, int count);
@@ -64,6 +65,9 @@ class Qbfs final : public JetSurface<Qbfs> {
   // Bounds of |S|, |S'| and |S''| over w ∈ [0, w_max] (w_max ≥ 1), S(w) = Σ a_m Q_m(w)
   // (max_bend).
   std::array<double, 3> series_bounds(double w_max) const;
+  // Bounds of the departure's |dD/ds| and |d²D/ds²| within the radius; false where the
+  // best-fit sphere does not reach it.
+  bool departure_bounds(double radius, double& d1, double& d2) const;
 
   // f_m, g_m, h_m for m < n (Forbes 2007, Appendix A).
   static void recurrence(std::size_t n, std::vector<double>& f, std::vector<double>& g,

@@ -28,6 +28,7 @@ class XyPolynomial final : public JetSurface<XyPolynomial> {
   // The conic's largest eigenvalue within `radius` plus a bound of the terms' bend there
   // (surface/bend_bounds.hpp).
   double max_bend(double radius) const override;
+  double max_slope(double radius) const override;
 
   template <typename T>
   T sag(const T& x, const T& y) const {

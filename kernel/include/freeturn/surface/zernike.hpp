@@ -46,6 +46,7 @@ class Zernike final : public JetSurface<Zernike> {
   // Zernike terms' bend there, the latter from their expansion in powers of x and y
   // (surface/bend_bounds.hpp; loose at high orders, where the powers' coefficients cancel).
   double max_bend(double radius) const override;
+  double max_slope(double radius) const override;
 
   template <typename T>
   T sag(const T& x, const T& y) const {
