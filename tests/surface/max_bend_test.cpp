@@ -371,4 +371,30 @@ TEST_SUITE("surface") {
     x3.sag_gradient(1.5, 0.0, z, zx, zy);
     CHECK(std::hypot(zx, zy) == doctest::Approx(x3.max_slope(1.5)).epsilon(1e-12));
   }
+
+  TEST_CASE("max_section_bend: the radial sections' bound where lines off the axis have none") {
+    // The sinusoidal ring along its radial sections bends −Aω² sin(ω|ρ|): |A|ω², reached at
+    // a trough; just off its cone point a line bends without bound, so max_bend has none.
+    const double a = 0.05, w = 2 * std::numbers::pi / 0.8;
+    const SinusoidalRing ring(a, w, 0.0);
+    CHECK(std::isinf(ring.max_bend(2.0)));
+    CHECK(largest_bend(ring, 1e-4, 1e-3) > 100);
+    double most = -1e300;
+    for (int k = 1; k <= 20000; ++k) {
+      const double rho = 2.0 * k / 20000, phi = 0.37 * k;
+      const HeightDerivatives d = ring.height_derivatives(rho * std::cos(phi), rho * std::sin(phi));
+      const double c = std::cos(phi), s = std::sin(phi);
+      most = std::max(most, (d.zxx * c + 2 * d.zxy * s) * c + d.zyy * s * s);
+    }
+    CHECK(most <= ring.max_section_bend(2.0) * (1 + 1e-12));
+    CHECK(most >= 0.999 * ring.max_section_bend(2.0));
+    // An odd asphere with a cone pointing down (β₁ > 0): none off the axis, its other terms'
+    // along the radial sections; a surface without its own keeps max_bend's.
+    const OddAsphere coned(0.05, 0.0, {2e-3, 3e-4, -2e-5, 1.5e-5});
+    CHECK(std::isinf(coned.max_bend(3.0)));
+    CHECK(coned.max_section_bend(3.0) ==
+          doctest::Approx(OddAsphere(0.05, 0.0, {0.0, 3e-4, -2e-5, 1.5e-5}).max_bend(3.0)));
+    const EvenAsphere plain(0.05, -0.5);
+    CHECK(plain.max_section_bend(3.0) == plain.max_bend(3.0));
+  }
 }

@@ -158,7 +158,7 @@ void settle_by_secant(const Section& section, double x_c, double z_c, double R, 
 // below `floor`, which the caller compares with a larger one; leaving it out changes no
 // answer (a margin of 1e-12 mm covers the rounding of both).
 //
-// `up` (with m ≤ 0): a bound of h'' on the piece, h'' = g'' − R²/s³ ≤ max_bend − 1/R
+// `up` (with m ≤ 0): a bound of h'' on the piece, h'' = g'' − R²/s³ ≤ max_section_bend − 1/R
 // (piece_bend). A piece that bends more than the nose somewhere has no concavity
 // bound, but h still lies under the parabola h₀ + h'₀(ρ − ρ₀) + up(ρ − ρ₀)²/2 from any
 // value, whose largest value on [lo, hi] is at an end: a search from a crease whose
@@ -243,14 +243,14 @@ bool search(const Section& section, double x_c, double z_c, double R, double sta
 }
 
 // How the nose's height over a section piece within `radius` of the axis can curve, from one
-// bound of the design's bend: h'' = g'' − R²/s³ ≤ max_bend − 1/R = up, since s ≤ R. Where up
-// is negative, h is m-strongly concave with m = −up (section_concavity); otherwise m is 0
-// and up (+∞ where the design gives no bound) is search's parabola.
+// bound of the design's bend: h'' = g'' − R²/s³ ≤ max_section_bend − 1/R = up, since s ≤ R. Where
+// up is negative, h is m-strongly concave with m = −up (section_concavity); otherwise m is 0 and up
+// (+∞ where the design gives no bound) is search's parabola.
 struct PieceBend {
   double m, up;
 };
 PieceBend piece_bend(const Surface& design, double R, double radius) {
-  const double up = design.max_bend(radius) - 1 / R;
+  const double up = design.max_section_bend(radius) - 1 / R;
   return {up < 0 ? -up : 0.0, up};
 }
 

@@ -119,7 +119,7 @@ TightTroughs::TightTroughs(const Surface& design, double placed_radius, double o
   // A design that bounds its bend under 1/R' has no section tighter than the nose (the
   // curvature g''/(1 + g'²)^{3/2} ≤ g''): the compound eye's scan below cost 90 000
   // evaluations, about 2 % of the demo.
-  if (s_.max_bend(limit_) * R_ <= 1) return;
+  if (s_.max_section_bend(limit_) * R_ <= 1) return;
   // The polar grid: radial steps those of the sections' own samples, 256 lines. Where most
   // tight stretches on it are narrow (one sample wide, or between two samples) and the
   // samples do not show their bump, the design bends faster than the samples resolve (a

@@ -26,9 +26,15 @@ double OddAsphere::defined_radius() const { return conic_defined_radius(c_, k_);
 // for i = 1, 0 along the radius and β/r along the circle: no larger than 0 where β < 0 (a
 // cone pointing up, as a dome's tip), and without bound near the vertex where β > 0.
 double OddAsphere::max_bend(double radius) const {
+  if (!beta_.empty() && beta_[0] > 0) return std::numeric_limits<double>::infinity();
+  return max_section_bend(radius);
+}
+
+// Along a radial section the cone β₁|ρ| bends 0 (its kink at the vertex is a crease), and
+// every other term as max_bend counts it; the conic's bound is its largest eigenvalue.
+double OddAsphere::max_section_bend(double radius) const {
   double bend = conic_max_bend(c_, k_, radius);
-  if (!std::isfinite(bend) || (!beta_.empty() && beta_[0] > 0))
-    return std::numeric_limits<double>::infinity();
+  if (!std::isfinite(bend)) return std::numeric_limits<double>::infinity();
   double power = 1.0;  // radius^{i−2}
   for (std::size_t n = 1; n < beta_.size(); ++n, power *= radius) {
     const double i = static_cast<double>(n + 1);

@@ -149,7 +149,7 @@ double ToolChecker::global_gouge_depth(const CutterLocation& cl, const RadialLin
 
 bool ToolChecker::one_touch_depth(const RadialLine& line, double c_r, double c_z, double hint_r,
                                   double edge_reach, double& depth) const {
-  // Where the section bends less than the nose (m = 1/R − max_bend > 0), the height h(ρ) of
+  // Where the section bends less than the nose (m = 1/R − max_section_bend > 0), the height h(ρ) of
   // the section over the lower arc is m-strongly concave on every smooth piece under it, and
   // where no crease can raise it elsewhere (touch_clear_of_creases) its one maximum is the
   // deepest point: a search from the contact finds it, and the samples along the edge, values

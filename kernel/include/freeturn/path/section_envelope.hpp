@@ -52,7 +52,8 @@ struct SectionCreases {
 
 // How strongly h(ρ) = g(ρ) − z_c + √(R² − (ρ − x_c)²), the section's height over the lower
 // arc of a nose of radius R, is concave on a smooth piece of the section within `radius`
-// of the axis: h'' = g'' − R²/s³ ≤ max_bend − 1/R (s ≤ R), so m = 1/R − max_bend (1/mm).
+// of the axis: h'' = g'' − R²/s³ ≤ B − 1/R (s ≤ R), so m = 1/R − B (1/mm), B the design's
+// Surface::max_section_bend (the nose's sections are radial).
 // 0 where that is not positive or not known: nothing may be assumed of h then.
 double section_concavity(const Surface& design, double R, double radius);
 
@@ -90,7 +91,7 @@ NoseOverlap nose_overlap_near(const Surface& design, const RadialLine& line, dou
 // move from (x, y) while this answer stands), against the envelope
 //   h(t) − h(0) ≤ −m t²/2 + Σ_k n_k J_k (t − d_k)₊,  0 < t ≤ 2R,
 // along the section either way from the touch, h the section's height over the arc
-// (h'(0) = 0 at the touch), m = 1/R − max_bend how strongly concave h is on a smooth piece,
+// (h'(0) = 0 at the touch), m = 1/R − max_section_bend how strongly concave h is on a smooth piece,
 // and crease k at least d_k away with a slope jump of at most J_k, crossed at most n_k
 // times. The right side is piecewise a concave parabola; true when it stays below 0
 // throughout. Where that fails and the creases say how their rims lie (NearbyCrease's

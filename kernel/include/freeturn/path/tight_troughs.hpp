@@ -48,6 +48,8 @@ class TightTroughs final : public Surface {
   int line_creases(double x0, double y0, const RadialLine& line, double lo, double hi,
                    std::span<double> out) const override;
   double max_bend(double radius) const override { return s_.max_bend(radius); }
+  double max_slope(double radius) const override { return s_.max_slope(radius); }
+  double max_section_bend(double radius) const override { return s_.max_section_bend(radius); }
   // Not known: a trough's crease is no curve with a bounded slope jump.
   int creases_near(double, double, double, std::span<NearbyCrease>) const override { return -1; }
   bool crease_circles(std::vector<CreaseCircle>&) const override { return false; }

@@ -23,6 +23,7 @@ class OddAsphere final : public Surface {
   double defined_radius() const override;
   double max_bend(double radius) const override;
   double max_slope(double radius) const override;
+  double max_section_bend(double radius) const override;
   bool has_creases() const override { return !beta_.empty() && beta_[0] != 0; }
 
  private:

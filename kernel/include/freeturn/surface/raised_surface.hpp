@@ -29,6 +29,7 @@ class RaisedSurface final : public Surface {
   }
   double max_bend(double radius) const override { return s_.max_bend(radius); }
   double max_slope(double radius) const override { return s_.max_slope(radius); }
+  double max_section_bend(double radius) const override { return s_.max_section_bend(radius); }
   int creases_near(double x, double y, double radius, std::span<NearbyCrease> out) const override {
     return s_.creases_near(x, y, radius, out);
   }

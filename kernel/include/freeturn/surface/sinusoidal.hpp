@@ -20,6 +20,14 @@ class SinusoidalRing final : public JetSurface<SinusoidalRing> {
   const char* type() const override { return "sinusoidal_ring"; }
   bool has_creases() const override { return a_ * w_ != 0; }  // the cone at the vertex
 
+  // Along a line just off the vertex the ring bends z'(r)·d²/r³ (d the line's distance from
+  // the axis), without bound: max_bend keeps the default. A radial section is the profile
+  // z(|ρ|), creased at the vertex (section_creases), and bends −Aω² sin(ω|ρ|) ≤ |A|ω².
+  double max_section_bend(double radius) const override {
+    if (!(radius >= 0) || !std::isfinite(radius)) return std::numeric_limits<double>::infinity();
+    return std::abs(a_) * w_ * w_;
+  }
+
   template <typename T>
   T sag(const T& x, const T& y) const {
     const T r2 = x * x + y * y;

@@ -126,6 +126,14 @@ class Surface {
   // below the truth would hide an overlap, so it must hold everywhere it is asked.
   virtual double max_bend(double radius) const;
 
+  // The same bound along the surface's radial sections alone (the lines through (0, 0),
+  // which every nose section the planner and the tool checks measure lies on): d²g/dρ² at
+  // |ρ| ≤ radius, away from creases. max_bend's by default; a surface of revolution whose
+  // bend along other lines has no bound (the sinusoidal ring just off its cone point) gives
+  // its profile's. A decentred surface's sections are other lines of its parent: it keeps
+  // the default, its own max_bend.
+  virtual double max_section_bend(double radius) const { return max_bend(radius); }
+
   // An upper bound of the surface's slope |∇z| at the points within `radius` of the z axis,
   // away from creases; +∞ when not known (the default). A tilted segment's bend is bounded
   // from its parent's slope and bend (TransformedSurface::max_bend).
