@@ -13,6 +13,7 @@
 
 #include "freeturn/surface/biconic.hpp"
 #include "freeturn/surface/even_asphere.hpp"
+#include "freeturn/surface/nurbs_height_field.hpp"
 #include "freeturn/surface/odd_asphere.hpp"
 #include "freeturn/surface/qbfs.hpp"
 #include "freeturn/surface/sinusoidal.hpp"
@@ -396,5 +397,64 @@ TEST_SUITE("surface") {
           doctest::Approx(OddAsphere(0.05, 0.0, {0.0, 3e-4, -2e-5, 1.5e-5}).max_bend(3.0)));
     const EvenAsphere plain(0.05, -0.5);
     CHECK(plain.max_section_bend(3.0) == plain.max_bend(3.0));
+  }
+
+  TEST_CASE("max_bend and max_slope of a NURBS height field on affine parameters: from its net") {
+    // Bicubic nets over [−3, 3]² on uniform clamped knots, x and y at the Greville abscissae
+    // (affine parameters), z a smooth bump of 20 µm plus random ripples of 2 µm.
+    const int n = 9, p = 3;
+    const nurbs::KnotVector knots = nurbs::KnotVector::uniform_clamped(p, n);
+    std::vector<double> k(knots.knots().begin(), knots.knots().end());
+    std::mt19937 rng(61);
+    std::uniform_real_distribution<double> ripple(-2e-3, 2e-3);
+    for (const double bump : {0.02, -0.02, 0.0}) {
+      CAPTURE(bump);
+      std::vector<Eigen::Vector3d> points;
+      for (int i = 0; i < n; ++i)
+        for (int j = 0; j < n; ++j) {
+          const double x = -3 + 6 * knots.greville(i), y = -3 + 6 * knots.greville(j);
+          points.emplace_back(x, y, bump * std::exp(-(x * x + y * y) / 4) + ripple(rng));
+        }
+      const NurbsHeightField s(nurbs::NurbsSurface(p, p, k, k, points));
+      REQUIRE(s.affine_parameters());
+      const double bend = sampled_max_bend(s, 2.9, 20000, 67);
+      const double slope = sampled_max_slope(s, 2.9, 20000, 67);
+      CHECK(bend <= s.max_bend(2.9));
+      CHECK(slope <= s.max_slope(2.9));
+      // The net's differences exceed the surface's on random ripples (0.012 to 0.020 /mm
+      // sampled, bounds 0.044 to 0.065), yet stay within a few times and far under 1/R.
+      CHECK(s.max_bend(2.9) < 4 * bend);
+      CHECK(s.max_slope(2.9) < 2.5 * slope);
+    }
+    // A plane z = 0.01x + 0.02y: no bend, and its slope exactly.
+    std::vector<Eigen::Vector3d> plane;
+    for (int i = 0; i < n; ++i)
+      for (int j = 0; j < n; ++j) {
+        const double x = -3 + 6 * knots.greville(i), y = -3 + 6 * knots.greville(j);
+        plane.emplace_back(x, y, 0.01 * x + 0.02 * y);
+      }
+    const NurbsHeightField flat(nurbs::NurbsSurface(p, p, k, k, plane));
+    CHECK(std::abs(flat.max_bend(1.0)) <= 1e-12);
+    CHECK(flat.max_slope(1.0) == doctest::Approx(std::hypot(0.01, 0.02)).epsilon(1e-12));
+    // A paraboloid z = x²/40 (a net that reproduces it: the quadratic's blossom at the knots)
+    // bends 1/20 along x: the net's second differences give it exactly.
+    const nurbs::KnotVector quad = nurbs::KnotVector::uniform_clamped(2, n);
+    std::vector<double> kq(quad.knots().begin(), quad.knots().end());
+    std::vector<Eigen::Vector3d> bowl;
+    for (int i = 0; i < n; ++i)
+      for (int j = 0; j < n; ++j) {
+        // The blossom of x² (x = −3 + 6u) at (u_{i+1}, u_{i+2}): x(u_{i+1})·x(u_{i+2}).
+        const double x1 = -3 + 6 * kq[static_cast<std::size_t>(i + 1)];
+        const double x2 = -3 + 6 * kq[static_cast<std::size_t>(i + 2)];
+        bowl.emplace_back(-3 + 6 * quad.greville(i), -3 + 6 * quad.greville(j), x1 * x2 / 40);
+      }
+    const NurbsHeightField parabolic(nurbs::NurbsSurface(2, 2, kq, kq, bowl));
+    REQUIRE(parabolic.affine_parameters());
+    CHECK(parabolic.sag(1.3, 0.4) == doctest::Approx(1.3 * 1.3 / 40).epsilon(1e-12));
+    CHECK(parabolic.max_bend(1.0) == doctest::Approx(1.0 / 20).epsilon(1e-12));
+    // A net that is not on affine parameters gives none.
+    std::vector<Eigen::Vector3d> skewed = plane;
+    for (Eigen::Vector3d& q : skewed) q.x() += 0.05 * q.y();
+    CHECK(std::isinf(NurbsHeightField(nurbs::NurbsSurface(p, p, k, k, skewed)).max_bend(1.0)));
   }
 }

@@ -81,6 +81,8 @@ NurbsHeightField::NurbsHeightField(nurbs::NurbsSurface surface) : locator_(std::
       }
   }
 
+  if (affine_) bound_from_net();
+
   // A graph over x-y: the Jacobian of (S_x, S_y) keeps one sign away from poles.
   const int n = 8 * std::max(s.count_u(), s.count_v());
   int sign = 0;
@@ -104,6 +106,70 @@ NurbsHeightField::NurbsHeightField(nurbs::NurbsSurface surface) : locator_(std::
   double u, v;
   defined_radius_ = parameters_at(0, 0, u, v) ? boundary_distance() : 0.0;
   find_creases();
+}
+
+namespace {
+
+// The control values of a B-spline's k-th derivative from its (k − 1)-th's, c of degree
+// p − k + 1 on the knots U shifted by k − 1 (Piegl & Tiller, Eq. 3.8, A3.3):
+//   c⁽ᵏ⁾_i = (p − k + 1)/(U_{i+p+1} − U_{i+k}) · (c⁽ᵏ⁻¹⁾_{i+1} − c⁽ᵏ⁻¹⁾_i),
+// 0 where the knots close up (that basis function is 0). `c` holds `rows` rows of `count`
+// values along the direction differentiated, stored [i][row] (i·rows + row) along u and
+// [row][i] (row·count + i) along v; the result keeps that layout, count − 1 values a row.
+std::vector<double> derivative_net(const std::vector<double>& c, int count, int rows, bool along_u,
+                                   const nurbs::KnotVector& knots, int k) {
+  const int p = knots.degree(), out_count = count - 1;
+  std::vector<double> out(static_cast<std::size_t>(out_count * rows));
+  for (int r = 0; r < rows; ++r)
+    for (int i = 0; i < out_count; ++i) {
+      const auto at = [&](const std::vector<double>& net, int n, int index) {
+        return along_u ? net[static_cast<std::size_t>(index * rows + r)]
+                       : net[static_cast<std::size_t>(r * n + index)];
+      };
+      const double span = knots[i + p + 1] - knots[i + k];
+      const double value =
+          span > 0 ? (p - k + 1) * (at(c, count, i + 1) - at(c, count, i)) / span : 0.0;
+      out[static_cast<std::size_t>(along_u ? i * rows + r : r * out_count + i)] = value;
+    }
+  return out;
+}
+
+}  // namespace
+
+// z(x, y) = S_z(u, v) with u = (x − x0)/s_x, v = (y − y0)/s_y: the Hessian is
+// [[S_uu/s_x², S_uv/(s_x s_y)], [S_uv/(s_x s_y), S_vv/s_y²]], and each of S_uu, S_uv, S_vv is a
+// B-spline whose values lie within its control values (a convex combination in every
+// span). Its largest eigenvalue is at most the larger diagonal bound plus |S_uv|'s
+// (Gershgorin); the slope at most the two first derivatives' bounds combined.
+void NurbsHeightField::bound_from_net() {
+  const nurbs::NurbsSurface& s = locator_.surface();
+  const int nu = s.count_u(), nv = s.count_v();
+  std::vector<double> z(static_cast<std::size_t>(nu * nv));
+  for (int i = 0; i < nu; ++i)
+    for (int j = 0; j < nv; ++j)
+      z[static_cast<std::size_t>(i * nv + j)] = s.control_point(i, j).z();
+  const auto largest = [](const std::vector<double>& v) {
+    return v.empty() ? 0.0 : *std::max_element(v.begin(), v.end());
+  };
+  const auto largest_abs = [](const std::vector<double>& v) {
+    double most = 0;
+    for (const double x : v) most = std::max(most, std::abs(x));
+    return most;
+  };
+  // Rows along u: the nu values of each of the nv columns; along v: nv values of nu rows.
+  const std::vector<double> su = derivative_net(z, nu, nv, true, s.knots_u(), 1);
+  const std::vector<double> sv = derivative_net(z, nv, nu, false, s.knots_v(), 1);
+  const std::vector<double> suv = derivative_net(su, nv, nu - 1, false, s.knots_v(), 1);
+  const double uu =
+      s.degree_u() >= 2 ? largest(derivative_net(su, nu - 1, nv, true, s.knots_u(), 2)) : 0.0;
+  const double vv =
+      s.degree_v() >= 2 ? largest(derivative_net(sv, nv - 1, nu, false, s.knots_v(), 2)) : 0.0;
+  const double bend =
+      std::max(uu / (sx_ * sx_), vv / (sy_ * sy_)) + largest_abs(suv) / std::abs(sx_ * sy_);
+  const double slope = std::hypot(largest_abs(su) / std::abs(sx_), largest_abs(sv) / std::abs(sy_));
+  // The differences round by parts in 10¹⁶ of the net's values.
+  if (std::isfinite(bend)) bend_bound_ = bend + 1e-12 * std::abs(bend);
+  if (std::isfinite(slope)) slope_bound_ = slope * (1 + 1e-12);
 }
 
 void NurbsHeightField::find_creases() {

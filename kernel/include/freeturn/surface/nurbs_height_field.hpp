@@ -18,6 +18,7 @@
 //   ∇z = J⁻ᵀ g,    ∇²z = J⁻ᵀ (∇²S_z − z_x ∇²S_x − z_y ∇²S_y) J⁻¹.
 
 #include <cstdint>
+#include <limits>
 #include <span>
 #include <vector>
 
@@ -39,6 +40,10 @@ class NurbsHeightField final : public Surface {
   HeightDerivatives height_derivatives(double x, double y) const override;
   // The largest disc about the origin inside the projection (0 if the origin is outside).
   double defined_radius() const override { return defined_radius_; }
+  // On affine parameters and a non-rational surface, from the control net's differences
+  // (the whole surface, whatever the radius); +∞ otherwise.
+  double max_bend(double) const override { return bend_bound_; }
+  double max_slope(double) const override { return slope_bound_; }
 
   // Creases are the seams where the surface is only C⁰: an interior knot of multiplicity
   // at least the degree whose knot line the normal turns across (a double knot of a
@@ -68,11 +73,15 @@ class NurbsHeightField final : public Surface {
   HeightDerivatives derivatives_at(double x, double y, double u, double v, int order) const;
   double boundary_distance() const;
   void find_creases();
+  // bend_bound_ and slope_bound_ from the net, on affine parameters.
+  void bound_from_net();
 
   InstanceId id_;  // the thread caches' key
   nurbs::SurfaceLocator locator_;
   bool affine_ = false;
   double x0_ = 0, sx_ = 1, y0_ = 0, sy_ = 1;
+  double bend_bound_ = std::numeric_limits<double>::infinity();   // max_bend
+  double slope_bound_ = std::numeric_limits<double>::infinity();  // max_slope
   double z_above_ = 0;  // above every control point: the origin of cold rays
   double scale_ = 1;    // size of the control net, for tolerances
   double defined_radius_ = 0;
