@@ -26,6 +26,11 @@ using namespace freeturn;
 
 namespace {
 
+// Conic bases (c, k) of each kind: a sphere, a prolate ellipsoid, hyperboloids of either
+// sign, an oblate ellipsoid.
+constexpr std::array<std::array<double, 2>, 5> kConics{
+    {{0.05, 0.0}, {-0.05, -0.5}, {0.1, -3.0}, {-0.1, -2.0}, {0.08, 2.0}}};
+
 // The largest second derivative along a unit direction at (x, y): the Hessian's largest
 // eigenvalue, in closed form for a symmetric 2 × 2.
 double largest_bend(const Surface& s, double x, double y) {
@@ -82,9 +87,7 @@ TEST_SUITE("surface") {
     std::uniform_real_distribution<double> coefficient(-4e-3, 4e-3);
     std::vector<double> terms(27);
     for (double& v : terms) v = coefficient(rng);
-    for (const auto& [c, kappa] :
-         {std::array{0.05, 0.0}, std::array{-0.05, -0.5}, std::array{0.1, -3.0},
-          std::array{-0.1, -2.0}, std::array{0.08, 2.0}}) {
+    for (const auto& [c, kappa] : kConics) {
       CAPTURE(c);
       CAPTURE(kappa);
       const XyPolynomial s(c, kappa, 2.0, terms);
@@ -107,9 +110,7 @@ TEST_SUITE("surface") {
   TEST_CASE("max_bend of an even asphere: never below the bend, the bare conic's reached") {
     // Terms A4 … A10 of either sign, sized to move the sag by micrometres at 5 mm.
     const std::array<double, 9> terms{2e-6, -4e-8, 3e-10, -1e-12};
-    for (const auto& [c, kappa] :
-         {std::array{0.05, 0.0}, std::array{-0.05, -0.5}, std::array{0.1, -3.0},
-          std::array{-0.1, -2.0}, std::array{0.08, 2.0}}) {
+    for (const auto& [c, kappa] : kConics) {
       CAPTURE(c);
       CAPTURE(kappa);
       const EvenAsphere s(c, kappa, terms);
@@ -159,9 +160,7 @@ TEST_SUITE("surface") {
     const std::vector<double> terms{0.0, 3e-4, -2e-5, 1.5e-5, -4e-7, 2e-8, -1e-9};
     std::vector<double> coned = terms;
     coned[0] = -2e-3;
-    for (const auto& [c, kappa] :
-         {std::array{0.05, 0.0}, std::array{-0.05, -0.5}, std::array{0.1, -3.0},
-          std::array{-0.1, -2.0}, std::array{0.08, 2.0}}) {
+    for (const auto& [c, kappa] : kConics) {
       CAPTURE(c);
       CAPTURE(kappa);
       for (const auto& beta : {terms, coned}) {
@@ -287,9 +286,7 @@ TEST_SUITE("surface") {
 
   TEST_CASE("max_slope of an even asphere: never below the slope, the bare conic's reached") {
     const std::array<double, 9> terms{2e-6, -4e-8, 3e-10, -1e-12};
-    for (const auto& [c, kappa] :
-         {std::array{0.05, 0.0}, std::array{-0.05, -0.5}, std::array{0.1, -3.0},
-          std::array{-0.1, -2.0}, std::array{0.08, 2.0}}) {
+    for (const auto& [c, kappa] : kConics) {
       CAPTURE(c);
       CAPTURE(kappa);
       const EvenAsphere s(c, kappa, terms);
