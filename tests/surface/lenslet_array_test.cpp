@@ -69,6 +69,47 @@ TEST_SUITE("surface") {
     }
   }
 
+  TEST_CASE("lenslet arrays: the lookup beside a rim = scan, from 10 nm to 0.1 mm off it") {
+    // lenslet_at tries the lenslet it found last first, then the lenslets its fine grid's
+    // cell lists. Points just either side of each rim a radial line crosses (the crossings
+    // in closed form), and along the rest of the line, must find the lenslet the scan
+    // finds: the random points above seldom come this close to a rim.
+    LensletArrayOptions plane = eye(Pattern::kSquare);
+    plane.base_curvature = 0;
+    LensletArrayOptions shallow = eye(Pattern::kHexagonal);
+    shallow.lens_diameter = 0.2;  // small lenslets far apart: wide stretches of base
+    for (const LensletArrayOptions& o : {eye(Pattern::kRings), shallow, plane}) {
+      const LensletArray s(o);
+      std::mt19937 rng(5);
+      std::uniform_real_distribution<double> angle(0, 2 * std::numbers::pi);
+      long beside = 0, on_lenslets = 0;
+      for (int line = 0; line < 40; ++line) {
+        const RadialLine l(angle(rng));
+        std::array<double, 64> found{};
+        const int n = s.section_creases(l, 0.0, 5.5, found);
+        REQUIRE(n >= 0);
+        REQUIRE(n < 64);
+        for (int k = 0; k < n; ++k)
+          for (const double off : {1e-5, 1e-4, 1e-3, 1e-2, 1e-1})
+            for (const double side : {-1.0, 1.0}) {
+              const double rho = found[k] + side * off;
+              const double x = rho * l.cos, y = rho * l.sin;
+              CAPTURE(rho);
+              CHECK(s.lenslet_at(x, y) == scan(s, o, x, y));
+              ++beside;
+            }
+        for (double rho = 0; rho <= 5.5; rho += 1.3e-3) {
+          const double x = rho * l.cos, y = rho * l.sin;
+          const int at = s.lenslet_at(x, y);
+          CHECK(at == scan(s, o, x, y));
+          on_lenslets += at >= 0;
+        }
+      }
+      CHECK(beside > 400);
+      CHECK(on_lenslets > 1000);
+    }
+  }
+
   TEST_CASE("lenslet arrays: a radial line's creases are where its points change lenslet") {
     // The closed-form rim crossings (and the bound that skips far lenslets) against a walk
     // along the line: every change of lenslet_at (checked against the scan above) between
