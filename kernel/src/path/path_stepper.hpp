@@ -159,6 +159,15 @@ constexpr int kCreasedIntervals = 32;
 // (section_envelope.cpp, kUnsought).
 constexpr double kPeakKnownTo = 1e-13;  // mm
 
+// std::lround(v) for the grids' indices, without the C library's call (8.6 million of them on
+// the chord job cut to 2 mm): for v ≥ 0 its integer part plus one where the fraction, exact
+// below 2^52, is at least a half (half away from zero, as lround); a negative v asks lround.
+inline int nearest_index(double v) {
+  if (!(v >= 0 && v < 1e9)) return static_cast<int>(std::lround(v));
+  const int whole = static_cast<int>(v);
+  return v - whole >= 0.5 ? whole + 1 : whole;
+}
+
 // A peak bracketed by samples e[best − 1] ≤ e[best] ≥ e[best + 1] of a function concave
 // about it (the samples' slopes s₁ ≥ s₂ ≥ s₃ ≥ s₄ from e[best − 2] to e[best + 2] fall) lies
 // under the secant lines either side: on [best − 1, best] under the line through e[best − 2]
@@ -569,7 +578,7 @@ bool measure_clear_of_creases(const Path& path, const SegmentMotion& motion, con
   const auto deviation = [&](double t) {
     double x, c, z, bb, rho;
     motion.at(t, x, c, z, bb);
-    const int j = static_cast<int>(std::lround(t * grid));
+    const int j = nearest_index(t * grid);
     const bool on_grid = static_cast<double>(j) / grid == t;
     const RadialLine sample_line = linear && on_grid ? grid_line[j] : line_at(c);
     const double hint = a.contact_r + t * (b.contact_r - a.contact_r);
@@ -670,7 +679,7 @@ double segment_error(const Path& path, const Segment& segment, Interpolation mod
   // The grid of the creased design's samples (the slide's search runs on those only).
   constexpr int kGrid = kCreasedIntervals;
   const auto grid_index = [&](double t) {
-    const int j = static_cast<int>(std::lround(t * kGrid));
+    const int j = nearest_index(t * kGrid);
     return j >= 0 && j <= kGrid && static_cast<double>(j) / kGrid == t ? j : -1;
   };
   // The radial lines at C(τ) on the grid, by rotation from the segment's start: two sines
@@ -691,7 +700,7 @@ double segment_error(const Path& path, const Segment& segment, Interpolation mod
   // from the grid's nearest line, within half a grid step of it on a linear segment.
   const auto line_at = [&](double angle) {
     const double u = b.c != a.c ? (angle - a.c) / (b.c - a.c) : 0.0;
-    const int j = static_cast<int>(std::lround(std::clamp(u, 0.0, 1.0) * kGrid));
+    const int j = nearest_index(std::clamp(u, 0.0, 1.0) * kGrid);
     return grid_line[j].turned_to(angle);
   };
   const auto gap_at = [&](double t, int j, double& x, double& c, double& z, double& bb) {

@@ -327,14 +327,21 @@ bool directed_envelope_below_zero(const NearbyCrease* near, const EnvelopeTerm* 
   for (int k = 0; k < within; ++k) total += plain[k].rise;
   const double t_max = std::min(reach, 2 * total / m);
   const double nearest = plain[0].from;
-  constexpr double kRight = 0.5 * std::numbers::pi;
-  // Per crease, what the tiers share: ψ₀, and the spread less its part that depends on L.
-  std::array<double, 16> psi, fixed_spread;
+  // Per crease, what the tiers share: the angle X = ψ₀ − (normal_slack + δ) left once the
+  // parts of the spread that do not depend on L are taken off, by its sine and cosine. A
+  // tier then takes off β = asin(L/|T − e|) too, c = cos(X − β) where X > β, without a sine
+  // or cosine of its own: X ≤ ψ₀ ≤ π/2 and β ∈ [0, π/2], so X > β ⟺ sin X > L/|T − e|, and
+  // cos(X − β) = cos X cos β + sin X sin β. (Per tier and crease these were an arcsine and a
+  // cosine: 13 million calls on the chord job cut to 2 mm, 560 k cutter points.)
+  std::array<double, 16> sin_x, cos_x;
   for (int k = 0; k < within; ++k) {
     const NearbyCrease& crease = near[k];
-    psi[static_cast<std::size_t>(k)] =
+    const double psi =
         std::acos(std::min(1.0, std::abs(ux * crease.normal_x + uy * crease.normal_y)));
-    fixed_spread[static_cast<std::size_t>(k)] = crease.normal_slack + line_spread;
+    const double x_angle = psi - (crease.normal_slack + line_spread);
+    // X ≤ 0: no tier's angle passes its spread (c = 1 throughout).
+    sin_x[static_cast<std::size_t>(k)] = x_angle > 0 ? std::sin(x_angle) : 0.0;
+    cos_x[static_cast<std::size_t>(k)] = x_angle > 0 ? std::cos(x_angle) : 1.0;
   }
   for (double hi = t_max; hi > nearest;) {
     const double lo = std::max(nearest, 0.5 * hi);
@@ -349,12 +356,12 @@ bool directed_envelope_below_zero(const NearbyCrease* near, const EnvelopeTerm* 
       const bool known = crease.centre_distance > 0 && crease.normal_slack >= 0 &&
                          (crease.crossings == 1 || (crease.crossings == 2 && crease.curvature > 0 &&
                                                     std::isfinite(crease.curvature)));
-      if (known) {
-        const double spread =
-            (L < crease.centre_distance ? std::asin(L / crease.centre_distance) : kRight) +
-            fixed_spread[static_cast<std::size_t>(k)];
-        const double angle = psi[static_cast<std::size_t>(k)];
-        if (angle > spread) c = std::cos(angle - spread);
+      if (known && L < crease.centre_distance) {  // else β = π/2 ≥ X: c = 1
+        const double sin_beta = L / crease.centre_distance;
+        const double sx = sin_x[static_cast<std::size_t>(k)];
+        if (sx > sin_beta)
+          c = cos_x[static_cast<std::size_t>(k)] * std::sqrt(1 - sin_beta * sin_beta) +
+              sx * sin_beta;
       }
       if (!(c < 1)) {
         terms[static_cast<std::size_t>(n++)] = plain[k];
