@@ -1,7 +1,11 @@
 #include <doctest/doctest.h>
 
+#include <bit>
 #include <cmath>
+#include <cstdint>
 #include <numbers>
+#include <random>
+#include <vector>
 
 #include "derivatives_check.hpp"
 #include "freeturn/core/error.hpp"
@@ -11,6 +15,7 @@
 #include "freeturn/surface/toroidal.hpp"
 #include "freeturn/surface/transformed_surface.hpp"
 #include "freeturn/surface/xy_polynomial.hpp"
+#include "freeturn/surface/zernike.hpp"
 
 using namespace freeturn;
 using freeturn::test::check_derivatives;
@@ -75,6 +80,43 @@ TEST_SUITE("surface") {
     const Alvarez alvarez(1e-3, 0.02);
     CHECK(alvarez.sag(2.0, 3.0) == doctest::Approx(1e-3 * (18 + 8.0 / 3) + 0.04).epsilon(1e-15));
     check_derivatives(alvarez, 10.0);
+  }
+
+  TEST_CASE(
+      "jet surfaces: the first-order jet's value and gradient are the second-order jet's, bit for "
+      "bit") {
+    // A jet formula is evaluated on Jet<1> for the planner (sag_gradient) and on Jet<2> for
+    // curvatures (height_derivatives). Jet<1> holds no Hessian and starts uninitialised like a
+    // double, so an array of them costs nothing to declare; its value and gradient follow the
+    // same operations as Jet<2>'s and must agree to the last bit, signs of zero included.
+    std::vector<double> xy_terms(65), zernike_terms(37);
+    for (std::size_t i = 0; i < xy_terms.size(); ++i) xy_terms[i] = 1e-3 * std::cos(double(i));
+    for (std::size_t i = 0; i < zernike_terms.size(); ++i)
+      zernike_terms[i] = 1e-4 * std::sin(1.0 + double(i));
+    const Biconic biconic(1 / 30.0, -1 / 55.0, 0.3, -2.0);
+    const Toroidal toroidal(1 / 40.0, -0.4, 30.0, {1e-5, -2e-8});
+    const XyPolynomial xy(1 / 50.0, -1.0, 10.0, xy_terms);
+    const Zernike zernike(1 / 80.0, 0.2, {1e-6, -2e-8, 0, 0, 0, 0, 0, 0, 0}, 6.0, zernike_terms);
+    const SinusoidalRing ring(0.005, 2 * std::numbers::pi / 2.5, 0.01);
+    const SinusoidalGrid grid(0.002, 4.0, 6.0);
+    const Alvarez alvarez(1e-3, 0.02);
+    const Surface* surfaces[] = {&biconic, &toroidal, &xy, &zernike, &ring, &grid, &alvarez};
+    const auto bits = [](double v) { return std::bit_cast<std::uint64_t>(v); };
+    std::mt19937 rng(29);
+    std::uniform_real_distribution<double> u(-5.5, 5.5);
+    for (const Surface* s : surfaces)
+      for (int k = 0; k < 500; ++k) {
+        const double x = k == 0 ? 0.0 : u(rng), y = k == 0 ? -0.0 : u(rng);
+        double z, zx, zy;
+        s->sag_gradient(x, y, z, zx, zy);
+        const HeightDerivatives h = s->height_derivatives(x, y);
+        CAPTURE(s->type());
+        CAPTURE(x);
+        CAPTURE(y);
+        CHECK(bits(z) == bits(h.z));
+        CHECK(bits(zx) == bits(h.zx));
+        CHECK(bits(zy) == bits(h.zy));
+      }
   }
 
   TEST_CASE("off-axis parabola: decentred sag matches its parent frame; tilted one lies on it") {

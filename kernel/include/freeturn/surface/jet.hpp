@@ -10,15 +10,31 @@
 
 namespace freeturn {
 
+namespace detail {
+// The Hessian's part of a jet: none in Jet<1>, so that a first-order jet is three doubles
+// (the planner evaluates designs through Jet<1>, JetSurface::sag_gradient, and copied an
+// unused Hessian with every operation). The arithmetic is the same either way.
 template <int Order>
-struct Jet {
-  static_assert(Order == 1 || Order == 2);
-  double v = 0;
-  double dx = 0, dy = 0;
-  double dxx = 0, dxy = 0, dyy = 0;
+struct JetSecond {
+  double dxx, dxy, dyy;
+};
+template <>
+struct JetSecond<1> {};
+}  // namespace detail
 
+template <int Order>
+struct Jet : detail::JetSecond<Order> {
+  static_assert(Order == 1 || Order == 2);
+  double v;
+  double dx, dy;
+
+  // Uninitialised, as a double is: formulas keep arrays of jets sized for their largest case
+  // (an XY polynomial's powers, a Zernike sum's), and zeroing them on every evaluation cost
+  // more than the arithmetic.
   Jet() = default;
-  Jet(double value) : v(value) {}  // NOLINT: constants mix freely with jets
+  Jet(double value) : v(value), dx(0), dy(0) {  // NOLINT: constants mix freely with jets
+    if constexpr (Order == 2) this->dxx = this->dxy = this->dyy = 0;
+  }
   static Jet variable_x(double x) {
     Jet j(x);
     j.dx = 1;
@@ -36,9 +52,9 @@ struct Jet {
     r.dx = f1 * dx;
     r.dy = f1 * dy;
     if constexpr (Order == 2) {
-      r.dxx = f1 * dxx + f2 * dx * dx;
-      r.dxy = f1 * dxy + f2 * dx * dy;
-      r.dyy = f1 * dyy + f2 * dy * dy;
+      r.dxx = f1 * this->dxx + f2 * dx * dx;
+      r.dxy = f1 * this->dxy + f2 * dx * dy;
+      r.dyy = f1 * this->dyy + f2 * dy * dy;
     }
     return r;
   }
@@ -48,9 +64,9 @@ struct Jet {
     dx += b.dx;
     dy += b.dy;
     if constexpr (Order == 2) {
-      dxx += b.dxx;
-      dxy += b.dxy;
-      dyy += b.dyy;
+      this->dxx += b.dxx;
+      this->dxy += b.dxy;
+      this->dyy += b.dyy;
     }
     return *this;
   }
@@ -59,9 +75,9 @@ struct Jet {
     dx -= b.dx;
     dy -= b.dy;
     if constexpr (Order == 2) {
-      dxx -= b.dxx;
-      dxy -= b.dxy;
-      dyy -= b.dyy;
+      this->dxx -= b.dxx;
+      this->dxy -= b.dxy;
+      this->dyy -= b.dyy;
     }
     return *this;
   }
@@ -70,9 +86,9 @@ struct Jet {
     dx *= s;
     dy *= s;
     if constexpr (Order == 2) {
-      dxx *= s;
-      dxy *= s;
-      dyy *= s;
+      this->dxx *= s;
+      this->dxy *= s;
+      this->dyy *= s;
     }
     return *this;
   }
