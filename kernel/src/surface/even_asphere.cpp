@@ -23,17 +23,18 @@ double EvenAsphere::max_slope(double radius) const {
   return conic_max_slope(c_, k_, radius) + even_terms_max_slope(a_, radius);
 }
 
+template <bool kSecond>
 void EvenAsphere::sag_in_s(double s, double& f, double& df, double& d2f) const {
   // Conic: with q = √(1 − (1+k)c²s), F = c s/(1+q), F' = c/(2q), F'' = (1+k)c³/(4q³).
   // The form c s/(1+q) avoids the cancellation of (1 − q)/((1+k)c) near the vertex.
   const double q = std::sqrt(1.0 - (1.0 + k_) * c_ * c_ * s);
   f = c_ * s / (1.0 + q);
   df = c_ / (2.0 * q);
-  d2f = (1.0 + k_) * c_ * c_ * c_ / (4.0 * q * q * q);
+  if constexpr (kSecond) d2f = (1.0 + k_) * c_ * c_ * c_ / (4.0 * q * q * q);
   // Polynomial Σ A_{2i} s^i, i = 2..10, by Horner with its two derivatives.
   double p = 0, dp = 0, d2p = 0;
   for (int i = 10; i >= 2; --i) {
-    d2p = d2p * s + 2.0 * dp;
+    if constexpr (kSecond) d2p = d2p * s + 2.0 * dp;
     dp = dp * s + p;
     p = p * s + a_[static_cast<std::size_t>(i - 2)];
   }
@@ -41,12 +42,12 @@ void EvenAsphere::sag_in_s(double s, double& f, double& df, double& d2f) const {
   const double s2 = s * s;
   f += p * s2;
   df += dp * s2 + 2.0 * s * p;
-  d2f += d2p * s2 + 4.0 * s * dp + 2.0 * p;
+  if constexpr (kSecond) d2f += d2p * s2 + 4.0 * s * dp + 2.0 * p;
 }
 
 void EvenAsphere::sag_gradient(double x, double y, double& z, double& zx, double& zy) const {
-  double f, df, d2f;
-  sag_in_s(x * x + y * y, f, df, d2f);
+  double f, df, unused;
+  sag_in_s<false>(x * x + y * y, f, df, unused);
   z = f;
   zx = 2.0 * x * df;
   zy = 2.0 * y * df;
@@ -54,7 +55,7 @@ void EvenAsphere::sag_gradient(double x, double y, double& z, double& zx, double
 
 HeightDerivatives EvenAsphere::height_derivatives(double x, double y) const {
   double f, df, d2f;
-  sag_in_s(x * x + y * y, f, df, d2f);
+  sag_in_s<true>(x * x + y * y, f, df, d2f);
   HeightDerivatives h;
   h.z = f;
   h.zx = 2.0 * x * df;

@@ -112,8 +112,11 @@ double TransformedSurface::solve(double x, double y, HeightDerivatives& h, int o
     // The parent coordinates carry the decentre, so rounding limits z to about
     // 1e-16 of their size; Newton's step settles there.
     if (std::abs(step) <= 1e-14 * (1 + origin_.norm() + std::abs(x) + std::abs(y) + std::abs(z))) {
-      // One more evaluation at the final z keeps h consistent with the answer.
+      // One more evaluation at the final z keeps h consistent with the answer; where the
+      // last step left the parent point where it was (a third of the calls on an
+      // off-axis paraboloid), h is already its evaluation there.
       const Eigen::Vector3d Xf = to_parent({x, y, z});
+      if (Xf.x() == X.x() && Xf.y() == X.y()) return z;
       if (order >= 2)
         h = parent_->height_derivatives(Xf.x(), Xf.y());
       else

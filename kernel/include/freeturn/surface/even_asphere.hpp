@@ -30,8 +30,10 @@ class EvenAsphere final : public Surface {
   double conic() const { return k_; }
 
  private:
-  // z = F(s) with s = r²; F and its first two derivatives in s. Working in s keeps the
+  // z = F(s) with s = r²; F and its first two derivatives in s (the second only where
+  // kSecond: the planner's sag_gradient asks for F and F' alone). Working in s keeps the
   // formulas free of the 1/r that a derivation in r has at the vertex.
+  template <bool kSecond>
   void sag_in_s(double s, double& f, double& df, double& d2f) const;
 
   double c_, k_;
