@@ -1,7 +1,10 @@
 #include <doctest/doctest.h>
 
+#include <algorithm>
 #include <cmath>
 #include <random>
+#include <utility>
+#include <vector>
 
 #include "fixtures.hpp"
 #include "freeturn/nurbs/surface_span_cache.hpp"
@@ -46,6 +49,42 @@ TEST_SUITE("nurbs") {
     worst = std::max(worst, worst_difference(cache.evaluate(-0.5, 1.5, 2), s.evaluate(-0.5, 1.5, 2)));
     MESSAGE("largest relative difference from the direct evaluation: " << worst);
     CHECK(worst < 1e-12);
+  }
+
+  TEST_CASE("span cache: the same bits in any order of queries, with its spans evicted") {
+    // The cache keeps 64 spans (each in the slot its indices hash to); this net has 17 × 17.
+    // Asked along a walk, in a shuffled order and from a fresh cache per point, every
+    // point's S and partials must be the same bits: a span's power form depends on the span
+    // alone, not on what the cache held before.
+    const auto s = freeform_with_pole();
+    std::mt19937 rng(5);
+    std::uniform_real_distribution<double> unit(0, 1);
+    std::vector<std::pair<double, double>> points;
+    double u = 0.02, v = 0.3;
+    for (int k = 0; k < 3000; ++k) {
+      if (k % 300 == 0) u = unit(rng), v = unit(rng);
+      u = std::fmod(u + 0.0037, 1.0);
+      v = std::fmod(v + 0.0061, 1.0);
+      points.emplace_back(u, v);
+    }
+    const auto same = [](const SurfaceDerivatives& a, const SurfaceDerivatives& b) {
+      return a.point == b.point && a.su == b.su && a.sv == b.sv && a.suu == b.suu &&
+             a.suv == b.suv && a.svv == b.svv;
+    };
+    SurfaceSpanCache walked(s);
+    std::vector<SurfaceDerivatives> along;
+    for (const auto& [pu, pv] : points) along.push_back(walked.evaluate(pu, pv, 2));
+    std::vector<std::size_t> order(points.size());
+    for (std::size_t i = 0; i < order.size(); ++i) order[i] = i;
+    std::shuffle(order.begin(), order.end(), rng);
+    SurfaceSpanCache shuffled(s);
+    int differ = 0;
+    for (const std::size_t i : order) {
+      differ += !same(shuffled.evaluate(points[i].first, points[i].second, 2), along[i]);
+      SurfaceSpanCache fresh(s);
+      differ += !same(fresh.evaluate(points[i].first, points[i].second, 2), along[i]);
+    }
+    CHECK(differ == 0);
   }
 
   TEST_CASE("span cache: a rational sphere octant keeps its radius, first order alone too") {

@@ -21,25 +21,27 @@ bool holds(const KnotVector& k, int span, double t) {
 SurfaceSpanCache::SurfaceSpanCache(const NurbsSurface& surface) : surface_(surface) {
   const std::size_t pu = static_cast<std::size_t>(surface.degree_u()) + 1;
   const std::size_t qv = static_cast<std::size_t>(surface.degree_v()) + 1;
-  a_.resize(pu * qv);
+  for (Span& span : spans_) span.a.resize(pu * qv);
   partial_.resize(pu * qv);
   const int p = std::max(surface.degree_u(), surface.degree_v());
   work_.resize((static_cast<std::size_t>(p) + 1) * (static_cast<std::size_t>(p) + 1) +
                basis_derivatives_work_size(p));
 }
 
-void SurfaceSpanCache::enter(int span_u, int span_v) {
+void SurfaceSpanCache::enter(Span& span, int span_u, int span_v) {
   const NurbsSurface& s = surface_;
   const int p = s.degree_u(), q = s.degree_v();
   const int pu = p + 1, qv = q + 1;
-  span_u_ = span_u;
-  span_v_ = span_v;
-  u0_ = s.knots_u().knots()[static_cast<std::size_t>(span_u)];
-  v0_ = s.knots_v().knots()[static_cast<std::size_t>(span_v)];
+  span.span_u = span_u;
+  span.span_v = span_v;
+  span.u0 = s.knots_u().knots()[static_cast<std::size_t>(span_u)];
+  span.v0 = s.knots_v().knots()[static_cast<std::size_t>(span_v)];
+  const double u0 = span.u0, v0 = span.v0;
+  std::vector<Vector4d>& a = span.a;
   double* ders = work_.data();
   double* scratch = ders + (std::max(p, q) + 1) * (std::max(p, q) + 1);
   // Σ_r c_rk P^w_rs: the u-direction's Taylor coefficients (k-th derivative over k!).
-  basis_function_derivatives(span_u, u0_, p, p, s.knots_u().knots().data(), ders, scratch);
+  basis_function_derivatives(span_u, u0, p, p, s.knots_u().knots().data(), ders, scratch);
   const int nvc = s.count_v();
   const Vector4d* base = &s.homogeneous_points()[static_cast<std::size_t>((span_u - p) * nvc + span_v - q)];
   double factorial = 1;
@@ -52,7 +54,7 @@ void SurfaceSpanCache::enter(int span_u, int span_v) {
     }
   }
   // a_kl = Σ_s d_sl (Σ_r c_rk P^w_rs).
-  basis_function_derivatives(span_v, v0_, q, q, s.knots_v().knots().data(), ders, scratch);
+  basis_function_derivatives(span_v, v0, q, q, s.knots_v().knots().data(), ders, scratch);
   for (int k = 0; k < pu; ++k) {
     double fl = 1;
     for (int l = 0; l <= q; ++l) {
@@ -60,7 +62,7 @@ void SurfaceSpanCache::enter(int span_u, int span_v) {
       Vector4d t = Vector4d::Zero();
       for (int c = 0; c < qv; ++c)
         t += (ders[l * qv + c] / fl) * partial_[static_cast<std::size_t>(k * qv + c)];
-      a_[static_cast<std::size_t>(k * qv + l)] = t;
+      a[static_cast<std::size_t>(k * qv + l)] = t;
     }
   }
 }
@@ -103,14 +105,26 @@ SurfaceDerivatives SurfaceSpanCache::evaluate(double u, double v, int order) {
   const int d = std::clamp(order, 0, 2);
   u = std::clamp(u, s.front_u(), s.back_u());
   v = std::clamp(v, s.front_v(), s.back_v());
-  if (!holds(s.knots_u(), span_u_, u) || !holds(s.knots_v(), span_v_, v))
-    enter(s.knots_u().find_span(u), s.knots_v().find_span(v));
+  // The span the last evaluation used; else the slot (u, v)'s span hashes to, entered there
+  // if it holds another.
+  const Span* held = &spans_[static_cast<std::size_t>(last_)];
+  if (!holds(s.knots_u(), held->span_u, u) || !holds(s.knots_v(), held->span_v, v)) {
+    const int span_u = s.knots_u().find_span(u), span_v = s.knots_v().find_span(v);
+    last_ = (span_u * 31 + span_v) & (kSpans - 1);
+    Span& slot = spans_[static_cast<std::size_t>(last_)];
+    if (slot.span_u != span_u || slot.span_v != span_v) enter(slot, span_u, span_v);
+    held = &slot;
+  }
+  const Span& span = *held;
   const int p = s.degree_u(), q = s.degree_v();
-  const double du = u - u0_, dv = v - v0_;
+  const double du = u - span.u0, dv = v - span.v0;
   Vector4d aw[3][3];
-  if (d == 0) power_form_partials<0>(a_.data(), p, q, du, dv, aw);
-  else if (d == 1) power_form_partials<1>(a_.data(), p, q, du, dv, aw);
-  else power_form_partials<2>(a_.data(), p, q, du, dv, aw);
+  if (d == 0)
+    power_form_partials<0>(span.a.data(), p, q, du, dv, aw);
+  else if (d == 1)
+    power_form_partials<1>(span.a.data(), p, q, du, dv, aw);
+  else
+    power_form_partials<2>(span.a.data(), p, q, du, dv, aw);
   return rational_surface_derivatives(aw, d);
 }
 

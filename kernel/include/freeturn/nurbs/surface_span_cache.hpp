@@ -8,13 +8,19 @@
 // with c_rk = N_r^(k)(u₀)/k! the Taylor coefficients of the span's basis functions (exact:
 // they are polynomials of degree p there; The NURBS Book, A2.3 for the derivatives), and
 // likewise d_sl in v. Then S^w and its partials are a two-dimensional Horner scheme, and
-// S, Su, Sv (and the second partials) follow by the quotient rule (A4.4). The cache holds
-// one span: a path that leaves it pays one conversion, (p+1)²(q+1)² products.
+// S, Su, Sv (and the second partials) follow by the quotient rule (A4.4). A path that leaves
+// the spans held pays one conversion, (p+1)²(q+1)² products.
 //
 // The answer is a function of (u, v) alone (the span's coefficients are fixed by the span),
 // so a cache used on any thread, in any order, gives the same bits; they agree with
 // NurbsSurface::evaluate to rounding.
+//
+// It holds up to kSpans spans, not one, each in the slot its span indices hash to: a nose's
+// searches about a contact reach a nose radius either side, across several spans of a fine
+// grid, and the cut's simulation scans rows across the whole surface; a cache of one span
+// converted one again at most steps (a quarter of a height grid's run).
 
+#include <array>
 #include <vector>
 
 #include "freeturn/nurbs/surface.hpp"
@@ -32,12 +38,18 @@ class SurfaceSpanCache {
   const NurbsSurface& surface() const { return surface_; }
 
  private:
-  void enter(int span_u, int span_v);
+  static constexpr int kSpans = 64;  // a power of two (the slot is a hash's low bits)
+  // One span's power form.
+  struct Span {
+    int span_u = -1, span_v = -1;
+    double u0 = 0, v0 = 0;
+    std::vector<Vector4d> a;  // (p + 1) × (q + 1): a_kl at k·(q + 1) + l
+  };
+  void enter(Span& span, int span_u, int span_v);
 
   const NurbsSurface& surface_;
-  int span_u_ = -1, span_v_ = -1;
-  double u0_ = 0, v0_ = 0;
-  std::vector<Vector4d> a_;       // (p + 1) × (q + 1): a_kl at k·(q + 1) + l
+  std::array<Span, kSpans> spans_;
+  int last_ = 0;                  // the slot the last evaluation used, tried first
   std::vector<double> work_;      // basis derivatives and their scratch
   std::vector<Vector4d> partial_; // (p + 1) × (q + 1): Σ_r c_rk P^w_rs, at k·(q + 1) + s
 };
