@@ -21,23 +21,30 @@ bool holds(const KnotVector& k, int span, double t) {
 SurfaceSpanCache::SurfaceSpanCache(const NurbsSurface& surface) : surface_(surface) {
   const std::size_t pu = static_cast<std::size_t>(surface.degree_u()) + 1;
   const std::size_t qv = static_cast<std::size_t>(surface.degree_v()) + 1;
-  for (Span& span : spans_) span.a.resize(pu * qv);
+  coefficients_.resize(kSpans * pu * qv);
   partial_.resize(pu * qv);
   const int p = std::max(surface.degree_u(), surface.degree_v());
   work_.resize((static_cast<std::size_t>(p) + 1) * (static_cast<std::size_t>(p) + 1) +
                basis_derivatives_work_size(p));
 }
 
-void SurfaceSpanCache::enter(Span& span, int span_u, int span_v) {
+Vector4d* SurfaceSpanCache::coefficients(int slot) {
+  const std::size_t size = static_cast<std::size_t>(surface_.degree_u() + 1) *
+                           static_cast<std::size_t>(surface_.degree_v() + 1);
+  return coefficients_.data() + static_cast<std::size_t>(slot) * size;
+}
+
+void SurfaceSpanCache::enter(int slot, int span_u, int span_v) {
   const NurbsSurface& s = surface_;
   const int p = s.degree_u(), q = s.degree_v();
   const int pu = p + 1, qv = q + 1;
+  Span& span = spans_[static_cast<std::size_t>(slot)];
   span.span_u = span_u;
   span.span_v = span_v;
   span.u0 = s.knots_u().knots()[static_cast<std::size_t>(span_u)];
   span.v0 = s.knots_v().knots()[static_cast<std::size_t>(span_v)];
   const double u0 = span.u0, v0 = span.v0;
-  std::vector<Vector4d>& a = span.a;
+  Vector4d* const a = coefficients(slot);
   double* ders = work_.data();
   double* scratch = ders + (std::max(p, q) + 1) * (std::max(p, q) + 1);
   // Σ_r c_rk P^w_rs: the u-direction's Taylor coefficients (k-th derivative over k!).
@@ -111,20 +118,20 @@ SurfaceDerivatives SurfaceSpanCache::evaluate(double u, double v, int order) {
   if (!holds(s.knots_u(), held->span_u, u) || !holds(s.knots_v(), held->span_v, v)) {
     const int span_u = s.knots_u().find_span(u), span_v = s.knots_v().find_span(v);
     last_ = (span_u * 31 + span_v) & (kSpans - 1);
-    Span& slot = spans_[static_cast<std::size_t>(last_)];
-    if (slot.span_u != span_u || slot.span_v != span_v) enter(slot, span_u, span_v);
-    held = &slot;
+    held = &spans_[static_cast<std::size_t>(last_)];
+    if (held->span_u != span_u || held->span_v != span_v) enter(last_, span_u, span_v);
   }
   const Span& span = *held;
+  const Vector4d* const a = coefficients(last_);
   const int p = s.degree_u(), q = s.degree_v();
   const double du = u - span.u0, dv = v - span.v0;
   Vector4d aw[3][3];
   if (d == 0)
-    power_form_partials<0>(span.a.data(), p, q, du, dv, aw);
+    power_form_partials<0>(a, p, q, du, dv, aw);
   else if (d == 1)
-    power_form_partials<1>(span.a.data(), p, q, du, dv, aw);
+    power_form_partials<1>(a, p, q, du, dv, aw);
   else
-    power_form_partials<2>(span.a.data(), p, q, du, dv, aw);
+    power_form_partials<2>(a, p, q, du, dv, aw);
   return rational_surface_derivatives(aw, d);
 }
 

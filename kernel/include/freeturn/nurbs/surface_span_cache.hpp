@@ -39,16 +39,21 @@ class SurfaceSpanCache {
 
  private:
   static constexpr int kSpans = 64;  // a power of two (the slot is a hash's low bits)
-  // One span's power form.
+  // One span held: which, and its corner; its power form is the slot's part of
+  // coefficients_.
   struct Span {
     int span_u = -1, span_v = -1;
     double u0 = 0, v0 = 0;
-    std::vector<Vector4d> a;  // (p + 1) × (q + 1): a_kl at k·(q + 1) + l
   };
-  void enter(Span& span, int span_u, int span_v);
+  // The power form of slot k's span: (p + 1) × (q + 1), a_kl at k·(q + 1) + l.
+  Vector4d* coefficients(int slot);
+  void enter(int slot, int span_u, int span_v);
 
   const NurbsSurface& surface_;
   std::array<Span, kSpans> spans_;
+  // Every slot's power form in one allocation (a thread that alternates between two
+  // surfaces builds its cache again at each switch).
+  std::vector<Vector4d> coefficients_;
   int last_ = 0;                  // the slot the last evaluation used, tried first
   std::vector<double> work_;      // basis derivatives and their scratch
   std::vector<Vector4d> partial_; // (p + 1) × (q + 1): Σ_r c_rk P^w_rs, at k·(q + 1) + s
