@@ -114,15 +114,16 @@ SurfaceDerivatives SurfaceSpanCache::evaluate(double u, double v, int order) {
   v = std::clamp(v, s.front_v(), s.back_v());
   // The span the last evaluation used; else the slot (u, v)'s span hashes to, entered there
   // if it holds another.
-  const Span* held = &spans_[static_cast<std::size_t>(last_)];
-  if (!holds(s.knots_u(), held->span_u, u) || !holds(s.knots_v(), held->span_v, v)) {
+  if (!holds(s.knots_u(), last_.span_u, u) || !holds(s.knots_v(), last_.span_v, v)) {
     const int span_u = s.knots_u().find_span(u), span_v = s.knots_v().find_span(v);
-    last_ = (span_u * 31 + span_v) & (kSpans - 1);
-    held = &spans_[static_cast<std::size_t>(last_)];
-    if (held->span_u != span_u || held->span_v != span_v) enter(last_, span_u, span_v);
+    const int slot = (span_u * 31 + span_v) & (kSpans - 1);
+    const Span& held = spans_[static_cast<std::size_t>(slot)];
+    if (held.span_u != span_u || held.span_v != span_v) enter(slot, span_u, span_v);
+    last_ = held;
+    last_coefficients_ = coefficients(slot);
   }
-  const Span& span = *held;
-  const Vector4d* const a = coefficients(last_);
+  const Span& span = last_;
+  const Vector4d* const a = last_coefficients_;
   const int p = s.degree_u(), q = s.degree_v();
   const double du = u - span.u0, dv = v - span.v0;
   Vector4d aw[3][3];

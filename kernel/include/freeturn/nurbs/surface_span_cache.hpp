@@ -31,6 +31,9 @@ class SurfaceSpanCache {
  public:
   // `surface` must outlive the cache.
   explicit SurfaceSpanCache(const NurbsSurface& surface);
+  // Not copied: it points into its own storage (a thread keeps one in place).
+  SurfaceSpanCache(const SurfaceSpanCache&) = delete;
+  SurfaceSpanCache& operator=(const SurfaceSpanCache&) = delete;
 
   // S and its partials up to `order` (0, 1 or 2) at (u, v), clamped to the domain.
   SurfaceDerivatives evaluate(double u, double v, int order = 1);
@@ -54,7 +57,10 @@ class SurfaceSpanCache {
   // Every slot's power form in one allocation (a thread that alternates between two
   // surfaces builds its cache again at each switch).
   std::vector<Vector4d> coefficients_;
-  int last_ = 0;                  // the slot the last evaluation used, tried first
+  // The span the last evaluation used, tried first (a copy, so that a path that stays in
+  // it reads what a cache of one span read), and its power form.
+  Span last_;
+  const Vector4d* last_coefficients_ = nullptr;
   std::vector<double> work_;      // basis derivatives and their scratch
   std::vector<Vector4d> partial_; // (p + 1) × (q + 1): Σ_r c_rk P^w_rs, at k·(q + 1) + s
 };
