@@ -21,6 +21,7 @@ bool holds(const KnotVector& k, int span, double t) {
 SurfaceSpanCache::SurfaceSpanCache(const NurbsSurface& surface) : surface_(surface) {
   const std::size_t pu = static_cast<std::size_t>(surface.degree_u()) + 1;
   const std::size_t qv = static_cast<std::size_t>(surface.degree_v()) + 1;
+  spans_.resize(kSpans);
   coefficients_.resize(kSpans * pu * qv);
   partial_.resize(pu * qv);
   const int p = std::max(surface.degree_u(), surface.degree_v());

@@ -20,7 +20,6 @@
 // grid, and the cut's simulation scans rows across the whole surface; a cache of one span
 // converted one again at most steps (a quarter of a height grid's run).
 
-#include <array>
 #include <vector>
 
 #include "freeturn/nurbs/surface.hpp"
@@ -53,7 +52,9 @@ class SurfaceSpanCache {
   void enter(int slot, int span_u, int span_v);
 
   const NurbsSurface& surface_;
-  std::array<Span, kSpans> spans_;
+  // On the heap, not in the object: a thread's cache lives in thread-local storage, which
+  // a library loaded by dlopen (the Python module) must keep small.
+  std::vector<Span> spans_;
   // Every slot's power form in one allocation (a thread that alternates between two
   // surfaces builds its cache again at each switch).
   std::vector<Vector4d> coefficients_;
