@@ -502,7 +502,8 @@ double largest_deviation(const Path& path, Deviation&& deviation, bool always_se
 
 // How far apart two touches lie in (x, y): ρ_a along `a`'s radial line, ρ_b along `b`'s.
 inline double touches_apart(const RadialLine& a, double rho_a, const RadialLine& b, double rho_b) {
-  return std::hypot(rho_b * b.cos - rho_a * a.cos, rho_b * b.sin - rho_a * a.sin);
+  const double dx = rho_b * b.cos - rho_a * a.cos, dy = rho_b * b.sin - rho_a * a.sin;
+  return std::sqrt(dx * dx + dy * dy);  // mm: std::hypot's care for overflow is not needed
 }
 
 // Path::touch_clear at a block's own touch (`line`: the radial line at its C), remembered

@@ -205,11 +205,14 @@ LensletArray::LensletArray(const LensletArrayOptions& options) : o_(options) {
   // The footprint test's constants (lenslet_at).
   const double sign = cb > 0 ? 1.0 : -1.0;
   if (cb != 0) rb_squared_ = 1 / (cb * cb);
+  half_squared_ = 0.25 * o_.lens_diameter * o_.lens_diameter;
+  lookup_reach_ = o_.extent + cell_;
   for (int i = 0; i < lenslet_count(); ++i) {
     const Lenslet& l = lenslets_[static_cast<std::size_t>(i)];
     by_lenslet_.push_back({l.base_point.x(), l.base_point.y(), sign * l.axis.x(),
                            sign * l.axis.y(), l.axis.z() * l.axis.z(), i});
   }
+  lookup_count_ = static_cast<int>(by_lenslet_.size());
   // Footprints overlap only if two lenslets listed in one cell do (a point in both lies
   // in a cell both are listed in). On a sphere the footprint is the cap within α of the
   // lenslet's axis (R_b sin α = D/2), and two caps are apart when their axes are at least
@@ -307,8 +310,38 @@ double LensletArray::defined_radius() const {
 
 int LensletArray::lenslet_at(double x, double y) const {
   // Written so that NaN coordinates (a point off a transformed surface) find no lenslet.
-  if (!(std::abs(x) <= o_.extent + cell_) || !(std::abs(y) <= o_.extent + cell_)) return -1;
-  const double s = x * x + y * y;
+  if (!(std::abs(x) <= lookup_reach_) || !(std::abs(y) <= lookup_reach_)) return -1;
+  // The lenslet this thread found last: a path's consecutive queries mostly stay in one.
+  // Where no two footprints overlap (disjoint_), the lenslet that holds the point is the
+  // only one, so trying it first changes no answer; any array's index is only a guess,
+  // checked against this one's own data. Read at a fixed offset from the thread pointer
+  // (the library's TLS model, kernel/CMakeLists.txt), not through __tls_get_addr, whose
+  // call was about a twentieth of a compound eye's planning (this is asked for every
+  // evaluation of the design).
+  static thread_local int last_found = -1;
+  // That lenslet, then the fine grid's cell's in order (x + extent ≥ −cell here:
+  // truncation and floor differ only on (−1, 0), clamped to 0). The footprint test is
+  // chosen once a query, outside the loop: a plane's or a sphere's.
+  const auto first_holding = [&](const auto& holds) {
+    if (disjoint_ && last_found >= 0 && last_found < lookup_count_ &&
+        holds(by_lenslet_[static_cast<std::size_t>(last_found)]))
+      return last_found;
+    const int a =
+        std::clamp(static_cast<int>((x + o_.extent) * inverse_fine_cell_), 0, fine_per_side_ - 1);
+    const int b =
+        std::clamp(static_cast<int>((y + o_.extent) * inverse_fine_cell_), 0, fine_per_side_ - 1);
+    const int k = b * fine_per_side_ + a;
+    for (int idx = fine_start_[k]; idx < fine_start_[k + 1]; ++idx) {
+      const LookupEntry& l = fine_lookup_[static_cast<std::size_t>(idx)];
+      if (holds(l)) return last_found = l.lenslet;
+    }
+    return -1;
+  };
+  if (o_.base_curvature == 0)
+    return first_holding([&](const LookupEntry& l) {
+      const double wx = x - l.px, wy = y - l.py;
+      return wx * wx + wy * wy < half_squared_;
+    });
   // On a sphere of radius R_b about O the point p of the base (over (x, y)) lies in
   // lenslet i's footprint when the angle at O between p and the base point c_i is below α
   // (R_b sin α = D/2). With p − O = (x, y, −sgn(c)·S), S = √(R_b² − s), and
@@ -316,38 +349,12 @@ int LensletArray::lenslet_at(double x, double y) const {
   // tested squared as a_z²(R_b² − s) > M² where M > 0: no square root (the planner asks
   // this for every evaluation of the design, and the root's latency was most of it).
   // Past the sphere's rim (S² < 0) no footprint reaches.
-  const double depth_squared = rb_squared_ - s;  // S²
-  if (o_.base_curvature != 0 && !(depth_squared >= 0)) return -1;
-  const double half_sq = 0.25 * o_.lens_diameter * o_.lens_diameter;
-  const auto holds = [&](const LookupEntry& l) {
-    if (o_.base_curvature == 0) {
-      const double wx = x - l.px, wy = y - l.py;
-      return wx * wx + wy * wy < half_sq;
-    }
+  const double depth_squared = rb_squared_ - (x * x + y * y);  // S²
+  if (!(depth_squared >= 0)) return -1;
+  return first_holding([&](const LookupEntry& l) {
     const double m = rim_cosine_ + l.ux * x + l.uy * y;
     return m <= 0 || l.w2 * depth_squared > m * m;
-  };
-  // The lenslet this thread found last: a path's consecutive queries mostly stay in one.
-  // Where no two footprints overlap (disjoint_), the lenslet that holds the point is the
-  // only one, so trying it first changes no answer; any array's index is only a guess,
-  // checked against this one's own data. In the initial-exec model: read at a fixed offset
-  // from the thread pointer, not through __tls_get_addr, whose call was about a twentieth
-  // of a compound eye's planning (this is asked for every evaluation of the design). It
-  // takes 4 bytes of the static TLS block that the C library keeps for libraries loaded
-  // later (the Python module loads this one with dlopen).
-  [[gnu::tls_model("initial-exec")]] static thread_local int last_found = -1;
-  if (disjoint_ && last_found >= 0 && last_found < lenslet_count() &&
-      holds(by_lenslet_[static_cast<std::size_t>(last_found)]))
-    return last_found;
-  // x + extent ≥ −cell here: truncation and floor differ only on (−1, 0), clamped to 0.
-  const int a = std::clamp(static_cast<int>((x + o_.extent) * inverse_fine_cell_), 0, fine_per_side_ - 1);
-  const int b = std::clamp(static_cast<int>((y + o_.extent) * inverse_fine_cell_), 0, fine_per_side_ - 1);
-  const int k = b * fine_per_side_ + a;
-  for (int idx = fine_start_[k]; idx < fine_start_[k + 1]; ++idx) {
-    const LookupEntry& l = fine_lookup_[static_cast<std::size_t>(idx)];
-    if (holds(l)) return last_found = l.lenslet;
-  }
-  return -1;
+  });
 }
 
 int LensletArray::section_creases(const RadialLine& line, double rho_lo, double rho_hi,
@@ -499,7 +506,7 @@ int LensletArray::creases_near(double x, double y, double radius,
     double distance;
     bool inside;
     if (cb == 0) {
-      const double from_centre = std::hypot(x - l.px, y - l.py);
+      const double from_centre = std::sqrt((x - l.px) * (x - l.px) + (y - l.py) * (y - l.py));
       distance = std::abs(from_centre - half);
       inside = from_centre < half;
     } else {
@@ -523,7 +530,7 @@ int LensletArray::creases_near(double x, double y, double radius,
     // along the rim).
     const RimShape& rim = rim_shape_[static_cast<std::size_t>(l.lenslet)];
     const double from_x = x - rim.centre_x, from_y = y - rim.centre_y;
-    const double from = std::hypot(from_x, from_y);
+    const double from = std::sqrt(from_x * from_x + from_y * from_y);  // mm: no overflow
     if (from > 0 && std::isfinite(rim.curvature)) {
       crease.normal_x = from_x / from;
       crease.normal_y = from_y / from;

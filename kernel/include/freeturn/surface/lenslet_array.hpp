@@ -113,6 +113,10 @@ class LensletArray final : public Surface {
   // The largest bend of any lenslet's sphere over its footprint (max_bend).
   double lenslet_bend_ = 0;
   double rb_squared_ = 0;  // R_b² on a sphere (lenslet_at)
+  // lenslet_at's other constants: (D/2)², how far from the axis in x or y a lookup can
+  // find a lenslet (the extent and a cell), and by_lenslet_'s count.
+  double half_squared_ = 0, lookup_reach_ = 0;
+  int lookup_count_ = 0;
   // creases_near: the slope's largest jump across a rim, and how far from the axis in
   // (x, y) a rim reaches.
   double crease_jump_ = 0;
