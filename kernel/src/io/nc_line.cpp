@@ -1,8 +1,60 @@
 #include "freeturn/io/nc_line.hpp"
 
 #include <cmath>
+#include <cstdint>
+#include <cstring>
 
 namespace freeturn {
+
+namespace {
+
+// One byte's classes, as NcLineBytes says.
+void classify_nc_byte(unsigned char byte, NcLineBytes& classes) {
+  classes.unprintable |= (byte < 0x20 && byte != '\t' && byte != '\r') || byte > 0x7E;
+  classes.comment_marks |= byte == '(' || byte == ')' || byte == ';';
+}
+
+}  // namespace
+
+NcLineBytes classify_nc_bytes(std::string_view line) {
+  constexpr std::uint64_t kOnes = 0x0101010101010101ull, kHighs = 0x8080808080808080ull;
+  // Whether any byte of w is below n (1 ≤ n ≤ 128), for a word with no byte of 128 or more:
+  // a byte b < n borrows and leaves its high bit set, where ~w's is set too; a borrow into
+  // the byte above can flag that one as well, but only after a byte that is below n. The
+  // word's answer is exact (Anderson, "Bit Twiddling Hacks": hasless).
+  const auto has_below = [](std::uint64_t w, std::uint64_t n) {
+    return ((w - kOnes * n) & ~w & kHighs) != 0;
+  };
+  NcLineBytes classes;
+  // Any byte of 128 or more, below ' ', DEL (0x7F: zero after the xor) or a comment's mark
+  // among the 8 at p: those are read one by one (tab and CR are below ' ').
+  const auto classify_word = [&](const char* p, std::uint64_t w) {
+    const bool plain = (w & kHighs) == 0 && !has_below(w, 0x20) &&
+                       !has_below(w ^ (kOnes * 0x7F), 1) && !has_below(w ^ (kOnes * '('), 1) &&
+                       !has_below(w ^ (kOnes * ')'), 1) && !has_below(w ^ (kOnes * ';'), 1);
+    if (!plain)
+      for (int k = 0; k < 8; ++k) classify_nc_byte(static_cast<unsigned char>(p[k]), classes);
+  };
+  const char* const data = line.data();
+  const std::size_t size = line.size();
+  if (size < 8) {
+    for (std::size_t k = 0; k < size; ++k)
+      classify_nc_byte(static_cast<unsigned char>(data[k]), classes);
+    return classes;
+  }
+  std::uint64_t w;
+  std::size_t i = 0;
+  for (; i + 8 <= size; i += 8) {
+    std::memcpy(&w, data + i, 8);
+    classify_word(data + i, w);
+  }
+  // The last 8 bytes, some of them read already (the answer is an or over the bytes).
+  if (i < size) {
+    std::memcpy(&w, data + size - 8, 8);
+    classify_word(data + size - 8, w);
+  }
+  return classes;
+}
 
 std::size_t nc_comment_close(std::string_view line, std::size_t open, NcCommentError& error) {
   for (std::size_t k = open + 1; k < line.size(); ++k) {

@@ -153,13 +153,9 @@ void NcGuard::refuse(const std::string& what) {
 
 void NcGuard::check_line(std::string_view line) {
   // Every byte must be printable text, comments included: a controller reads every byte of
-  // a line. A loop without branches (it vectorises); the place is found only on refusal.
-  unsigned unprintable = 0, comments = 0;
-  for (const char ch : line) {
-    const unsigned byte = static_cast<unsigned char>(ch);
-    unprintable |= (byte - 0x20u > 0x5Eu) & (byte != '\t') & (byte != '\r');
-    comments |= (byte == '(') | (byte == ')') | (byte == ';');
-  }
+  // a line. The place is found only on refusal.
+  const NcLineBytes bytes = classify_nc_bytes(line);
+  const bool unprintable = bytes.unprintable, comments = bytes.comment_marks;
   if (nc_line_too_long(line))
     return refuse("a line of " + std::to_string(line.size()) + " characters, longer than the " +
                   std::to_string(kMaxNcLineLength) +

@@ -17,6 +17,18 @@ inline bool nc_line_too_long(std::string_view line) {
          !(line.size() == kMaxNcLineLength + 1 && line.back() == '\r');
 }
 
+// What the guard asks first of every byte of a line it reads back: whether any byte is not
+// printable text (below ' ' or above '~', tab and CR aside), and whether any is a comment's
+// mark ('(', ')' or ';'), when the comments must be read.
+struct NcLineBytes {
+  bool unprintable = false;
+  bool comment_marks = false;
+};
+// Eight bytes a step (a word's bytes compared at once), each flagged word's bytes again one
+// by one: the same answer as a loop over the bytes, at about a fifth of its instructions on
+// a program's lines (none flagged).
+NcLineBytes classify_nc_bytes(std::string_view line);
+
 // A line's comments as RS-274 readers take them (LinuxCNC's, Fanuc's): "( … )" up to the
 // first ')', and everything from a ';' outside one to the line's end. A controller stops on
 // a '(' inside a comment (LinuxCNC: "nested comment found"), on a comment still open at
