@@ -42,8 +42,8 @@ TEST_SUITE("io") {
     // The values next to each edge (0, tab, CR, ' ', '~', DEL, 128, 255, the marks, and the
     // bytes one either side of a mark, whose xor with it is 1), where a word-wide borrow
     // could flag the wrong byte.
-    const unsigned char edges[] = {0,   1,   8,   9,   10,  12,  13,  14,  31,  32,  33,
-                                   39,  40,  41,  42,  58,  59,  60,  48,  57,  65,  126,
+    const unsigned char edges[] = {0,   1,   8,   9,   10,  12,  13,  14,  31,  32, 33,
+                                   39,  40,  41,  42,  58,  59,  60,  48,  57,  65, 126,
                                    127, 128, 129, 160, 254, 255, 'X', 'Z', '.', '-'};
     std::mt19937 random(20261208);
     std::uniform_int_distribution<std::size_t> pick(0, sizeof edges - 1), length(0, 40);
@@ -52,7 +52,9 @@ TEST_SUITE("io") {
     for (int n = 0; n < 200000; ++n) {
       std::string line(length(random), 'X');
       // Mostly plain text, a few edge bytes: lines where only one word is flagged.
-      for (char& ch : line) ch = plain(random) < 8 ? static_cast<char>('0' + plain(random)) : static_cast<char>(edges[pick(random)]);
+      for (char& ch : line)
+        ch = plain(random) < 8 ? static_cast<char>('0' + plain(random))
+                               : static_cast<char>(edges[pick(random)]);
       const NcLineBytes want = classes_byte_by_byte(line), got = classify_nc_bytes(line);
       differing += got.unprintable != want.unprintable || got.comment_marks != want.comment_marks;
       unprintable += want.unprintable;

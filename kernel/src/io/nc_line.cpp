@@ -10,7 +10,7 @@ namespace {
 
 // One byte's classes, as NcLineBytes says.
 void classify_nc_byte(unsigned char byte, NcLineBytes& classes) {
-  classes.unprintable |= (byte < 0x20 && byte != '\t' && byte != '\r') || byte > 0x7E;
+  classes.unprintable |= nc_byte_unprintable(byte);
   classes.comment_marks |= byte == '(' || byte == ')' || byte == ';';
 }
 

@@ -155,15 +155,14 @@ void NcGuard::check_line(std::string_view line) {
   // Every byte must be printable text, comments included: a controller reads every byte of
   // a line. The place is found only on refusal.
   const NcLineBytes bytes = classify_nc_bytes(line);
-  const bool unprintable = bytes.unprintable, comments = bytes.comment_marks;
   if (nc_line_too_long(line))
     return refuse("a line of " + std::to_string(line.size()) + " characters, longer than the " +
                   std::to_string(kMaxNcLineLength) +
                   " a controller reads: " + std::string(line.substr(0, 40)) + "…");
-  if (unprintable) {
+  if (bytes.unprintable) {
     for (std::size_t i = 0; i < line.size(); ++i) {
       const unsigned char byte = static_cast<unsigned char>(line[i]);
-      if ((byte < 0x20 && byte != '\t' && byte != '\r') || byte > 0x7E) {
+      if (nc_byte_unprintable(byte)) {
         char text[8];
         std::snprintf(text, sizeof text, "0x%02X", byte);
         return refuse("byte " + std::string(text) + " at column " + std::to_string(i + 1) +
@@ -173,7 +172,7 @@ void NcGuard::check_line(std::string_view line) {
   }
   // The words outside comments: "( … )" and everything after ';' (io/nc_line.hpp).
   std::string_view code = line;
-  if (comments) {
+  if (bytes.comment_marks) {
     if (const NcCommentError error = strip_nc_comments(line, code_))
       return refuse(std::string(error.what) + " (column " + std::to_string(error.column) +
                     "): " + std::string(line));

@@ -17,9 +17,15 @@ inline bool nc_line_too_long(std::string_view line) {
          !(line.size() == kMaxNcLineLength + 1 && line.back() == '\r');
 }
 
-// What the guard asks first of every byte of a line it reads back: whether any byte is not
-// printable text (below ' ' or above '~', tab and CR aside), and whether any is a comment's
-// mark ('(', ')' or ';'), when the comments must be read.
+// A byte a controller must not be sent: not printable text (below ' ' or above '~'), tab
+// and CR aside.
+inline bool nc_byte_unprintable(unsigned char byte) {
+  return (byte < 0x20 && byte != '\t' && byte != '\r') || byte > 0x7E;
+}
+
+// What the guard asks first of every byte of a line it reads back: whether any byte is
+// unprintable (nc_byte_unprintable), and whether any is a comment's mark ('(', ')' or ';'),
+// when the comments must be read.
 struct NcLineBytes {
   bool unprintable = false;
   bool comment_marks = false;
